@@ -1,0 +1,30 @@
+#pragma once
+/// @file
+/// Configuration macros of hairshadow. Each one may be defined before the first include to override it.
+
+/// Library version.
+#define HAIRSHADOW_VERSION_MAJOR 0
+#define HAIRSHADOW_VERSION_MINOR 1
+#define HAIRSHADOW_VERSION_PATCH 0
+
+/// Largest accepted shadow-map resolution (texels per side).
+#ifndef HAIRSHADOW_MAX_RESOLUTION
+#define HAIRSHADOW_MAX_RESOLUTION 16384
+#endif
+
+/// Sub-pixel precision of the line rasteriser, in bits. Window coordinates are snapped to 1/2^bits of a
+/// texel before the line rule is applied, as GL implementations do (GL_SUBPIXEL_BITS is 8 on llvmpipe
+/// and on NVIDIA), so that the CPU and GL back ends see the same fragments.
+#ifndef HAIRSHADOW_SUBPIXEL_BITS
+#define HAIRSHADOW_SUBPIXEL_BITS 8
+#endif
+
+/// Largest fragment alpha: alpha is clamped below 1 so that -ln(1 - alpha) stays finite.
+#ifndef HAIRSHADOW_ALPHA_MAX
+#define HAIRSHADOW_ALPHA_MAX 0.999f
+#endif
+
+/// Largest file the readers accept, in bytes (a guard against absurd sizes before anything is read).
+#ifndef HAIRSHADOW_MAX_FILE_BYTES
+#define HAIRSHADOW_MAX_FILE_BYTES (std::uint64_t(8) << 30)
+#endif

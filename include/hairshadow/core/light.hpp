@@ -1,0 +1,214 @@
+#pragma once
+/// @file
+/// Lights and the light space of a shadow map: a directional light gets an orthographic frustum fitted
+/// to the model's bounds; point and spot lights get a perspective one. Maps world points to
+/// (texel, depth), where depth is the linear distance from the light's near plane, normalised to [0, 1].
+
+#include <hairshadow/config.hpp>
+#include <hairshadow/core/bounds.hpp>
+#include <hairshadow/core/error.hpp>
+#include <hairshadow/core/parse.hpp>
+
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+
+#include <array>
+#include <cmath>
+#include <optional>
+#include <string>
+
+namespace hairshadow {
+
+/// Kinds of light.
+enum class light_type { directional, point, spot };
+
+/// A light: a directional light travels along `direction`; point and spot lights sit at `position`;
+/// a spot light looks along `direction` with a cone of half-angle `spot_half_angle_degrees`.
+struct light_spec {
+    light_type type = light_type::directional;
+    glm::vec3 direction{0, -1, 0};
+    glm::vec3 position{0};
+    float spot_half_angle_degrees = 30.0f;
+
+    static light_spec directional(const glm::vec3& dir) { return {light_type::directional, dir, glm::vec3(0), 0.0f}; }
+    static light_spec point(const glm::vec3& pos) { return {light_type::point, glm::vec3(0, -1, 0), pos, 0.0f}; }
+    static light_spec spot(const glm::vec3& pos, const glm::vec3& dir, float half_angle_degrees) {
+        return {light_type::spot, dir, pos, half_angle_degrees};
+    }
+};
+
+/// The grammar of light specs.
+inline constexpr std::string_view light_grammar = "dir:X,Y,Z | point:X,Y,Z | spot:X,Y,Z:DX,DY,DZ:HALF_ANGLE_DEGREES";
+
+namespace detail {
+inline glm::vec3 parse_vec3(std::string_view text, std::string_view what) {
+    const auto parts = split(text, ',');
+    if (parts.size() != 3) throw argument_error(std::string(what) + ": expected three comma-separated numbers, got '" + std::string(text) + "'");
+    return {parse_number<float>(parts[0], what), parse_number<float>(parts[1], what), parse_number<float>(parts[2], what)};
+}
+} // namespace detail
+
+/// Parses `dir:x,y,z` (the direction the light travels), `point:x,y,z` or `spot:x,y,z:dx,dy,dz:angle`.
+inline light_spec parse_light_spec(std::string_view spec) {
+    try {
+        const auto parts = detail::split(spec, ':');
+        if (parts[0] == "dir" && parts.size() == 2) return light_spec::directional(detail::parse_vec3(parts[1], "light direction"));
+        if (parts[0] == "point" && parts.size() == 2) return light_spec::point(detail::parse_vec3(parts[1], "light position"));
+        if (parts[0] == "spot" && parts.size() == 4)
+            return light_spec::spot(detail::parse_vec3(parts[1], "light position"), detail::parse_vec3(parts[2], "light direction"),
+                                    detail::parse_number<float>(parts[3], "spot angle"));
+    } catch (const argument_error& e) {
+        throw argument_error("bad light spec '" + std::string(spec) + "': " + e.what() + "; expected " + std::string(light_grammar));
+    }
+    throw argument_error("bad light spec '" + std::string(spec) + "'; expected " + std::string(light_grammar));
+}
+
+/// Throws argument_error unless 1 <= resolution <= HAIRSHADOW_MAX_RESOLUTION.
+inline void check_resolution(long long resolution) {
+    if (resolution < 1 || resolution > HAIRSHADOW_MAX_RESOLUTION)
+        throw argument_error("resolution " + std::to_string(resolution) + " is outside 1.." + std::to_string(HAIRSHADOW_MAX_RESOLUTION));
+}
+
+/// A world point seen from the light: window coordinates in texels, linear depth in [0, 1] inside the
+/// frustum, and the clip-space w (1 for orthographic lights).
+struct light_point {
+    glm::vec2 window;
+    float depth;
+    float w;
+};
+
+/// The texel a world point falls in, and its depth; see light_space::locate.
+struct texel_depth {
+    int x, y;
+    float depth;
+};
+
+/// The frustum and resolution of one shadow map.
+class light_space {
+public:
+    /// Fits the light's frustum to `bounds` at `resolution` texels per side. Throws argument_error for a
+    /// zero or non-finite direction, an out-of-range resolution, or a point light inside the bounds.
+    static light_space fit(const light_spec& light, const aabb& bounds, int resolution) {
+        check_resolution(resolution);
+        if (bounds.empty() || !std::isfinite(bounds.diagonal())) throw argument_error("the model's bounds are empty or not finite");
+        const auto finite3 = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+        light_space ls;
+        ls.resolution_ = resolution;
+        ls.type_ = light.type;
+        const glm::vec3 center = bounds.center();
+        const float radius = std::max(0.5f * bounds.diagonal(), 1e-6f);
+        glm::vec3 forward;
+        glm::vec3 eye;
+        if (light.type == light_type::directional) {
+            if (!finite3(light.direction) || glm::length(light.direction) == 0.0f)
+                throw argument_error("the light direction is zero or not finite");
+            forward = glm::normalize(light.direction);
+            eye = center - forward * (2.0f * radius);
+        } else {
+            if (!finite3(light.position)) throw argument_error("the light position is not finite");
+            eye = light.position;
+            if (light.type == light_type::spot) {
+                if (!finite3(light.direction) || glm::length(light.direction) == 0.0f)
+                    throw argument_error("the spot light direction is zero or not finite");
+                if (!(light.spot_half_angle_degrees > 0.0f && light.spot_half_angle_degrees < 89.0f))
+                    throw argument_error("the spot light half-angle must be in (0, 89) degrees");
+                forward = glm::normalize(light.direction);
+            } else {
+                if (glm::length(center - eye) <= radius * 1.0001f)
+                    throw argument_error("the point light is inside the model's bounding sphere; a single perspective map cannot cover it");
+                forward = glm::normalize(center - eye);
+            }
+        }
+        const glm::vec3 up = std::abs(forward.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+        ls.view_ = glm::lookAt(eye, eye + forward, up);
+
+        // Extent of the bounds' corners in view space.
+        glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
+        for (int c = 0; c < 8; ++c) {
+            const glm::vec3 corner((c & 1) ? bounds.max.x : bounds.min.x, (c & 2) ? bounds.max.y : bounds.min.y,
+                                   (c & 4) ? bounds.max.z : bounds.min.z);
+            const glm::vec3 v = glm::vec3(ls.view_ * glm::vec4(corner, 1.0f));
+            lo = glm::min(lo, v);
+            hi = glm::max(hi, v);
+        }
+        const float dmin = -hi.z, dmax = -lo.z; // distances in front of the light
+        const float margin = std::max(0.01f * (dmax - dmin), 1e-4f * radius);
+        if (light.type == light_type::directional) {
+            // Square texels; half a percent of padding keeps every point strictly inside the map.
+            const float half = 0.5f * std::max(hi.x - lo.x, hi.y - lo.y) * 1.01f + 1e-6f * radius;
+            const float cx = 0.5f * (lo.x + hi.x), cy = 0.5f * (lo.y + hi.y);
+            ls.near_ = dmin - margin;
+            ls.far_ = dmax + margin;
+            ls.half_extent_ = half;
+            ls.projection_ = glm::ortho(cx - half, cx + half, cy - half, cy + half, ls.near_, ls.far_);
+        } else {
+            float half_tan;
+            if (light.type == light_type::point) {
+                const float dist = glm::length(center - eye);
+                half_tan = std::tan(std::asin(std::min(radius / dist, 0.999f))) * 1.01f;
+                ls.near_ = std::max(dist - radius, dist * 1e-3f) * 0.99f;
+                ls.far_ = (dist + radius) * 1.01f;
+            } else {
+                half_tan = std::tan(glm::radians(light.spot_half_angle_degrees));
+                if (dmax <= 0.0f) throw argument_error("the model lies behind the spot light");
+                ls.near_ = std::max(dmin - margin, std::max(dmax, 1e-6f) * 1e-3f);
+                ls.far_ = dmax + margin;
+            }
+            ls.half_extent_ = half_tan;
+            ls.projection_ = glm::frustum(-half_tan * ls.near_, half_tan * ls.near_, -half_tan * ls.near_, half_tan * ls.near_,
+                                          ls.near_, ls.far_);
+        }
+        ls.view_projection_ = ls.projection_ * ls.view_;
+        return ls;
+    }
+
+    int resolution() const noexcept { return resolution_; }
+    light_type type() const noexcept { return type_; }
+    bool perspective() const noexcept { return type_ != light_type::directional; }
+    const glm::mat4& view() const noexcept { return view_; }
+    const glm::mat4& projection() const noexcept { return projection_; }
+    const glm::mat4& view_projection() const noexcept { return view_projection_; }
+    /// Distances of the near and far planes from the light, in world units.
+    float near_plane() const noexcept { return near_; }
+    float far_plane() const noexcept { return far_; }
+
+    /// Linear depth in [0, 1] of a view-space distance from the light.
+    float depth_of_distance(float distance) const noexcept { return (distance - near_) / (far_ - near_); }
+    /// Distance from the light of a linear depth.
+    float distance_of_depth(float depth) const noexcept { return near_ + depth * (far_ - near_); }
+
+    /// Projects a world point (no clipping): window coordinates, linear depth and clip w.
+    light_point project(const glm::vec3& world) const noexcept {
+        const glm::vec4 clip = view_projection_ * glm::vec4(world, 1.0f);
+        const float distance = -(view_ * glm::vec4(world, 1.0f)).z;
+        const float half_res = 0.5f * float(resolution_);
+        return {glm::vec2((clip.x / clip.w + 1.0f) * half_res, (clip.y / clip.w + 1.0f) * half_res), depth_of_distance(distance), clip.w};
+    }
+
+    /// The texel holding a world point and its depth, or nothing when the point is outside the map.
+    std::optional<texel_depth> locate(const glm::vec3& world) const noexcept {
+        const light_point p = project(world);
+        if (!(p.w > 0.0f) || !(p.window.x >= 0.0f) || !(p.window.y >= 0.0f) || !(p.window.x < float(resolution_)) ||
+            !(p.window.y < float(resolution_)))
+            return std::nullopt;
+        return texel_depth{int(p.window.x), int(p.window.y), p.depth};
+    }
+
+    /// World-space width of one texel at a linear depth (constant for a directional light).
+    float texel_size(float depth) const noexcept {
+        if (!perspective()) return 2.0f * half_extent_ / float(resolution_);
+        return 2.0f * half_extent_ * distance_of_depth(depth) / float(resolution_);
+    }
+
+private:
+    int resolution_ = 1;
+    light_type type_ = light_type::directional;
+    glm::mat4 view_{1.0f}, projection_{1.0f}, view_projection_{1.0f};
+    float near_ = 0.0f, far_ = 1.0f;
+    float half_extent_ = 1.0f; ///< orthographic half width, or tan of the perspective half-angle
+};
+
+} // namespace hairshadow

@@ -1,0 +1,31 @@
+#pragma once
+/// @file
+/// hairshadow: self-shadowing and transparency of hair and other thin semi-transparent geometry.
+/// The CPU umbrella header: models and their readers, lights, the rasteriser and the exact reference.
+/// It needs only GLM. The OBJ reader (`<hairshadow/io/obj_format.hpp>`, `<hairshadow/io/load.hpp>`)
+/// also needs tinyobjloader and is included separately.
+
+#include <hairshadow/config.hpp>
+
+#include <hairshadow/core/bounds.hpp>
+#include <hairshadow/core/error.hpp>
+#include <hairshadow/core/hair_model.hpp>
+#include <hairshadow/core/light.hpp>
+#include <hairshadow/core/parallel.hpp>
+#include <hairshadow/core/parse.hpp>
+#include <hairshadow/core/random.hpp>
+#include <hairshadow/core/triangle_mesh.hpp>
+
+#include <hairshadow/io/data_format.hpp>
+#include <hairshadow/io/hair_format.hpp>
+#include <hairshadow/io/procedural_spec.hpp>
+#include <hairshadow/io/tfx_format.hpp>
+
+#include <hairshadow/procedural/generators.hpp>
+
+#include <hairshadow/raster/fragment.hpp>
+#include <hairshadow/raster/line_rule.hpp>
+#include <hairshadow/raster/rasterizer.hpp>
+
+#include <hairshadow/reference/compressed_deep_shadow_map.hpp>
+#include <hairshadow/reference/deep_shadow_map.hpp>

@@ -1,0 +1,39 @@
+#pragma once
+/// @file
+/// Loads a hair model from a file (by extension: .hair, .tfx, .data, .obj) or a procedural spec.
+/// Includes the OBJ reader, so it needs tinyobjloader (link `hairshadow::io`).
+
+#include <hairshadow/io/data_format.hpp>
+#include <hairshadow/io/hair_format.hpp>
+#include <hairshadow/io/obj_format.hpp>
+#include <hairshadow/io/procedural_spec.hpp>
+#include <hairshadow/io/tfx_format.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+namespace hairshadow {
+
+/// Reads `source`: a `.hair`, `.tfx`, `.data` or `.obj` file, or `procedural:NAME[:key=value...]`.
+/// Throws io_error (files) or argument_error (specs).
+inline hair_model load_model(const std::string& source) {
+    if (is_procedural_spec(source)) return make_procedural(parse_procedural_spec(source));
+    std::string ext = std::filesystem::path(source).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext == ".hair") return read_hair(source);
+    if (ext == ".tfx") return read_tfx(source);
+    if (ext == ".data") return read_data(source);
+    if (ext == ".obj") return read_obj_hair(source);
+    throw io_error(source, "unknown model format '" + ext + "' (expected .hair, .tfx, .data, .obj or procedural:...)");
+}
+
+/// Writes a model by extension: `.hair` or `.data`.
+inline void save_model(const hair_model& model, const std::string& path) {
+    const std::string ext = std::filesystem::path(path).extension().string();
+    if (ext == ".hair") return write_hair(model, path);
+    if (ext == ".data") return write_data(model, path);
+    throw io_error(path, "cannot write format '" + ext + "' (expected .hair or .data)");
+}
+
+} // namespace hairshadow

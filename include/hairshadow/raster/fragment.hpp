@@ -1,0 +1,45 @@
+#pragma once
+/// @file
+/// Light-space fragments and the per-texel buffer that holds them.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace hairshadow {
+
+/// One fragment of a strand in a light-space texel: linear depth in [0, 1] and alpha in [0, 1).
+struct fragment {
+    float depth;
+    float alpha;
+    friend bool operator==(const fragment&, const fragment&) = default;
+};
+
+/// Every texel's fragments, stored texel after texel (row-major, y then x). Within a texel, fragments
+/// keep the order of the segments that produced them, whatever the thread count.
+class fragment_buffer {
+public:
+    fragment_buffer() = default;
+    fragment_buffer(int resolution, std::vector<std::uint64_t> offsets, std::vector<fragment> fragments)
+        : resolution_(resolution), offsets_(std::move(offsets)), fragments_(std::move(fragments)) {}
+
+    int resolution() const noexcept { return resolution_; }
+    std::size_t texel_count() const noexcept { return std::size_t(resolution_) * std::size_t(resolution_); }
+    std::size_t size() const noexcept { return fragments_.size(); }
+    /// The fragments of texel (x, y).
+    std::span<const fragment> texel(int x, int y) const noexcept { return texel(std::size_t(y) * std::size_t(resolution_) + std::size_t(x)); }
+    /// The fragments of the texel with row-major index i.
+    std::span<const fragment> texel(std::size_t i) const noexcept {
+        return {fragments_.data() + offsets_[i], static_cast<std::size_t>(offsets_[i + 1] - offsets_[i])};
+    }
+    const std::vector<std::uint64_t>& offsets() const noexcept { return offsets_; }
+    const std::vector<fragment>& fragments() const noexcept { return fragments_; }
+    friend bool operator==(const fragment_buffer&, const fragment_buffer&) = default;
+
+private:
+    int resolution_ = 0;
+    std::vector<std::uint64_t> offsets_{0};
+    std::vector<fragment> fragments_;
+};
+
+} // namespace hairshadow

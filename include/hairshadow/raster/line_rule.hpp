@@ -1,0 +1,85 @@
+#pragma once
+/// @file
+/// OpenGL's aliased line rule (the diamond-exit rule, GL 4.6 core section 14.5.1) in exact fixed-point
+/// arithmetic. Fragment f is produced when the segment meets f's diamond |x - xc| + |y - yc| < 1/2 and
+/// the segment's end is not inside it, with both endpoints perturbed by (e, e^2) for a vanishing e so
+/// that boundary cases are decided the way the specification describes.
+
+#include <hairshadow/config.hpp>
+
+#include <cstdint>
+#include <cstdlib>
+
+namespace hairshadow {
+
+/// Window coordinates snapped to 1/subpixel_scale of a texel.
+struct fixed_point {
+    std::int64_t x, y;
+    friend bool operator==(const fixed_point&, const fixed_point&) = default;
+};
+
+/// Sub-pixel steps per texel.
+inline constexpr std::int64_t subpixel_scale = std::int64_t(1) << HAIRSHADOW_SUBPIXEL_BITS;
+
+/// A half-open texel rectangle [x0, x1) x [y0, y1).
+struct texel_rect {
+    int x0, y0, x1, y1;
+    bool contains(std::int64_t x, std::int64_t y) const noexcept { return x >= x0 && x < x1 && y >= y0 && y < y1; }
+};
+
+namespace detail {
+inline std::int64_t floor_div(std::int64_t a, std::int64_t b) noexcept { // b > 0
+    const std::int64_t q = a / b;
+    return (a % b != 0 && a < 0) ? q - 1 : q;
+}
+
+/// Is point p, perturbed by (e, e^2), inside the open diamond of texel (c, r)? On the boundary the
+/// perturbation's x term decides: the point is inside exactly when it lies left of the centre.
+inline bool inside_diamond(const fixed_point& p, std::int64_t c, std::int64_t r) noexcept {
+    constexpr std::int64_t half = subpixel_scale / 2;
+    const std::int64_t u = p.x - (c * subpixel_scale + half);
+    const std::int64_t v = p.y - (r * subpixel_scale + half);
+    const std::int64_t l1 = std::llabs(u) + std::llabs(v);
+    return l1 < half || (l1 == half && u < 0);
+}
+} // namespace detail
+
+/// Calls emit(x, y) for every fragment of the segment a -> b inside `clip`, following the diamond-exit
+/// rule. A zero-length segment produces nothing. Coordinates must be within +-2^26 texels.
+template <class Emit>
+void rasterize_line(const fixed_point& a, const fixed_point& b, const texel_rect& clip, Emit&& emit) {
+    using detail::floor_div;
+    using detail::inside_diamond;
+    constexpr std::int64_t S = subpixel_scale, H = subpixel_scale / 2;
+    const std::int64_t dx = b.x - a.x, dy = b.y - a.y;
+    if (dx == 0 && dy == 0) return;
+    const bool x_major = std::llabs(dx) >= std::llabs(dy);
+    const std::int64_t major_a = x_major ? a.x : a.y, major_b = x_major ? b.x : b.y;
+    const std::int64_t d_major = x_major ? dx : dy, d_minor = x_major ? dy : dx;
+    const std::int64_t minor_a = x_major ? a.y : a.x;
+    // Texel centres c*S + H on the major axis that the perturbed segment crosses: for increasing
+    // coordinates major_a < centre <= major_b, for decreasing major_b < centre <= major_a.
+    const std::int64_t lo_end = d_major > 0 ? major_a : major_b, hi_end = d_major > 0 ? major_b : major_a;
+    const std::int64_t first = floor_div(lo_end - H, S) + 1, last = floor_div(hi_end - H, S);
+    const std::int64_t clip_lo = x_major ? clip.x0 : clip.y0, clip_hi = x_major ? clip.x1 : clip.y1;
+    const std::int64_t denom = (d_major > 0 ? d_major : -d_major) * S;
+    const std::int64_t sign = d_major > 0 ? 1 : -1;
+    // Ties on the minor axis: an x-major line through a texel corner row goes to the lower row when the
+    // slope is positive (the perturbation moves it by -slope*e); a y-major line always goes right (+e).
+    const bool lower_on_tie = x_major && (dx > 0) == (dy > 0) && dy != 0;
+    for (std::int64_t m = std::max(first, clip_lo); m <= std::min(last, clip_hi - 1); ++m) {
+        const std::int64_t centre = m * S + H;
+        const std::int64_t num = sign * (minor_a * d_major + (centre - major_a) * d_minor);
+        std::int64_t n = floor_div(num, denom);
+        if (lower_on_tie && num == n * denom) --n;
+        const std::int64_t x = x_major ? m : n, y = x_major ? n : m;
+        if (clip.contains(x, y) && !inside_diamond(b, x, y)) emit(int(x), int(y));
+    }
+    // A segment that starts inside a diamond it does not cross the centre line of still exits it.
+    const std::int64_t ax = floor_div(a.x, S), ay = floor_div(a.y, S);
+    const std::int64_t a_major = x_major ? ax : ay;
+    if (inside_diamond(a, ax, ay) && (a_major < first || a_major > last) && !inside_diamond(b, ax, ay) && clip.contains(ax, ay))
+        emit(int(ax), int(ay));
+}
+
+} // namespace hairshadow

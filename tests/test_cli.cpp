@@ -1,0 +1,96 @@
+#include "sheets.hpp"
+#include "test_support.hpp"
+
+#include <hairshadow/io/data_format.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <sstream>
+
+using namespace hairshadow;
+
+TEST_CASE("info prints the Sintel model's counts and bounds", "[cli]") {
+    const auto r = test::run_cli("info " + test::sintel_hair());
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.out, Catch::Contains("strands:  11400"));
+    CHECK_THAT(r.out, Catch::Contains("points:   182400"));
+    CHECK_THAT(r.out, Catch::Contains("segments: 171000"));
+    CHECK_THAT(r.out, Catch::Contains("x [-0.116099, 0.102584]"));
+    CHECK_THAT(r.out, Catch::Contains("y [1.39567, 1.67489]"));
+}
+
+TEST_CASE("query with dsm gives the analytic transmittance behind each sheet", "[cli]") {
+    test::temp_dir dir("cli_sheets");
+    const auto scene = test::make_sheets(3, 64);
+    write_data(scene.model, dir.file("sheets.data"));
+    std::string points;
+    std::vector<float> expected;
+    for (float x : {-0.5f, 0.1f, 0.6f})
+        for (int k = 0; k <= 3; ++k) {
+            const float z = k == 0 ? 0.7f : scene.sheet_z[std::size_t(k - 1)] - 0.1f;
+            points += std::to_string(x) + " " + std::to_string(scene.row_y[scene.row_y.size() / 2 + 3]) + " " + std::to_string(z) + "\n";
+            expected.push_back(std::pow(0.6f, float(k)));
+        }
+    test::write_text(dir.file("points.txt"), "# x y z\n" + points);
+    for (const char* method : {"dsm", "dsm:0.001"}) {
+        const auto r = test::run_cli(std::string("query ") + dir.file("sheets.data") + " --method " + method +
+                                     " --light dir:0,0,-1 --res 64 --alpha 0.4 --points " + dir.file("points.txt"));
+        REQUIRE(r.status == 0);
+        std::istringstream lines(r.out);
+        for (float e : expected) {
+            float t = -1;
+            lines >> t;
+            CHECK(t == Approx(e).margin(method[3] ? 1.1e-3 : 1e-5));
+        }
+    }
+}
+
+TEST_CASE("render writes a PNG of the light's view", "[cli]") {
+    test::temp_dir dir("cli_render");
+    const auto r = test::run_cli("render procedural:straight:strands=200:segments=8 --res 64 --out " + dir.file("t.png"));
+    REQUIRE(r.status == 0);
+    const auto png = test::read_bytes(dir.file("t.png"));
+    REQUIRE(png.size() > 8);
+    CHECK(png[1] == 'P');
+    CHECK(png[2] == 'N');
+    CHECK(png[3] == 'G');
+}
+
+TEST_CASE("bad input gives 'error: FILE: reason' and exit status 1", "[cli][errors]") {
+    test::temp_dir dir("cli_bad");
+    auto expect = [](const std::string& args, int status, const std::string& message) {
+        const auto r = test::run_cli(args);
+        CAPTURE(args, r.err);
+        CHECK(r.status == status);
+        CHECK_THAT(r.err, Catch::Contains(message));
+    };
+    test::write_bytes(dir.file("short.hair"), {'H', 'A', 'I', 'R', 1, 0});
+    expect("info " + dir.file("short.hair"), 1, "error: " + dir.file("short.hair") + ": truncated");
+    expect("info " + dir.file("absent.tfx"), 1, "error: " + dir.file("absent.tfx") + ": no such file");
+    test::write_text(dir.file("points.txt"), "0 0 0\n1 nan 2\n");
+    expect("query procedural:straight --points " + dir.file("points.txt"), 1, "points.txt: line 2");
+    test::write_text(dir.file("points.txt"), "0 0\n");
+    expect("query procedural:straight --points " + dir.file("points.txt"), 1, "line 1: expected three numbers");
+    expect("render procedural:straight --res 0", 1, "error: resolution 0 is outside");
+    expect("render procedural:straight --res 16385", 1, "error: resolution 16385 is outside");
+    expect("render procedural:straight --light dir:0,0,0", 1, "error: the light direction is zero");
+    expect("render procedural:straight:strands=0", 1, "strands must be at least 1");
+}
+
+TEST_CASE("usage errors exit 2 with the valid grammar", "[cli][errors]") {
+    auto expect = [](const std::string& args, const std::string& message) {
+        const auto r = test::run_cli(args);
+        CAPTURE(args, r.err);
+        CHECK(r.status == 2);
+        CHECK_THAT(r.err, Catch::Contains(message));
+    };
+    expect("render procedural:straight --method osm:0", "valid: dsm");
+    expect("render procedural:straight --method dsm:2", "valid: dsm");
+    expect("render procedural:straight --method nonsense", "valid: dsm");
+    expect("render procedural:straight --light sun:1,2,3", "expected dir:X,Y,Z");
+    expect("render procedural:bald", "unknown style");
+    expect("", "");
+    expect("frobnicate", "");
+    expect("info", "MODEL is required");
+}

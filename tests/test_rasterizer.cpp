@@ -1,0 +1,143 @@
+#include "test_support.hpp"
+
+#include <hairshadow/hairshadow.hpp>
+
+#include <catch2/catch.hpp>
+
+using namespace hairshadow;
+
+namespace {
+hair_model two_point_model(glm::vec3 a, glm::vec3 b, float thickness) {
+    hair_model m;
+    m.add_strand(std::vector<glm::vec3>{a, b});
+    // Two anchor strands fix the bounds, so the map spans [-1, 1] in x and y.
+    m.add_strand(std::vector<glm::vec3>{{-1, -1, -1}, {-1, -1, -0.99f}});
+    m.add_strand(std::vector<glm::vec3>{{1, 1, 1}, {1, 1, 0.99f}});
+    m.default_thickness = thickness;
+    return m;
+}
+} // namespace
+
+TEST_CASE("fragments carry the depth and coverage of their segment", "[raster]") {
+    const auto m = two_point_model({-0.5f, 0.1f, 0.25f}, {0.5f, 0.1f, 0.25f}, 0.004f);
+    const auto ls = light_space::fit(light_spec::directional({0, 0, -1}), m.bounds(), 128);
+    const auto fb = rasterize(m, ls);
+    const float expected_depth = ls.project({0, 0.1f, 0.25f}).depth;
+    const float expected_alpha = 0.004f / ls.texel_size(0.5f);
+    const int row = int(ls.project({0, 0.1f, 0.25f}).window.y);
+    // Columns whose whole diamond lies between the ends (the end texels depend on the exit rule).
+    const int x0 = int(ls.project({-0.5f, 0.1f, 0.25f}).window.x) + 1, x1 = int(ls.project({0.5f, 0.1f, 0.25f}).window.x) - 1;
+    int found = 0;
+    for (int x = x0; x <= x1; ++x) {
+        const auto frags = fb.texel(x, row);
+        REQUIRE(frags.size() == 1);
+        CHECK(frags[0].depth == Approx(expected_depth).margin(1e-6));
+        CHECK(frags[0].alpha == Approx(expected_alpha).epsilon(1e-5));
+        ++found;
+    }
+    CHECK(found > 50);
+}
+
+TEST_CASE("depth is interpolated along the segment and alpha can be fixed", "[raster]") {
+    const auto m = two_point_model({-0.6f, 0.0f, 0.8f}, {0.6f, 0.05f, -0.8f}, 0.004f);
+    const auto ls = light_space::fit(light_spec::directional({0, 0, -1}), m.bounds(), 64);
+    raster_options o;
+    o.fixed_alpha = 0.3f;
+    const auto fb = rasterize(m, ls, o);
+    const auto a = ls.project({-0.6f, 0.0f, 0.8f}), b = ls.project({0.6f, 0.05f, -0.8f});
+    for (int x = int(a.window.x) + 1; x < int(b.window.x); ++x) {
+        const float t = (float(x) + 0.5f - a.window.x) / (b.window.x - a.window.x);
+        bool hit = false;
+        for (int y = 0; y < 64; ++y)
+            for (const auto& f : fb.texel(x, y))
+                if (f.depth > a.depth && f.depth < b.depth) {
+                    CHECK(f.depth == Approx(a.depth + t * (b.depth - a.depth)).margin(1e-3));
+                    CHECK(f.alpha == 0.3f);
+                    hit = true;
+                }
+        CHECK(hit);
+    }
+}
+
+TEST_CASE("zero-length segments produce no fragments", "[raster]") {
+    auto m = two_point_model({0.2f, 0.2f, 0.2f}, {0.2f, 0.2f, 0.2f}, 0.01f);
+    const auto ls = light_space::fit(light_spec::directional({0, 0, -1}), m.bounds(), 64);
+    const auto fb = rasterize(m, ls);
+    const auto td = ls.locate({0.2f, 0.2f, 0.2f});
+    REQUIRE(td);
+    CHECK(fb.texel(td->x, td->y).empty());
+}
+
+TEST_CASE("1 thread, all threads and any tile size give identical fragments on Sintel", "[raster][determinism]") {
+    const auto m = read_tfx(test::sintel_hair());
+    const auto ls = light_space::fit(light_spec::directional({0.3f, -1, -0.5f}), m.bounds(), 512);
+    raster_options one;
+    one.exec.threads = 1;
+    const auto reference = rasterize(m, ls, one);
+    CHECK(reference.size() > 500000);
+    raster_options all;
+    CHECK(rasterize(m, ls, all) == reference);
+    raster_options three;
+    three.exec.threads = 3;
+    three.tile_size = 16;
+    CHECK(rasterize(m, ls, three) == reference);
+    all.tile_size = 64;
+    CHECK(rasterize(m, ls, all) == reference);
+    // Wide lines too.
+    one.wide_line_width = 3.0f;
+    all.wide_line_width = 3.0f;
+    CHECK(rasterize(m, ls, one) == rasterize(m, ls, all));
+}
+
+TEST_CASE("pre-filtered wide lines spread a strand's coverage across the band", "[raster][wide]") {
+    const auto m = two_point_model({-0.5f, 0.013f, 0.0f}, {0.5f, 0.013f, 0.0f}, 0.004f);
+    const auto ls = light_space::fit(light_spec::directional({0, 0, -1}), m.bounds(), 128);
+    raster_options o;
+    o.wide_line_width = 4.0f;
+    const auto fb = rasterize(m, ls, o);
+    const float thin_alpha = 0.004f / ls.texel_size(0.5f);
+    const int x = 64;
+    float column_sum = 0;
+    int count = 0;
+    for (int y = 0; y < 128; ++y)
+        for (const auto& f : fb.texel(x, y)) {
+            column_sum += f.alpha;
+            ++count;
+        }
+    CHECK(count == 4); // centres within 2 texels of the axis
+    CHECK(column_sum == Approx(thin_alpha).epsilon(0.05));
+}
+
+TEST_CASE("perspective lights weight coverage by reciprocal depth", "[raster]") {
+    // Two equal strands, one near the light and one far from it.
+    hair_model m;
+    m.add_strand(std::vector<glm::vec3>{{-0.5f, 0.3f, 0.9f}, {0.5f, 0.3f, 0.9f}});
+    m.add_strand(std::vector<glm::vec3>{{-0.5f, -0.3f, -0.9f}, {0.5f, -0.3f, -0.9f}});
+    m.default_thickness = 0.002f;
+    const auto ls = light_space::fit(light_spec::point({0, 0, 4}), m.bounds(), 256);
+    const auto fb = rasterize(m, ls);
+    auto alpha_at = [&](glm::vec3 p) {
+        const auto td = ls.locate(p);
+        REQUIRE(td);
+        REQUIRE(fb.texel(td->x, td->y).size() == 1);
+        return fb.texel(td->x, td->y)[0].alpha;
+    };
+    const float near_alpha = alpha_at({0.01f, 0.3f, 0.9f}), far_alpha = alpha_at({0.01f, -0.3f, -0.9f});
+    CHECK(near_alpha / far_alpha == Approx((4 + 0.9f) / (4 - 0.9f)).epsilon(0.02));
+    raster_options flat;
+    flat.depth_weighting = false;
+    const auto fb_flat = rasterize(m, ls, flat);
+    const auto td = ls.locate({0.01f, 0.3f, 0.9f});
+    CHECK(fb_flat.texel(td->x, td->y)[0].alpha < near_alpha);
+}
+
+TEST_CASE("bad raster options raise argument_error", "[raster][errors]") {
+    const auto m = test::grid_model(3, 3);
+    const auto ls = light_space::fit(light_spec::directional({0, 0, -1}), m.bounds(), 32);
+    raster_options o;
+    o.fixed_alpha = 1.5f;
+    CHECK_THROWS_AS(rasterize(m, ls, o), argument_error);
+    o = {};
+    o.wide_line_width = -1.0f;
+    CHECK_THROWS_AS(rasterize(m, ls, o), argument_error);
+}

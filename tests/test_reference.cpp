@@ -1,0 +1,113 @@
+#include "sheets.hpp"
+#include "test_support.hpp"
+
+#include <hairshadow/hairshadow.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace hairshadow;
+
+TEST_CASE("behind k parallel sheets the exact transmittance is (1 - alpha)^k", "[reference]") {
+    const auto scene = test::make_sheets(4, 128);
+    REQUIRE(scene.model.bounds().center().y == Approx(0.0f).margin(1e-6));
+    const float alpha = 0.3f;
+    raster_options o;
+    o.fixed_alpha = alpha;
+    const deep_shadow_map dsm(rasterize(scene.model, scene.light, o), scene.light);
+    int checked = 0;
+    for (float y : {scene.row_y[5], scene.row_y[scene.row_y.size() / 2], scene.row_y[scene.row_y.size() - 6]})
+        for (float x : {-0.7f, 0.0f, 0.33f, 0.8f})
+            for (int k = 0; k <= 4; ++k) {
+                const float z = k == 0 ? 0.6f : scene.sheet_z[std::size_t(k - 1)] - 0.1f; // just behind sheet k
+                CAPTURE(x, y, z, k);
+                CHECK(dsm.transmittance({x, y, z}) == Approx(std::pow(1.0f - alpha, float(k))).epsilon(1e-5));
+                ++checked;
+            }
+    CHECK(checked == 60);
+}
+
+TEST_CASE("the exact optical depth sums -ln(1 - alpha) over the fragments in front", "[reference]") {
+    const auto m = read_tfx(test::sintel_hair());
+    const auto ls = light_space::fit(light_spec::directional({0, -1, -1}), m.bounds(), 128);
+    const auto fb = rasterize(m, ls);
+    const deep_shadow_map dsm(fb, ls);
+    REQUIRE(dsm.fragment_count() == fb.size());
+    random_stream rng(7);
+    int busy = 0;
+    for (int i = 0; i < 2000; ++i) {
+        const int x = int(rng.uniform() * 128), y = int(rng.uniform() * 128);
+        const float z = rng.uniform();
+        double omega = 0;
+        for (const auto& f : fb.texel(x, y))
+            if (f.depth < z) omega -= std::log(1.0 - double(f.alpha));
+        busy += fb.texel(x, y).size() > 10;
+        REQUIRE(dsm.optical_depth(x, y, z) == Approx(omega).epsilon(1e-5).margin(1e-6));
+        REQUIRE(dsm.transmittance(x, y, z) == Approx(std::exp(-omega)).epsilon(1e-5).margin(1e-7));
+    }
+    CHECK(busy > 100);
+    CHECK(dsm.transmittance(64, 64, 0.0f) == 1.0f); // nothing is in front of depth 0
+}
+
+TEST_CASE("Lokovic-Veach compression stays within its tolerance with fewer vertices", "[reference][compression]") {
+    const auto m = read_tfx(test::sintel_hair());
+    const auto ls = light_space::fit(light_spec::directional({0, -1, -1}), m.bounds(), 128);
+    const deep_shadow_map dsm(rasterize(m, ls), ls);
+    for (float tolerance : {0.002f, 0.02f, 0.1f}) {
+        const compressed_deep_shadow_map c(dsm, tolerance);
+        CAPTURE(tolerance);
+        CHECK(c.vertex_count() < 2 * dsm.fragment_count());
+        float worst = 0;
+        for (int y = 0; y < 128; y += 3)
+            for (int x = 0; x < 128; x += 3) {
+                const auto depths = dsm.depths(x, y);
+                std::vector<float> probes{0.0f, 1.0f};
+                for (float d : depths) {
+                    probes.push_back(d);
+                    probes.push_back(std::nextafter(d, 2.0f));
+                    probes.push_back(d + 1e-3f);
+                }
+                for (float z : probes) worst = std::max(worst, std::abs(c.transmittance(x, y, z) - dsm.transmittance(x, y, z)));
+            }
+        CHECK(worst <= tolerance * 1.0001f + 1e-6f);
+    }
+    const compressed_deep_shadow_map coarse(dsm, 0.1f), fine(dsm, 0.002f);
+    CHECK(coarse.vertex_count() < fine.vertex_count());
+}
+
+TEST_CASE("compression of a hand-made function", "[reference][compression]") {
+    // Four equal steps of 0.1 each at depths 0.1, 0.2, 0.3, 0.4: with tolerance 0.06 one straight
+    // ramp cannot follow them all, but a few segments can.
+    const std::vector<transmittance_vertex> steps{{0.1f, 1.0f}, {0.1f, 0.9f}, {0.2f, 0.9f}, {0.2f, 0.8f},
+                                                  {0.3f, 0.8f}, {0.3f, 0.7f}, {0.4f, 0.7f}, {0.4f, 0.6f}};
+    std::vector<transmittance_vertex> out;
+    detail::compress_function(steps, 0.06f, out);
+    CHECK(out.size() < steps.size());
+    CHECK(out.front().depth == 0.1f);
+    CHECK(out.back().depth == 0.4f);
+    CHECK(std::abs(out.back().transmittance - 0.6f) <= 0.06f);
+    // With a tolerance above the whole drop, a single ramp would do but a single vertex is not enough.
+    out.clear();
+    detail::compress_function(steps, 0.5f, out);
+    CHECK(out.size() == 2);
+}
+
+TEST_CASE("a compression tolerance outside (0, 1) is refused", "[reference][compression][errors]") {
+    const auto scene = test::make_sheets(2, 32);
+    const deep_shadow_map dsm(rasterize(scene.model, scene.light), scene.light);
+    CHECK_THROWS_AS(compressed_deep_shadow_map(dsm, 0.0f), argument_error);
+    CHECK_THROWS_AS(compressed_deep_shadow_map(dsm, 1.0f), argument_error);
+    CHECK_THROWS_AS(compressed_deep_shadow_map(dsm, std::nanf("")), argument_error);
+}
+
+TEST_CASE("batch queries equal single queries and points outside the map are lit", "[reference]") {
+    const auto m = make_procedural({.style = hair_style::curly, .strands = 400, .segments = 24});
+    const auto ls = light_space::fit(light_spec::directional({0, -1, 0}), m.bounds(), 128);
+    const deep_shadow_map dsm(rasterize(m, ls), ls);
+    std::vector<float> batch(m.point_count());
+    dsm.transmittance(m.points, batch, 1e-3f);
+    for (std::size_t i = 0; i < m.point_count(); i += 17) CHECK(batch[i] == dsm.transmittance(m.points[i], 1e-3f));
+    CHECK(dsm.transmittance(glm::vec3(100, 0, 0)) == 1.0f);
+    CHECK(dsm.memory_bytes() >= dsm.fragment_count() * 8);
+}
