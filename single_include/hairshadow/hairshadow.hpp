@@ -1205,6 +1205,8 @@ inline hair_model read_tfx(const std::string& path) {
 
 namespace hairshadow {
 
+class rasterizer;
+
 /// One fragment of a strand in a light-space texel: linear depth in [0, 1] and alpha in [0, 1).
 struct fragment {
     float depth;
@@ -1234,6 +1236,7 @@ public:
     friend bool operator==(const fragment_buffer&, const fragment_buffer&) = default;
 
 private:
+    friend class rasterizer; // refills the vectors in place, reusing their memory
     int resolution_ = 0;
     std::vector<std::uint64_t> offsets_{0};
     std::vector<fragment> fragments_;
@@ -1309,13 +1312,22 @@ void rasterize_line(const fixed_point& a, const fixed_point& b, const texel_rect
     // Ties on the minor axis: an x-major line through a texel corner row goes to the lower row when the
     // slope is positive (the perturbation moves it by -slope*e); a y-major line always goes right (+e).
     const bool lower_on_tie = x_major && (dx > 0) == (dy > 0) && dy != 0;
-    for (std::int64_t m = std::max(first, clip_lo); m <= std::min(last, clip_hi - 1); ++m) {
-        const std::int64_t centre = m * S + H;
-        const std::int64_t num = sign * (minor_a * d_major + (centre - major_a) * d_minor);
-        std::int64_t n = floor_div(num, denom);
-        if (lower_on_tie && num == n * denom) --n;
-        const std::int64_t x = x_major ? m : n, y = x_major ? n : m;
-        if (clip.contains(x, y) && !inside_diamond(b, x, y)) emit(int(x), int(y));
+    const std::int64_t m_begin = std::max(first, clip_lo), m_end = std::min(last, clip_hi - 1);
+    if (m_begin <= m_end) {
+        // The minor coordinate at successive centres, num / denom, advances by a constant step: keep its
+        // quotient and remainder exactly, with one division per call instead of one per texel.
+        const std::int64_t num0 = sign * (minor_a * d_major + (m_begin * S + H - major_a) * d_minor);
+        std::int64_t n = floor_div(num0, denom), rem = num0 - n * denom;
+        const std::int64_t step = sign * d_minor * S;
+        const std::int64_t step_q = floor_div(step, denom), step_r = step - step_q * denom;
+        for (std::int64_t m = m_begin; m <= m_end; ++m) {
+            const std::int64_t minor = (lower_on_tie && rem == 0) ? n - 1 : n;
+            const std::int64_t x = x_major ? m : minor, y = x_major ? minor : m;
+            if (clip.contains(x, y) && !inside_diamond(b, x, y)) emit(int(x), int(y));
+            n += step_q;
+            rem += step_r;
+            if (rem >= denom) rem -= denom, ++n;
+        }
     }
     // A segment that starts inside a diamond it does not cross the centre line of still exits it.
     const std::int64_t ax = floor_div(a.x, S), ay = floor_div(a.y, S);
@@ -1371,7 +1383,7 @@ struct prepared_segment {
 inline std::int64_t snap(float window) noexcept { return std::llround(double(window) * double(subpixel_scale)); }
 
 /// Clips the segment p0 -> p1 to the light's near and far planes (linear in view space) and projects it.
-/// Returns false when nothing of it is left.
+/// Returns false, leaving out.a == out.b, when nothing of it is left to draw.
 inline bool prepare_segment(const light_space& ls, glm::vec3 p0, glm::vec3 p1, float t0, float t1, float o0, float o1,
                             prepared_segment& out) {
     const glm::mat4& view = ls.view();
@@ -1384,6 +1396,7 @@ inline bool prepare_segment(const light_space& ls, glm::vec3 p0, glm::vec3 p1, f
         if (f1 < 0) s1 = std::min(s1, f0 / (f0 - f1));
         return s0 <= s1;
     };
+    out.a = out.b = fixed_point{0, 0}; // marks the segment empty until it is known to have length
     if (!clip(d0 - lo, d1 - lo) || !clip(hi - d0, hi - d1)) return false;
     if (s0 > 0.0f || s1 < 1.0f) {
         const glm::vec3 q0 = p0 + (p1 - p0) * s0, q1 = p0 + (p1 - p0) * s1;
@@ -1452,139 +1465,187 @@ void rasterize_wide_line(const prepared_segment& s, float width, const texel_rec
 
 } // namespace detail
 
-/// Rasterises every segment of `model` into `light`'s map. Fragments follow the GL line rule (or the
-/// wide-line filter); a fragment's alpha is the strand's opacity times the share of the texel its
-/// thickness covers (thickness / texel footprint, at most 1), or the fixed alpha; either is clamped
-/// to HAIRSHADOW_ALPHA_MAX. Throws argument_error for a bad alpha, width or tile size.
-inline fragment_buffer rasterize(const hair_model& model, const light_space& light, const raster_options& opt = {}) {
-    if (opt.fixed_alpha && !(*opt.fixed_alpha >= 0.0f && *opt.fixed_alpha <= 1.0f))
-        throw argument_error("fixed alpha must be in [0, 1]");
-    if (!(opt.wide_line_width >= 0.0f && opt.wide_line_width <= 64.0f)) throw argument_error("wide line width must be in [0, 64] texels");
-    if (opt.tile_size < 8 || opt.tile_size > 1024) throw argument_error("tile size must be in [8, 1024]");
-    const int res = light.resolution();
-    const int tile = opt.tile_size;
-    const int tiles_x = (res + tile - 1) / tile;
-    const std::size_t tile_count = std::size_t(tiles_x) * std::size_t(tiles_x);
+/// Rasterises hair models into light-space fragments, keeping its working memory between calls so
+/// that a renderer rebuilding its maps every frame touches no new pages. Fragments follow the GL line
+/// rule (or the wide-line filter); a fragment's alpha is the strand's opacity times the share of the
+/// texel its thickness covers (thickness / texel footprint, at most 1), or the fixed alpha; either is
+/// clamped to HAIRSHADOW_ALPHA_MAX.
+class rasterizer {
+public:
+    /// Throws argument_error for a bad alpha, wide-line width or tile size.
+    explicit rasterizer(const raster_options& options = {}) : opt_(options) {
+        if (opt_.fixed_alpha && !(*opt_.fixed_alpha >= 0.0f && *opt_.fixed_alpha <= 1.0f))
+            throw argument_error("fixed alpha must be in [0, 1]");
+        if (!(opt_.wide_line_width >= 0.0f && opt_.wide_line_width <= 64.0f)) throw argument_error("wide line width must be in [0, 64] texels");
+        if (opt_.tile_size < 8 || opt_.tile_size > 1024) throw argument_error("tile size must be in [8, 1024]");
+    }
 
-    // 1. Prepare segments (project and snap), strand by strand.
-    std::vector<std::size_t> first_segment(model.strand_count() + 1, 0);
-    for (std::size_t s = 0; s < model.strand_count(); ++s)
-        first_segment[s + 1] = first_segment[s] + (model.strand_size(s) > 1 ? model.strand_size(s) - 1 : 0);
-    const std::size_t segment_count = first_segment.back();
-    if (segment_count > std::numeric_limits<std::uint32_t>::max()) throw argument_error("more than 2^32 segments");
-    std::vector<detail::prepared_segment> segments(segment_count);
-    std::vector<unsigned char> live(segment_count, 0);
-    parallel_for(model.strand_count(), opt.exec, [&](std::size_t s) {
-        const std::size_t p0 = model.strand_offsets[s];
-        for (std::size_t i = 0; i + 1 < model.strand_size(s); ++i) {
-            const std::size_t p = p0 + i, seg = first_segment[s] + i;
-            live[seg] = detail::prepare_segment(light, model.points[p], model.points[p + 1], model.thickness_at(p), model.thickness_at(p + 1),
-                                                1.0f - model.transparency_at(p), 1.0f - model.transparency_at(p + 1), segments[seg]);
-        }
-    }, 256);
+    const raster_options& options() const noexcept { return opt_; }
 
-    // 2. Bin segments into tiles. The segment range is cut into a fixed number of chunks (not one per
-    // thread), so the per-tile lists come out in segment order for any thread count.
-    const double reach = 1.0 + 0.5 * opt.wide_line_width;
-    auto tile_range = [&](const detail::prepared_segment& s, int& tx0, int& ty0, int& tx1, int& ty1) {
-        const double lo_x = double(std::min(s.a.x, s.b.x)) / subpixel_scale - reach, hi_x = double(std::max(s.a.x, s.b.x)) / subpixel_scale + reach;
-        const double lo_y = double(std::min(s.a.y, s.b.y)) / subpixel_scale - reach, hi_y = double(std::max(s.a.y, s.b.y)) / subpixel_scale + reach;
-        if (hi_x < 0 || hi_y < 0 || lo_x >= res || lo_y >= res) return false;
-        tx0 = std::max(0, int(std::floor(lo_x)) / tile), ty0 = std::max(0, int(std::floor(lo_y)) / tile);
-        tx1 = std::min(tiles_x - 1, int(std::min(hi_x, double(res - 1))) / tile), ty1 = std::min(tiles_x - 1, int(std::min(hi_y, double(res - 1))) / tile);
-        return true;
-    };
-    constexpr std::size_t chunks = 64;
-    const std::size_t chunk_size = (segment_count + chunks - 1) / chunks;
-    std::vector<std::uint32_t> chunk_counts(chunks * tile_count, 0);
-    auto for_each_tile_of_chunk = [&](std::size_t c, auto&& visit) {
-        const std::size_t begin = c * chunk_size, end = std::min(segment_count, begin + chunk_size);
-        for (std::size_t seg = begin; seg < end; ++seg) {
-            int tx0, ty0, tx1, ty1;
-            if (!live[seg] || !tile_range(segments[seg], tx0, ty0, tx1, ty1)) continue;
-            for (int ty = ty0; ty <= ty1; ++ty)
-                for (int tx = tx0; tx <= tx1; ++tx) visit(seg, std::size_t(ty) * tiles_x + std::size_t(tx));
-        }
-    };
-    parallel_for(chunks, opt.exec, [&](std::size_t c) {
-        for_each_tile_of_chunk(c, [&](std::size_t, std::size_t t) { ++chunk_counts[c * tile_count + t]; });
-    });
-    std::vector<std::uint64_t> tile_begin(tile_count + 1, 0);
-    std::vector<std::uint64_t> chunk_cursor(chunks * tile_count);
-    {
+    /// Rasterises every segment of `model` into `light`'s map. The result stays valid until the next
+    /// call (move it out to keep it).
+    fragment_buffer& operator()(const hair_model& model, const light_space& light) {
+        prepare(model, light);
+        bin(light.resolution());
+        fill(light);
+        return out_;
+    }
+
+private:
+    static constexpr std::size_t chunks = 64; // fixed, so that binning does not depend on the thread count
+
+    // 1. Project and snap every segment, strand by strand.
+    void prepare(const hair_model& model, const light_space& light) {
+        first_segment_.assign(model.strand_count() + 1, 0);
+        for (std::size_t s = 0; s < model.strand_count(); ++s)
+            first_segment_[s + 1] = first_segment_[s] + (model.strand_size(s) > 1 ? model.strand_size(s) - 1 : 0);
+        const std::size_t count = first_segment_.back();
+        if (count > std::numeric_limits<std::uint32_t>::max()) throw argument_error("more than 2^32 segments");
+        segments_.resize(count);
+        // Raw pointers: stores through a member vector would make the compiler reload its data pointer.
+        detail::prepared_segment* out = segments_.data();
+        const std::size_t* first = first_segment_.data();
+        parallel_for(model.strand_count(), opt_.exec, [&model, &light, out, first](std::size_t s) {
+            const std::size_t p0 = model.strand_offsets[s];
+            for (std::size_t i = 0; i + 1 < model.strand_size(s); ++i) {
+                const std::size_t p = p0 + i;
+                detail::prepare_segment(light, model.points[p], model.points[p + 1], model.thickness_at(p), model.thickness_at(p + 1),
+                                        1.0f - model.transparency_at(p), 1.0f - model.transparency_at(p + 1), out[first[s] + i]);
+            }
+        }, 256);
+    }
+
+    // 2. Bin segments into tiles. Each of a fixed number of chunks of the segment range counts, then
+    // writes, its segments per tile, so every tile's list is in segment order for any thread count.
+    void bin(int res) {
+        res_ = res;
+        tiles_x_ = (res + opt_.tile_size - 1) / opt_.tile_size;
+        const std::size_t tile_count = std::size_t(tiles_x_) * std::size_t(tiles_x_);
+        const std::size_t segment_count = segments_.size();
+        const std::size_t chunk_size = (segment_count + chunks - 1) / chunks;
+        const std::int64_t reach = std::int64_t(std::ceil(1.0 + 0.5 * double(opt_.wide_line_width))) * subpixel_scale;
+        auto for_each_tile_of_chunk = [&](std::size_t c, auto&& visit) {
+            const std::size_t begin = c * chunk_size, end = std::min(segment_count, begin + chunk_size);
+            for (std::size_t seg = begin; seg < end; ++seg) {
+                const auto& s = segments_[seg];
+                if (s.a == s.b) continue; // nothing to draw (clipped away or zero length)
+                // Texel bounds of the segment plus its reach; arithmetic shifts floor negative values.
+                const std::int64_t lo_x = (std::min(s.a.x, s.b.x) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+                const std::int64_t hi_x = (std::max(s.a.x, s.b.x) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+                const std::int64_t lo_y = (std::min(s.a.y, s.b.y) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+                const std::int64_t hi_y = (std::max(s.a.y, s.b.y) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+                if (hi_x < 0 || hi_y < 0 || lo_x >= res || lo_y >= res) continue;
+                const int tx0 = int(std::max<std::int64_t>(lo_x, 0)) / opt_.tile_size, tx1 = int(std::min<std::int64_t>(hi_x, res - 1)) / opt_.tile_size;
+                const int ty0 = int(std::max<std::int64_t>(lo_y, 0)) / opt_.tile_size, ty1 = int(std::min<std::int64_t>(hi_y, res - 1)) / opt_.tile_size;
+                for (int ty = ty0; ty <= ty1; ++ty)
+                    for (int tx = tx0; tx <= tx1; ++tx) visit(seg, std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx));
+            }
+        };
+        cursor_.assign(chunks * tile_count, 0);
+        parallel_for(chunks, opt_.exec, [&](std::size_t c) {
+            for_each_tile_of_chunk(c, [&](std::size_t, std::size_t t) { ++cursor_[c * tile_count + t]; });
+        });
+        tile_begin_.resize(tile_count + 1);
         std::uint64_t total = 0;
         for (std::size_t t = 0; t < tile_count; ++t) {
-            tile_begin[t] = total;
+            tile_begin_[t] = total;
             for (std::size_t c = 0; c < chunks; ++c) {
-                chunk_cursor[c * tile_count + t] = total;
-                total += chunk_counts[c * tile_count + t];
+                const std::uint64_t n = cursor_[c * tile_count + t];
+                cursor_[c * tile_count + t] = total;
+                total += n;
             }
         }
-        tile_begin[tile_count] = total;
+        tile_begin_[tile_count] = total;
+        binned_.resize(total);
+        parallel_for(chunks, opt_.exec, [&](std::size_t c) {
+            for_each_tile_of_chunk(c, [&](std::size_t seg, std::size_t t) { binned_[cursor_[c * tile_count + t]++] = std::uint32_t(seg); });
+        });
     }
-    chunk_counts = {};
-    std::vector<std::uint32_t> binned(tile_begin[tile_count]);
-    parallel_for(chunks, opt.exec, [&](std::size_t c) {
-        for_each_tile_of_chunk(c, [&](std::size_t seg, std::size_t t) { binned[chunk_cursor[c * tile_count + t]++] = std::uint32_t(seg); });
-    });
-    chunk_cursor = {};
 
-    // 3. Rasterise each tile; sort its fragments by texel, keeping segment order within a texel.
-    std::vector<std::uint32_t> texel_counts(std::size_t(res) * std::size_t(res), 0);
-    std::vector<std::vector<fragment>> tile_fragments(tile_count);
-    parallel_for(tile_count, opt.exec, [&](std::size_t t) {
-        const int tx = int(t % std::size_t(tiles_x)), ty = int(t / std::size_t(tiles_x));
-        const texel_rect rect{tx * tile, ty * tile, std::min(res, (tx + 1) * tile), std::min(res, (ty + 1) * tile)};
-        const int w = rect.x1 - rect.x0;
-        struct tagged { std::uint32_t local; fragment f; };
-        std::vector<tagged> raw;
-        for (std::uint64_t i = tile_begin[t]; i < tile_begin[t + 1]; ++i) {
-            const auto& s = segments[binned[i]];
-            if (opt.wide_line_width > 0.0f) {
-                detail::rasterize_wide_line(s, opt.wide_line_width, rect, [&](int x, int y, float param, float weight) {
-                    raw.push_back({std::uint32_t((y - rect.y0) * w + (x - rect.x0)), detail::shade_fragment(light, opt, s, param, weight)});
-                });
-            } else {
-                rasterize_line(s.a, s.b, rect, [&](int x, int y) {
-                    raw.push_back({std::uint32_t((y - rect.y0) * w + (x - rect.x0)),
-                                   detail::shade_fragment(light, opt, s, detail::line_parameter(s, x, y), 1.0f)});
-                });
+    texel_rect tile_rect(std::size_t t) const noexcept {
+        const int tile = opt_.tile_size;
+        const int tx = int(t % std::size_t(tiles_x_)), ty = int(t / std::size_t(tiles_x_));
+        return {tx * tile, ty * tile, std::min(res_, (tx + 1) * tile), std::min(res_, (ty + 1) * tile)};
+    }
+
+    /// Calls visit(segment, x, y, parameter, weight) for every fragment of tile t's segments, in segment
+    /// order; thin lines pass parameter -1 (computed only when needed).
+    template <class Visit>
+    void for_each_fragment(std::size_t t, const texel_rect& rect, Visit&& visit) const {
+        constexpr std::uint64_t lookahead = 8; // a tile's segments lie scattered in memory: fetch ahead
+        const std::uint64_t end = tile_begin_[t + 1];
+        for (std::uint64_t i = tile_begin_[t]; i < end; ++i) {
+#if defined(__GNUC__)
+            if (i + lookahead < end) __builtin_prefetch(&segments_[binned_[i + lookahead]]);
+#endif
+            const auto& s = segments_[binned_[i]];
+            if (opt_.wide_line_width > 0.0f)
+                detail::rasterize_wide_line(s, opt_.wide_line_width, rect, [&](int x, int y, float param, float weight) { visit(s, x, y, param, weight); });
+            else
+                rasterize_line(s.a, s.b, rect, [&](int x, int y) { visit(s, x, y, -1.0f, 1.0f); });
+        }
+    }
+
+    // 3. Rasterise each tile into its own buffer (kept between calls) while counting every texel's
+    // fragments; then, once the offsets are known, scatter each tile's fragments to their texels in
+    // the order they were made, which is segment order.
+    void fill(const light_space& light) {
+        const std::size_t tile_count = std::size_t(tiles_x_) * std::size_t(tiles_x_);
+        const std::size_t texels = std::size_t(res_) * std::size_t(res_);
+        auto& offsets = out_.offsets_;
+        offsets.assign(texels + 1, 0);
+        tile_fragments_.resize(tile_count);
+        parallel_for(tile_count, opt_.exec, [&](std::size_t t) {
+            const texel_rect rect = tile_rect(t);
+            // Work on a local vector: neighbouring tiles' vector headers share cache lines.
+            auto made = std::move(tile_fragments_[t]);
+            made.clear();
+            for_each_fragment(t, rect, [&](const detail::prepared_segment& s, int x, int y, float param, float weight) {
+                if (param < 0.0f) param = detail::line_parameter(s, x, y);
+                const std::size_t texel = std::size_t(y) * std::size_t(res_) + std::size_t(x);
+                ++offsets[texel + 1];
+                made.push_back({std::uint32_t(texel), detail::shade_fragment(light, opt_, s, param, weight)});
+            });
+            tile_fragments_[t] = std::move(made);
+        });
+        for (std::size_t i = 0; i < texels; ++i) offsets[i + 1] += offsets[i];
+        out_.resolution_ = res_;
+        out_.fragments_.resize(offsets.back());
+        parallel_for(tile_count, opt_.exec, [&](std::size_t t) {
+            const auto& made = tile_fragments_[t];
+            if (made.empty()) return;
+            const texel_rect rect = tile_rect(t);
+            const std::size_t w = std::size_t(rect.x1 - rect.x0);
+            std::vector<std::uint64_t> cursor(w * std::size_t(rect.y1 - rect.y0));
+            for (int y = rect.y0; y < rect.y1; ++y)
+                for (int x = rect.x0; x < rect.x1; ++x)
+                    cursor[std::size_t(y - rect.y0) * w + std::size_t(x - rect.x0)] = offsets[std::size_t(y) * std::size_t(res_) + std::size_t(x)];
+            for (const auto& m : made) {
+                const std::size_t x = m.texel % std::size_t(res_), y = m.texel / std::size_t(res_);
+                out_.fragments_[cursor[(y - std::size_t(rect.y0)) * w + (x - std::size_t(rect.x0))]++] = m.value;
             }
-        }
-        if (raw.empty()) return;
-        std::vector<std::uint32_t> start(std::size_t(w) * std::size_t(rect.y1 - rect.y0) + 1, 0);
-        for (const auto& r : raw) ++start[r.local + 1];
-        for (std::size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
-        for (std::size_t i = 0; i + 1 < start.size(); ++i) {
-            const int x = rect.x0 + int(i % std::size_t(w)), y = rect.y0 + int(i / std::size_t(w));
-            texel_counts[std::size_t(y) * std::size_t(res) + std::size_t(x)] = start[i + 1] - start[i];
-        }
-        auto& sorted = tile_fragments[t];
-        sorted.resize(raw.size());
-        for (const auto& r : raw) sorted[start[r.local]++] = r.f;
-    });
-    binned = {};
+        });
+    }
 
-    // 4. Gather the tiles into one row-major buffer.
-    std::vector<std::uint64_t> offsets(std::size_t(res) * std::size_t(res) + 1, 0);
-    for (std::size_t i = 0; i < texel_counts.size(); ++i) offsets[i + 1] = offsets[i] + texel_counts[i];
-    texel_counts = {};
-    std::vector<fragment> fragments(offsets.back());
-    parallel_for(tile_count, opt.exec, [&](std::size_t t) {
-        const auto& src = tile_fragments[t];
-        if (src.empty()) return;
-        const int tx = int(t % std::size_t(tiles_x)), ty = int(t / std::size_t(tiles_x));
-        const int x0 = tx * tile, x1 = std::min(res, (tx + 1) * tile);
-        std::size_t k = 0;
-        for (int y = ty * tile; y < std::min(res, (ty + 1) * tile); ++y) {
-            const std::size_t row = std::size_t(y) * std::size_t(res);
-            const std::uint64_t begin = offsets[row + std::size_t(x0)], end = offsets[row + std::size_t(x1)];
-            std::copy(src.begin() + std::ptrdiff_t(k), src.begin() + std::ptrdiff_t(k + (end - begin)), fragments.begin() + std::ptrdiff_t(begin));
-            k += end - begin;
-        }
-        tile_fragments[t] = {};
-    });
-    return fragment_buffer(res, std::move(offsets), std::move(fragments));
+    struct placed_fragment {
+        std::uint32_t texel;
+        fragment value;
+    };
+
+    fragment_buffer out_;
+    raster_options opt_;
+    int res_ = 0, tiles_x_ = 0;
+    std::vector<detail::prepared_segment> segments_;
+    std::vector<std::size_t> first_segment_;
+    std::vector<std::uint64_t> cursor_, tile_begin_;
+    std::vector<std::uint32_t> binned_;
+    std::vector<std::vector<placed_fragment>> tile_fragments_;
+};
+
+/// Rasterises every segment of `model` into `light`'s map (a one-shot rasterizer).
+inline fragment_buffer rasterize(const hair_model& model, const light_space& light, const raster_options& options = {}) {
+    rasterizer r(options);
+    return std::move(r(model, light));
 }
 
 } // namespace hairshadow
@@ -1606,7 +1667,7 @@ inline fragment_buffer rasterize(const hair_model& model, const light_space& lig
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <utility>
 #include <span>
 #include <vector>
 
@@ -1622,14 +1683,16 @@ public:
         parallel_for(fragments.texel_count(), exec, [&](std::size_t t) {
             const auto in = fragments.texel(t);
             if (in.empty()) return;
-            std::vector<std::uint32_t> order(in.size());
-            std::iota(order.begin(), order.end(), 0u);
-            std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return in[a].depth < in[b].depth; });
+            // Sort (depth, arrival) pairs: equal depths keep segment order, for any thread count.
+            thread_local std::vector<std::pair<float, std::uint32_t>> order;
+            order.resize(in.size());
+            for (std::size_t i = 0; i < in.size(); ++i) order[i] = {in[i].depth, std::uint32_t(i)};
+            std::sort(order.begin(), order.end());
             double omega = 0.0;
             const std::size_t base = offsets_[t];
             for (std::size_t i = 0; i < order.size(); ++i) {
-                omega -= std::log1p(-double(in[order[i]].alpha));
-                depths_[base + i] = in[order[i]].depth;
+                omega -= std::log1p(-double(in[order[i].second].alpha));
+                depths_[base + i] = order[i].first;
                 optical_depths_[base + i] = float(omega);
             }
         }, 1024);

@@ -8,6 +8,8 @@
 
 namespace hairshadow {
 
+class rasterizer;
+
 /// One fragment of a strand in a light-space texel: linear depth in [0, 1] and alpha in [0, 1).
 struct fragment {
     float depth;
@@ -37,6 +39,7 @@ public:
     friend bool operator==(const fragment_buffer&, const fragment_buffer&) = default;
 
 private:
+    friend class rasterizer; // refills the vectors in place, reusing their memory
     int resolution_ = 0;
     std::vector<std::uint64_t> offsets_{0};
     std::vector<fragment> fragments_;

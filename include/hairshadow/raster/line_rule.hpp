@@ -67,13 +67,22 @@ void rasterize_line(const fixed_point& a, const fixed_point& b, const texel_rect
     // Ties on the minor axis: an x-major line through a texel corner row goes to the lower row when the
     // slope is positive (the perturbation moves it by -slope*e); a y-major line always goes right (+e).
     const bool lower_on_tie = x_major && (dx > 0) == (dy > 0) && dy != 0;
-    for (std::int64_t m = std::max(first, clip_lo); m <= std::min(last, clip_hi - 1); ++m) {
-        const std::int64_t centre = m * S + H;
-        const std::int64_t num = sign * (minor_a * d_major + (centre - major_a) * d_minor);
-        std::int64_t n = floor_div(num, denom);
-        if (lower_on_tie && num == n * denom) --n;
-        const std::int64_t x = x_major ? m : n, y = x_major ? n : m;
-        if (clip.contains(x, y) && !inside_diamond(b, x, y)) emit(int(x), int(y));
+    const std::int64_t m_begin = std::max(first, clip_lo), m_end = std::min(last, clip_hi - 1);
+    if (m_begin <= m_end) {
+        // The minor coordinate at successive centres, num / denom, advances by a constant step: keep its
+        // quotient and remainder exactly, with one division per call instead of one per texel.
+        const std::int64_t num0 = sign * (minor_a * d_major + (m_begin * S + H - major_a) * d_minor);
+        std::int64_t n = floor_div(num0, denom), rem = num0 - n * denom;
+        const std::int64_t step = sign * d_minor * S;
+        const std::int64_t step_q = floor_div(step, denom), step_r = step - step_q * denom;
+        for (std::int64_t m = m_begin; m <= m_end; ++m) {
+            const std::int64_t minor = (lower_on_tie && rem == 0) ? n - 1 : n;
+            const std::int64_t x = x_major ? m : minor, y = x_major ? minor : m;
+            if (clip.contains(x, y) && !inside_diamond(b, x, y)) emit(int(x), int(y));
+            n += step_q;
+            rem += step_r;
+            if (rem >= denom) rem -= denom, ++n;
+        }
     }
     // A segment that starts inside a diamond it does not cross the centre line of still exits it.
     const std::int64_t ax = floor_div(a.x, S), ay = floor_div(a.y, S);

@@ -11,7 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <utility>
 #include <span>
 #include <vector>
 
@@ -27,14 +27,16 @@ public:
         parallel_for(fragments.texel_count(), exec, [&](std::size_t t) {
             const auto in = fragments.texel(t);
             if (in.empty()) return;
-            std::vector<std::uint32_t> order(in.size());
-            std::iota(order.begin(), order.end(), 0u);
-            std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return in[a].depth < in[b].depth; });
+            // Sort (depth, arrival) pairs: equal depths keep segment order, for any thread count.
+            thread_local std::vector<std::pair<float, std::uint32_t>> order;
+            order.resize(in.size());
+            for (std::size_t i = 0; i < in.size(); ++i) order[i] = {in[i].depth, std::uint32_t(i)};
+            std::sort(order.begin(), order.end());
             double omega = 0.0;
             const std::size_t base = offsets_[t];
             for (std::size_t i = 0; i < order.size(); ++i) {
-                omega -= std::log1p(-double(in[order[i]].alpha));
-                depths_[base + i] = in[order[i]].depth;
+                omega -= std::log1p(-double(in[order[i].second].alpha));
+                depths_[base + i] = order[i].first;
                 optical_depths_[base + i] = float(omega);
             }
         }, 1024);
