@@ -23,16 +23,24 @@ const hair_model& model(const std::string& name) {
     return it->second;
 }
 
-void rasterize_bench(benchmark::State& state, const std::string& name, int res, unsigned threads) {
+/// `reuse`: one rasterizer across iterations, as a renderer rebuilding its maps every frame would keep
+/// it; otherwise the one-shot rasterize(), which allocates (and first touches) its memory every time.
+void rasterize_bench(benchmark::State& state, const std::string& name, int res, unsigned threads, bool reuse) {
     const auto& m = model(name);
     const auto light = light_space::fit(light_spec::directional({0, -1, -1}), m.bounds(), res);
     raster_options o;
     o.exec.threads = threads;
+    rasterizer reused(o);
+    if (reuse) reused(m, light); // warm up: the first call allocates the workspace
     std::size_t fragments = 0;
     for (auto _ : state) {
-        auto fb = rasterize(m, light, o);
-        fragments = fb.size();
-        benchmark::DoNotOptimize(fb);
+        if (reuse) {
+            fragments = reused(m, light).size();
+        } else {
+            auto fb = rasterize(m, light, o);
+            fragments = fb.size();
+            benchmark::DoNotOptimize(fb);
+        }
     }
     state.counters["fragments"] = double(fragments);
     state.counters["fragments/s"] = benchmark::Counter(double(fragments) * double(state.iterations()), benchmark::Counter::kIsRate);
@@ -57,7 +65,9 @@ const int registered = [] {
         for (int res : {512, 2048})
             for (unsigned threads : {1u, 0u}) {
                 const std::string suffix = name + "/" + std::to_string(res) + "/" + (threads == 0 ? "all_threads" : "1_thread");
-                benchmark::RegisterBenchmark(("rasterize/" + suffix).c_str(), rasterize_bench, name, res, threads)
+                benchmark::RegisterBenchmark(("rasterize/one_shot/" + suffix).c_str(), rasterize_bench, name, res, threads, false)
+                    ->Unit(benchmark::kMillisecond)->UseRealTime();
+                benchmark::RegisterBenchmark(("rasterize/reused/" + suffix).c_str(), rasterize_bench, name, res, threads, true)
                     ->Unit(benchmark::kMillisecond)->UseRealTime();
                 benchmark::RegisterBenchmark(("exact_reference/" + suffix).c_str(), reference_bench, name, res, threads)
                     ->Unit(benchmark::kMillisecond)->UseRealTime();
