@@ -20,6 +20,12 @@ TEST_CASE("info prints the Sintel model's counts and bounds", "[cli]") {
     CHECK_THAT(r.out, Catch::Contains("y [1.39567, 1.67489]"));
 }
 
+TEST_CASE("info describes an OBJ mesh", "[cli]") {
+    const auto r = test::run_cli("info " + test::sintel_head());
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.out, Catch::Contains("3046 vertices, 5952 triangles"));
+}
+
 TEST_CASE("query with dsm gives the analytic transmittance behind each sheet", "[cli]") {
     test::temp_dir dir("cli_sheets");
     const auto scene = test::make_sheets(3, 64);

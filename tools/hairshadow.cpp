@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <optional>
@@ -133,6 +134,11 @@ std::vector<glm::vec3> read_points(const std::string& path) {
 }
 
 int run_info(const common_options& o) {
+    if (!is_procedural_spec(o.model) && std::filesystem::path(o.model).extension() == ".obj") {
+        const auto contents = read_obj(o.model);
+        std::printf("mesh:     %zu vertices, %zu triangles\n", contents.mesh.vertices.size(), contents.mesh.triangles.size());
+        if (contents.hair.strand_count() == 0) return 0;
+    }
     const auto model = load(o.model);
     const auto b = model.bounds();
     std::printf("model:    %s\n", o.model.c_str());
