@@ -91,9 +91,14 @@ TEST_CASE("usage errors exit 2 with the valid grammar", "[cli][errors]") {
         CHECK(r.status == 2);
         CHECK_THAT(r.err, Catch::Contains(message));
     };
-    expect("render procedural:straight --method osm:0", "valid: dsm");
-    expect("render procedural:straight --method dsm:2", "valid: dsm");
-    expect("render procedural:straight --method nonsense", "valid: dsm");
+    expect("render procedural:straight --method osm:0", "valid: osm:N");
+    expect("render procedural:straight --method dsm:2", "valid: osm:N");
+    expect("render procedural:straight --method nonsense", "valid: osm:N");
+    expect("render procedural:straight --method dom:99999", "dom needs K = 1..8");
+    expect("query procedural:straight --points x --method occ:100:3", "valid: osm:N");
+    expect("compare procedural:straight --methods osm:16,frob", "unknown method");
+    expect("memory --method dsm --res 512", "give a MODEL");
+    expect("memory --method dom:3:8bit:8bit --res 512", "valid: osm:N");
     expect("render procedural:straight --light sun:1,2,3", "expected dir:X,Y,Z");
     expect("render procedural:bald", "unknown style");
     expect("", "");

@@ -106,8 +106,8 @@ TEST_CASE("batch queries equal single queries and points outside the map are lit
     const auto ls = light_space::fit(light_spec::directional({0, -1, 0}), m.bounds(), 128);
     const deep_shadow_map dsm(rasterize(m, ls), ls);
     std::vector<float> batch(m.point_count());
-    dsm.transmittance(m.points, batch, 1e-3f);
-    for (std::size_t i = 0; i < m.point_count(); i += 17) CHECK(batch[i] == dsm.transmittance(m.points[i], 1e-3f));
+    dsm.transmittance(m.points, batch, {.depth_bias = 1e-3f});
+    for (std::size_t i = 0; i < m.point_count(); i += 17) CHECK(batch[i] == dsm.transmittance(m.points[i], {.depth_bias = 1e-3f}));
     CHECK(dsm.transmittance(glm::vec3(100, 0, 0)) == 1.0f);
     CHECK(dsm.memory_bytes() >= dsm.fragment_count() * 8);
 }

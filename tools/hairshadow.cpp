@@ -1,19 +1,20 @@
-// The `hairshadow` command: inspect hair models, query and render light-space transmittance.
-// Errors go to stderr as `error: ...` with exit status 1; usage errors exit 2.
+// The `hairshadow` command: inspect hair models, build any method's shadow maps, query, render and
+// compare them with the exact reference. Errors go to stderr as `error: ...` with exit status 1;
+// usage errors (bad specs, unknown options) exit 2.
 
 #include <hairshadow/hairshadow.hpp>
 #include <hairshadow/io/load.hpp>
 #include <hairshadow/io/png.hpp>
+#include <hairshadow/methods/registry.hpp>
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <iostream>
-#include <optional>
 #include <sstream>
-#include <variant>
 
 namespace {
 
@@ -24,26 +25,29 @@ struct usage_error : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-constexpr std::string_view method_grammar = "dsm (exact) | dsm:EPS (Lokovic-Veach compression, 0 < EPS < 1)";
+/// Options shared by the commands that build maps.
+struct map_options {
+    std::string model;
+    std::string method = "dsm";
+    std::string light = "dir:0,-1,-1";
+    int resolution = 512;
+    std::optional<float> alpha;
+    float wide = 0.0f;
+    float bias = 0.0f;
+    bool box_filter = false;
+    bool jitter = false;
+    unsigned threads = 0;
 
-/// The exact map, or its compression.
-struct reference_method {
-    std::optional<float> tolerance;
+    execution exec() const { return {threads}; }
+    query_options query() const { return {box_filter, jitter, bias}; }
 };
 
-reference_method parse_method(const std::string& spec) {
-    const auto parts = detail::split(spec, ':');
-    if (parts[0] == "dsm" && parts.size() == 1) return {};
-    if (parts[0] == "dsm" && parts.size() == 2) {
-        float eps = 0;
-        try {
-            eps = detail::parse_number<float>(parts[1], "tolerance");
-        } catch (const argument_error&) {
-            throw usage_error("bad method spec '" + spec + "'; valid: " + std::string(method_grammar));
-        }
-        if (eps > 0.0f && eps < 1.0f) return {eps};
+method_spec parse_method(const std::string& text) {
+    try {
+        return parse_method_spec(text);
+    } catch (const spec_error& e) {
+        throw usage_error(e.what());
     }
-    throw usage_error("bad method spec '" + spec + "'; valid: " + std::string(method_grammar));
 }
 
 light_spec parse_light(const std::string& spec) {
@@ -68,41 +72,38 @@ hair_model load(const std::string& source) {
     return load_model(source);
 }
 
-struct common_options {
-    std::string model;
-    std::string method = "dsm";
-    std::string light = "dir:0,-1,-1";
-    int resolution = 512;
-    std::optional<float> alpha;
-    float wide = 0.0f;
-    unsigned threads = 0;
-};
+double milliseconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
 
-struct built_map {
+/// A model rasterised from one light, ready for any number of methods.
+struct scene {
+    hair_model model;
     light_space light;
-    std::unique_ptr<deep_shadow_map> exact;
-    std::unique_ptr<compressed_deep_shadow_map> compressed;
-
-    float transmittance(int x, int y, float depth) const {
-        return compressed ? compressed->transmittance(x, y, depth) : exact->transmittance(x, y, depth);
-    }
-    float transmittance(const glm::vec3& p, float bias) const {
-        return compressed ? compressed->transmittance(p, bias) : exact->transmittance(p, bias);
-    }
+    fragment_buffer fragments;
+    double raster_ms = 0.0;
 };
 
-built_map build(const common_options& o, const hair_model& model) {
-    const auto method = parse_method(o.method);
+scene rasterise(const map_options& o) {
     const auto light = parse_light(o.light);
     check_resolution(o.resolution);
+    scene s{load(o.model), {}, {}, 0.0};
+    s.light = light_space::fit(light, s.model.bounds(), o.resolution);
     raster_options ro;
-    ro.exec.threads = o.threads;
+    ro.exec = o.exec();
     ro.fixed_alpha = o.alpha;
     ro.wide_line_width = o.wide;
-    built_map map{light_space::fit(light, model.bounds(), o.resolution), nullptr, nullptr};
-    const auto fragments = rasterize(model, map.light, ro);
-    map.exact = std::make_unique<deep_shadow_map>(fragments, map.light, ro.exec);
-    if (method.tolerance) map.compressed = std::make_unique<compressed_deep_shadow_map>(*map.exact, *method.tolerance, ro.exec);
+    const auto start = std::chrono::steady_clock::now();
+    s.fragments = rasterize(s.model, s.light, ro);
+    s.raster_ms = milliseconds_since(start);
+    return s;
+}
+
+std::unique_ptr<any_shadow_map> build_map(const method_spec& spec, const scene& s, const execution& exec, double* build_ms = nullptr) {
+    auto map = make_shadow_map(spec);
+    const auto start = std::chrono::steady_clock::now();
+    map->build(s.fragments, s.light, exec);
+    if (build_ms) *build_ms = milliseconds_since(start);
     return map;
 }
 
@@ -133,7 +134,19 @@ std::vector<glm::vec3> read_points(const std::string& path) {
     return points;
 }
 
-int run_info(const common_options& o) {
+/// Writes a grey image of `value(x, y)` in [0, 1], top row first.
+template <class Value>
+void write_grey(const std::string& path, int res, const execution& exec, Value value) {
+    std::vector<std::uint8_t> pixels(std::size_t(res) * std::size_t(res));
+    parallel_for(std::size_t(res), exec, [&](std::size_t y) {
+        for (int x = 0; x < res; ++x)
+            pixels[(std::size_t(res) - 1 - y) * std::size_t(res) + std::size_t(x)] =
+                std::uint8_t(std::lround(255.0f * std::clamp(value(x, int(y)), 0.0f, 1.0f)));
+    });
+    write_png(path, res, res, 1, pixels);
+}
+
+int run_info(const map_options& o) {
     if (!is_procedural_spec(o.model) && std::filesystem::path(o.model).extension() == ".obj") {
         const auto contents = read_obj(o.model);
         std::printf("mesh:     %zu vertices, %zu triangles\n", contents.mesh.vertices.size(), contents.mesh.triangles.size());
@@ -149,41 +162,121 @@ int run_info(const common_options& o) {
     return 0;
 }
 
-int run_query(const common_options& o, const std::string& points_file, float bias) {
+int run_query(const map_options& o, const std::string& points_file) {
+    const auto spec = parse_method(o.method);
     const auto points = read_points(points_file);
-    const auto model = load(o.model);
-    const auto map = build(o, model);
+    const auto s = rasterise(o);
+    const auto map = build_map(spec, s, o.exec());
+    std::vector<float> t(points.size());
+    map->transmittance(points, t, o.query(), o.exec());
     std::string out;
-    out.reserve(points.size() * 10);
     char buf[32];
-    for (const auto& p : points) {
-        std::snprintf(buf, sizeof buf, "%.6f\n", double(map.transmittance(p, bias)));
+    for (float v : t) {
+        std::snprintf(buf, sizeof buf, "%.6f\n", double(v));
         out += buf;
     }
     std::fwrite(out.data(), 1, out.size(), stdout);
     return 0;
 }
 
-int run_render(const common_options& o, const std::string& out_path) {
-    const auto model = load(o.model);
-    const auto map = build(o, model);
+int run_render(const map_options& o, const std::string& out_path, const std::string& maps_dir) {
+    const auto spec = parse_method(o.method);
+    const auto s = rasterise(o);
+    const auto map = build_map(spec, s, o.exec());
     const int res = o.resolution;
-    std::vector<std::uint8_t> pixels(std::size_t(res) * std::size_t(res));
-    // The light's view: transmittance behind the whole model (depth 1), top row first.
-    parallel_for(std::size_t(res), execution{o.threads}, [&](std::size_t y) {
-        for (int x = 0; x < res; ++x) {
-            const float t = map.transmittance(x, int(y), 1.0f);
-            pixels[(std::size_t(res) - 1 - y) * std::size_t(res) + std::size_t(x)] = std::uint8_t(std::lround(255.0f * std::clamp(t, 0.0f, 1.0f)));
+    // The light's view: the transmittance behind the whole model (depth 1).
+    write_grey(out_path, res, o.exec(), [&](int x, int y) { return map->transmittance(x, y, 1.0f); });
+    std::fprintf(stderr, "wrote %s (%dx%d, %s)\n", out_path.c_str(), res, res, spec.text.c_str());
+    if (!maps_dir.empty()) {
+        std::filesystem::create_directories(maps_dir);
+        for (int k = 0; k < map->stored_maps(); ++k) {
+            char name[32];
+            std::snprintf(name, sizeof name, "map_%03d.png", k);
+            write_grey((std::filesystem::path(maps_dir) / name).string(), res, o.exec(),
+                       [&](int x, int y) { return std::exp(-map->stored_optical_depth(x, y, k)); });
         }
-    });
-    write_png(out_path, res, res, 1, pixels);
-    std::fprintf(stderr, "wrote %s (%dx%d, %s)\n", out_path.c_str(), res, res, o.method.c_str());
+        std::fprintf(stderr, "wrote %d stored maps to %s\n", map->stored_maps(), maps_dir.c_str());
+    }
     return 0;
 }
 
-void add_map_options(CLI::App* cmd, common_options& o) {
-    cmd->add_option("MODEL", o.model, "a .hair, .tfx, .data or .obj file, or " + std::string(procedural_grammar))->required();
-    cmd->add_option("--method", o.method, "method spec: " + std::string(method_grammar));
+int run_memory(const map_options& o) {
+    const auto spec = parse_method(o.method);
+    check_resolution(o.resolution);
+    if (o.model.empty()) {
+        const auto bytes = make_shadow_map(spec)->memory_bytes_at(o.resolution);
+        if (!bytes) throw usage_error("the exact map's size depends on the model's fragments: give a MODEL");
+        std::printf("%s at %dx%d: %zu bytes (%.2f MiB)\n", spec.text.c_str(), o.resolution, o.resolution, *bytes, double(*bytes) / 1048576.0);
+        return 0;
+    }
+    const auto s = rasterise(o);
+    const auto map = build_map(spec, s, o.exec());
+    std::printf("%s at %dx%d for %s: %zu bytes (%.2f MiB)\n", spec.text.c_str(), o.resolution, o.resolution, o.model.c_str(), map->memory_bytes(),
+                double(map->memory_bytes()) / 1048576.0);
+    return 0;
+}
+
+struct compare_row {
+    std::string method;
+    int layers;
+    std::size_t bytes;
+    double build_ms, mean, p95, max;
+};
+
+int run_compare(const map_options& o, const std::string& methods, const std::string& out_dir) {
+    std::vector<method_spec> specs;
+    for (auto part : detail::split(methods, ',')) specs.push_back(parse_method(std::string(part)));
+    const auto s = rasterise(o);
+    const auto exec = o.exec();
+    const auto query = o.query();
+    const auto exact = build_map(parse_method("dsm"), s, exec);
+    std::vector<float> reference(s.model.point_count()), t(s.model.point_count());
+    exact->transmittance(s.model.points, reference, query, exec);
+    std::vector<compare_row> rows;
+    for (const auto& spec : specs) {
+        double build_ms = 0;
+        const auto map = build_map(spec, s, exec, &build_ms);
+        map->transmittance(s.model.points, t, query, exec);
+        std::vector<float> error(t.size());
+        double sum = 0;
+        for (std::size_t i = 0; i < t.size(); ++i) sum += error[i] = std::abs(t[i] - reference[i]);
+        std::sort(error.begin(), error.end());
+        const float p95 = error.empty() ? 0.0f : error[std::min(error.size() - 1, std::size_t(0.95 * double(error.size())))];
+        rows.push_back({spec.text, map->layer_count(), map->memory_bytes(), build_ms, error.empty() ? 0.0 : sum / double(error.size()), p95,
+                        error.empty() ? 0.0 : error.back()});
+    }
+    std::ostringstream md, csv;
+    md << "Model `" << o.model << "`, light `" << o.light << "`, " << o.resolution << "x" << o.resolution << ", " << s.model.point_count()
+       << " points, " << s.fragments.size() << " fragments (rasterised in " << std::lround(s.raster_ms) << " ms), " << exec.resolved()
+       << " threads. Errors are |T - T_exact| at the model's points.\n\n";
+    md << "| method | layers | memory (MiB) | build (ms) | mean error | 95th percentile | max error |\n|---|---|---|---|---|---|---|\n";
+    csv << "method,layers,memory_bytes,build_ms,mean_error,p95_error,max_error\n";
+    char line[256];
+    for (const auto& r : rows) {
+        std::snprintf(line, sizeof line, "| %s | %d | %.2f | %.1f | %.4f | %.4f | %.4f |\n", r.method.c_str(), r.layers, double(r.bytes) / 1048576.0,
+                      r.build_ms, r.mean, r.p95, r.max);
+        md << line;
+        std::snprintf(line, sizeof line, "%s,%d,%zu,%.3f,%.6f,%.6f,%.6f\n", r.method.c_str(), r.layers, r.bytes, r.build_ms, r.mean, r.p95, r.max);
+        csv << line;
+    }
+    std::fputs(md.str().c_str(), stdout);
+    if (!out_dir.empty()) {
+        std::filesystem::create_directories(out_dir);
+        const auto md_path = (std::filesystem::path(out_dir) / "compare.md").string(), csv_path = (std::filesystem::path(out_dir) / "compare.csv").string();
+        std::ofstream(md_path) << md.str();
+        std::ofstream(csv_path) << csv.str();
+        if (!std::ifstream(md_path) || !std::ifstream(csv_path)) throw io_error(out_dir, "cannot write the comparison files");
+    }
+    return 0;
+}
+
+void add_model(CLI::App* cmd, map_options& o, bool required = true) {
+    auto* opt = cmd->add_option("MODEL", o.model, "a .hair, .tfx, .data or .obj file, or " + std::string(procedural_grammar));
+    if (required) opt->required();
+}
+
+void add_map_options(CLI::App* cmd, map_options& o, bool with_method = true) {
+    if (with_method) cmd->add_option("--method", o.method, "method spec: " + std::string(method_grammar));
     cmd->add_option("--light", o.light, "light spec: " + std::string(light_grammar));
     cmd->add_option("--res", o.resolution, "shadow map resolution, 1.." + std::to_string(HAIRSHADOW_MAX_RESOLUTION));
     cmd->add_option("--alpha", o.alpha, "use this alpha for every fragment instead of the strand coverage")->check(CLI::Range(0.0f, 1.0f));
@@ -191,28 +284,49 @@ void add_map_options(CLI::App* cmd, common_options& o) {
         ->check(CLI::Range(0.0f, 64.0f));
 }
 
+void add_query_options(CLI::App* cmd, map_options& o) {
+    cmd->add_option("--bias", o.bias, "depth bias towards the light, in linear depth units");
+    cmd->add_flag("--filter", o.box_filter, "3x3 box filter of the optical depth (Kim & Neumann)");
+    cmd->add_flag("--jitter", o.jitter, "half-texel jitter of each look-up (Sintorn & Assarsson 3.3)");
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"hairshadow: self-shadowing of hair - inspect models, query and render light-space transmittance"};
+    CLI::App app{"hairshadow: self-shadowing of hair - build, query, render and compare shadow maps"};
     app.require_subcommand(1);
-    common_options o;
+    map_options o;
     app.add_option("--threads", o.threads, "worker threads; 0 = all cores");
 
     auto* info = app.add_subcommand("info", "print a model's strand, point and segment counts and its bounds");
-    info->add_option("MODEL", o.model, "a model file or procedural spec")->required();
+    add_model(info, o);
 
     std::string points_file;
-    float bias = 0.0f;
     auto* query = app.add_subcommand("query", "print the transmittance at each point of a file of 'x y z' lines");
+    add_model(query, o);
     add_map_options(query, o);
+    add_query_options(query, o);
     query->add_option("--points", points_file, "file of 'x y z' lines")->required();
-    query->add_option("--bias", bias, "depth bias towards the light, in linear depth units");
 
-    std::string out_path = "transmittance.png";
+    std::string out_path = "transmittance.png", maps_dir;
     auto* render = app.add_subcommand("render", "write the light's view of the transmittance behind the model as a PNG");
+    add_model(render, o);
     add_map_options(render, o);
     render->add_option("--out", out_path, "output PNG");
+    render->add_option("--maps", maps_dir, "also write each stored map (layer, bin or slab) as a PNG into this folder");
+
+    auto* memory = app.add_subcommand("memory", "print the bytes a method's maps hold at a resolution");
+    add_model(memory, o, false);
+    add_map_options(memory, o);
+
+    std::string methods = "osm:16,osm:64,osm:256,dom:3,dom:4,dc:4,occ:128:4,docc:128:4,dom:3:8bit,dsm:0.01";
+    std::string out_dir;
+    auto* compare = app.add_subcommand("compare", "compare methods with the exact reference at the model's points");
+    add_model(compare, o);
+    add_map_options(compare, o, false);
+    add_query_options(compare, o);
+    compare->add_option("--methods", methods, "comma-separated method specs");
+    compare->add_option("--out", out_dir, "also write compare.md and compare.csv into this folder");
 
     try {
         app.parse(argc, argv);
@@ -221,8 +335,10 @@ int main(int argc, char** argv) {
     }
     try {
         if (*info) return run_info(o);
-        if (*query) return run_query(o, points_file, bias);
-        if (*render) return run_render(o, out_path);
+        if (*query) return run_query(o, points_file);
+        if (*render) return run_render(o, out_path, maps_dir);
+        if (*memory) return run_memory(o);
+        if (*compare) return run_compare(o, methods, out_dir);
     } catch (const usage_error& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 2;

@@ -1,7 +1,8 @@
 #pragma once
 /// @file
 /// hairshadow: self-shadowing and transparency of hair and other thin semi-transparent geometry.
-/// The CPU umbrella header: models and their readers, lights, the rasteriser and the exact reference.
+/// The CPU umbrella header: models and their readers, lights, the rasteriser, the exact reference and
+/// every method's policies and compositions (the run-time registry is <hairshadow/methods/registry.hpp>).
 /// It needs only GLM. The OBJ reader (`<hairshadow/io/obj_format.hpp>`, `<hairshadow/io/load.hpp>`)
 /// also needs tinyobjloader and is included separately.
 
@@ -26,6 +27,11 @@
 #include <hairshadow/raster/fragment.hpp>
 #include <hairshadow/raster/line_rule.hpp>
 #include <hairshadow/raster/rasterizer.hpp>
+
+#include <hairshadow/core/map_queries.hpp>
+
+#include <hairshadow/methods/published.hpp>
+#include <hairshadow/methods/spec.hpp>
 
 #include <hairshadow/reference/compressed_deep_shadow_map.hpp>
 #include <hairshadow/reference/deep_shadow_map.hpp>

@@ -4,7 +4,8 @@
 // ---- begin hairshadow/hairshadow.hpp
 /// @file
 /// hairshadow: self-shadowing and transparency of hair and other thin semi-transparent geometry.
-/// The CPU umbrella header: models and their readers, lights, the rasteriser and the exact reference.
+/// The CPU umbrella header: models and their readers, lights, the rasteriser, the exact reference and
+/// every method's policies and compositions (the run-time registry is <hairshadow/methods/registry.hpp>).
 /// It needs only GLM. The OBJ reader (`<hairshadow/io/obj_format.hpp>`, `<hairshadow/io/load.hpp>`)
 /// also needs tinyobjloader and is included separately.
 
@@ -1651,6 +1652,1102 @@ inline fragment_buffer rasterize(const hair_model& model, const light_space& lig
 } // namespace hairshadow
 // ---- end hairshadow/raster/rasterizer.hpp
 
+// ---- begin hairshadow/core/map_queries.hpp
+/// @file
+/// Transmittance queries shared by every shadow map: at a texel and depth, at world points (one or a
+/// batch), with an optional 3x3 box filter (Kim & Neumann 2001, section 2) and half-texel jitter
+/// (Sintorn & Assarsson 2009, section 3.3). A map provides optical_depth(x, y, depth) and light().
+
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <span>
+
+namespace hairshadow {
+
+/// How a world point is looked up.
+struct query_options {
+    /// Average the optical depth over the 3x3 texels around the point (at the point's depth), as Kim &
+    /// Neumann filter their opacity maps; texels outside the map are left out of the average.
+    bool box_filter = false;
+    /// Move the look-up by up to half a texel in x and y, as Sintorn & Assarsson do against aliasing.
+    /// The offset is a hash of the point's coordinates, so the same point always gets the same one.
+    bool jitter = false;
+    /// Move the query this far towards the light (linear depth), against self-shadowing acne.
+    float depth_bias = 0.0f;
+};
+
+namespace detail {
+inline float hash_unit(std::uint32_t x) noexcept { // [0, 1), from a 32-bit integer hash
+    x ^= x >> 16, x *= 0x7feb352dU, x ^= x >> 15, x *= 0x846ca68bU, x ^= x >> 16;
+    return float(x >> 8) * (1.0f / 16777216.0f);
+}
+} // namespace detail
+
+/// Mix-in giving a shadow map its transmittance queries (CRTP).
+template <class Map>
+class map_queries {
+public:
+    /// exp(-optical depth) at texel (x, y) and linear depth.
+    float transmittance(int x, int y, float depth) const noexcept { return std::exp(-self().optical_depth(x, y, depth)); }
+
+    /// Transmittance at a world point; 1 outside the map.
+    float transmittance(const glm::vec3& world, const query_options& options = {}) const noexcept {
+        const light_space& light = self().light();
+        const light_point p = light.project(world);
+        glm::vec2 window = p.window;
+        if (options.jitter) {
+            const std::uint32_t h = std::bit_cast<std::uint32_t>(world.x) * 73856093u ^ std::bit_cast<std::uint32_t>(world.y) * 19349663u ^
+                                    std::bit_cast<std::uint32_t>(world.z) * 83492791u;
+            window += glm::vec2(detail::hash_unit(h) - 0.5f, detail::hash_unit(h ^ 0x9e3779b9u) - 0.5f);
+        }
+        const int res = light.resolution();
+        if (!(p.w > 0.0f) || !(window.x >= 0.0f) || !(window.y >= 0.0f) || !(window.x < float(res)) || !(window.y < float(res)))
+            return 1.0f;
+        const int x = int(window.x), y = int(window.y);
+        const float depth = p.depth - options.depth_bias;
+        if (!options.box_filter) return transmittance(x, y, depth);
+        float sum = 0.0f;
+        int count = 0;
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                const int nx = x + dx, ny = y + dy;
+                if (nx < 0 || ny < 0 || nx >= res || ny >= res) continue;
+                sum += self().optical_depth(nx, ny, depth);
+                ++count;
+            }
+        return std::exp(-sum / float(count));
+    }
+
+    /// Transmittance at many world points, in parallel; out[i] belongs to points[i].
+    void transmittance(std::span<const glm::vec3> points, std::span<float> out, const query_options& options = {},
+                       const execution& exec = {}) const {
+        if (out.size() != points.size()) throw argument_error("output span must match the point count");
+        parallel_for(points.size(), exec, [&](std::size_t i) { out[i] = transmittance(points[i], options); }, 4096);
+    }
+
+private:
+    const Map& self() const noexcept { return static_cast<const Map&>(*this); }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/core/map_queries.hpp
+
+// ---- begin hairshadow/methods/published.hpp
+/// @file
+/// The published methods as compositions of policies, and the hybrids that no paper describes.
+
+// ---- begin hairshadow/accumulation/emulated_8bit.hpp
+/// @file
+/// Emulated 8-bit accumulation (Kim & Neumann 2001, section 2): an RGBA8 target with additive blending.
+/// Each fragment writes b / kappa, which GL converts to 8 bits (round to nearest) before the blend
+/// adds it with saturation; a stored value q stands for the optical depth kappa * q / 255, with
+/// exp(-kappa) = 2^-8 so that a full texel (q = 255) lets 1/256 of the light through.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <string_view>
+
+namespace hairshadow {
+
+/// Every add quantised to 8 bits and saturated, as additive blending into an RGBA8 target does.
+struct emulated_8bit {
+    using value_type = std::uint8_t;
+    using sum_type = std::int32_t; ///< exact: saturating adds of non-negative steps equal min(255, sum)
+    static constexpr std::string_view name = "8bit";
+    static constexpr std::string_view glsl_name = "accumulation/emulated_8bit";
+    /// exp(-kappa) = 2^-8: kappa = 8 ln 2, about 5.545 (the paper rounds it to 5.56).
+    static constexpr float kappa = 8.0f * std::numbers::ln2_v<float>;
+
+    /// The 8-bit step a fragment of optical depth b adds: its output b / kappa in unorm8.
+    static std::int32_t quantise(float optical_depth) noexcept {
+        return std::int32_t(std::lround(std::clamp(optical_depth / kappa, 0.0f, 1.0f) * 255.0f));
+    }
+    static sum_type add(sum_type sum, float optical_depth) noexcept { return sum + quantise(optical_depth); }
+    static constexpr sum_type combine(sum_type a, sum_type b) noexcept { return a + b; }
+    static constexpr value_type store(sum_type sum) noexcept { return value_type(std::min<sum_type>(sum, 255)); }
+    static constexpr float decode(value_type v) noexcept { return kappa * float(v) / 255.0f; }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/accumulation/emulated_8bit.hpp
+// ---- begin hairshadow/accumulation/float_accumulation.hpp
+/// @file
+/// Float accumulation: optical depths summed in 32-bit floats, as additive blending into RGBA32F does.
+
+#include <string_view>
+
+namespace hairshadow {
+
+/// Sums each fragment's optical depth b = -ln(1 - alpha) in float; stores the sum as it is.
+struct float_accumulation {
+    using value_type = float;  ///< what a map texel stores
+    using sum_type = float;    ///< what is summed while building
+    static constexpr std::string_view name = "float";
+    static constexpr std::string_view glsl_name = "accumulation/float";
+
+    /// Adds one fragment's optical depth.
+    static constexpr sum_type add(sum_type sum, float optical_depth) noexcept { return sum + optical_depth; }
+    /// Adds two partial sums (prefix sums of layers).
+    static constexpr sum_type combine(sum_type a, sum_type b) noexcept { return a + b; }
+    /// The stored value of a sum.
+    static constexpr value_type store(sum_type sum) noexcept { return sum; }
+    /// The optical depth a stored value stands for.
+    static constexpr float decode(value_type v) noexcept { return v; }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/accumulation/float_accumulation.hpp
+// ---- begin hairshadow/methods/shadow_method.hpp
+/// @file
+/// A shadow method composed of a placement, an accumulation and a reconstruction policy, with its
+/// CPU kernel: the placement's pre-passes, then one accumulation pass, texel by texel in parallel.
+
+// ---- begin hairshadow/methods/concepts.hpp
+/// @file
+/// The three policy families of a shadow method, as concepts. docs/policies.md describes each member.
+
+// ---- begin hairshadow/placement/layer_position.hpp
+/// @file
+/// Where a depth falls among a texel's layers, and the depth extent of a fragment buffer.
+
+
+#include <algorithm>
+#include <limits>
+
+namespace hairshadow {
+
+/// A query depth's place among `layer_count` layers: index -1 is in front of the first layer,
+/// index layer_count behind the last; otherwise `fraction` in [0, 1] says how far into layer `index`.
+struct layer_position {
+    int index;
+    float fraction;
+};
+
+/// Nearest and furthest fragment depth of a whole buffer (a global pre-pass); {0, 0} when empty.
+struct depth_extent {
+    float nearest = 0.0f;
+    float furthest = 0.0f;
+};
+
+inline depth_extent extent_of(const fragment_buffer& fragments) noexcept {
+    if (fragments.size() == 0) return {};
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (const auto& f : fragments.fragments()) {
+        lo = std::min(lo, f.depth);
+        hi = std::max(hi, f.depth);
+    }
+    return {lo, hi};
+}
+
+namespace detail {
+/// The smallest float above `hi`, so that a half-open range [lo, end) holds a fragment at hi.
+inline float just_above(float hi) noexcept { return std::nextafter(hi, std::numeric_limits<float>::infinity()); }
+} // namespace detail
+
+} // namespace hairshadow
+// ---- end hairshadow/placement/layer_position.hpp
+
+#include <concepts>
+#include <span>
+#include <string_view>
+
+namespace hairshadow {
+
+/// Placement: which pre-passes run and where a depth falls among a texel's layers.
+template <class P>
+concept placement_policy = std::default_initializable<P> && std::copyable<P> && requires(P p, const P cp, const fragment_buffer& fb,
+                                                                                         std::span<const fragment> frags,
+                                                                                         typename P::texel_state& state, float depth) {
+    { P::layer_count } -> std::convertible_to<int>;
+    { P::cumulative } -> std::convertible_to<bool>;
+    { P::contiguous } -> std::convertible_to<bool>;
+    { P::glsl_name } -> std::convertible_to<std::string_view>;
+    requires std::default_initializable<typename P::texel_state>;
+    p.prepare(fb);
+    cp.prepare_texel(frags, state);
+    { cp.assign(state, depth) } -> std::same_as<int>;
+    { cp.locate(state, depth) } -> std::same_as<layer_position>;
+    { P::global_bytes() } -> std::convertible_to<std::size_t>;
+};
+
+/// Accumulation: how each fragment's optical depth is summed and stored.
+template <class A>
+concept accumulation_policy = requires(typename A::sum_type s, typename A::value_type v, float b) {
+    { A::add(s, b) } -> std::same_as<typename A::sum_type>;
+    { A::combine(s, s) } -> std::same_as<typename A::sum_type>;
+    { A::store(s) } -> std::same_as<typename A::value_type>;
+    { A::decode(v) } -> std::same_as<float>;
+    { A::glsl_name } -> std::convertible_to<std::string_view>;
+};
+
+/// Reconstruction: what a texel stores and how it turns into optical depth at a query depth.
+template <class R, class P, class A>
+concept reconstruction_policy =
+    requires(const P& p, const typename P::texel_state& state, std::span<const fragment> frags,
+             typename R::template storage<P, A>& out, const typename R::template storage<P, A>& in, float depth) {
+        { R::template accepts<P> } -> std::convertible_to<bool>;
+        { R::glsl_name } -> std::convertible_to<std::string_view>;
+        R::template build<P, A>(p, state, frags, out);
+        { R::template optical_depth<P, A>(p, state, in, depth) } -> std::same_as<float>;
+    };
+
+} // namespace hairshadow
+// ---- end hairshadow/methods/concepts.hpp
+
+#include <vector>
+
+namespace hairshadow {
+
+/// A shadow method: `Placement` decides the layers, `Accumulation` how fragments sum into them and
+/// `Reconstruction` what is stored and read back. The published methods are aliases of this template
+/// (methods/published.hpp); any other valid composition is a hybrid.
+/// @tparam Placement a placement_policy (uniform_slices, gamma_slices, per_pixel_depth, clustered, depth_range)
+/// @tparam Accumulation an accumulation_policy (float_accumulation, emulated_8bit)
+/// @tparam Reconstruction a reconstruction_policy (interpolation, occupancy_bitcount)
+template <class Placement, class Accumulation, class Reconstruction>
+class shadow_method : public map_queries<shadow_method<Placement, Accumulation, Reconstruction>> {
+    static_assert(placement_policy<Placement>,
+                  "Placement must provide layer_count, cumulative, contiguous, glsl_name, texel_state, prepare(fragment_buffer), "
+                  "prepare_texel(fragments, state), assign(state, depth) -> int, locate(state, depth) -> layer_position and "
+                  "global_bytes() - see docs/policies.md");
+    static_assert(accumulation_policy<Accumulation>,
+                  "Accumulation must provide value_type, sum_type, add(sum, b), combine(sum, sum), store(sum), decode(value) -> float "
+                  "and glsl_name - see docs/policies.md");
+    static_assert(reconstruction_policy<Reconstruction, Placement, Accumulation>,
+                  "Reconstruction must provide accepts<Placement>, storage<Placement, Accumulation>, build(...), optical_depth(...) "
+                  "and glsl_name - see docs/policies.md");
+    static_assert(Reconstruction::template accepts<Placement>,
+                  "this Reconstruction cannot read this Placement's layers: occupancy_bitcount<B> needs contiguous slices whose "
+                  "count is a multiple of 32 and of B (depth_range, per_pixel_depth, uniform_slices), not clustered bins");
+
+public:
+    using placement_type = Placement;
+    using accumulation_type = Accumulation;
+    using reconstruction_type = Reconstruction;
+    static constexpr int layer_count = Placement::layer_count;
+
+    /// What one texel of the maps holds.
+    struct texel_maps {
+        [[no_unique_address]] typename Placement::texel_state placement{};
+        typename Reconstruction::template storage<Placement, Accumulation> data{};
+    };
+
+    explicit shadow_method(Placement placement = Placement()) : placement_(std::move(placement)) {}
+
+    /// Builds the maps from the fragments of `light`'s map: the placement's global and per-texel
+    /// pre-passes, then the accumulation pass. Identical for any thread count.
+    void build(const fragment_buffer& fragments, const light_space& light, const execution& exec = {}) {
+        if (fragments.resolution() != light.resolution()) throw argument_error("fragment buffer and light differ in resolution");
+        light_ = light;
+        placement_.prepare(fragments);
+        texels_.assign(fragments.texel_count(), texel_maps{});
+        parallel_for(texels_.size(), exec, [&](std::size_t t) {
+            const auto in = fragments.texel(t);
+            if (in.empty()) return;
+            auto& out = texels_[t];
+            placement_.prepare_texel(in, out.placement);
+            Reconstruction::template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
+        }, 512);
+    }
+
+    /// Optical depth at linear `depth` in texel (x, y).
+    float optical_depth(int x, int y, float depth) const noexcept {
+        const auto& t = texel(x, y);
+        return Reconstruction::template optical_depth<Placement, Accumulation>(placement_, t.placement, t.data, depth);
+    }
+    using map_queries<shadow_method>::transmittance;
+
+    /// Number of maps the method stores (layers, bins or slabs), for inspection.
+    static constexpr int stored_maps = Reconstruction::template stored_maps<Placement>;
+    /// Optical depth stored in map k of texel (x, y): through the end of layer, bin or slab k.
+    float stored_optical_depth(int x, int y, int k) const noexcept {
+        return Reconstruction::template stored_optical_depth<Placement, Accumulation>(texel(x, y).data, k);
+    }
+
+    const texel_maps& texel(int x, int y) const noexcept { return texels_[std::size_t(y) * std::size_t(light_.resolution()) + std::size_t(x)]; }
+    const Placement& placement() const noexcept { return placement_; }
+    const light_space& light() const noexcept { return light_; }
+    /// Bytes the maps hold: every texel's placement state and stored layers, plus the global state.
+    std::size_t memory_bytes() const noexcept { return texels_.size() * sizeof(texel_maps) + Placement::global_bytes(); }
+    /// Bytes per texel.
+    static constexpr std::size_t texel_bytes() noexcept { return sizeof(texel_maps); }
+
+private:
+    Placement placement_;
+    light_space light_;
+    std::vector<texel_maps> texels_;
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/methods/shadow_method.hpp
+// ---- begin hairshadow/placement/clustered.hpp
+/// @file
+/// Density clustering's per-texel bins (Mertens et al. 2004, sections 3.2-3.3). Fragment depths are
+/// clustered by k-means with weights b = -ln(1 - alpha): K centres start uniform between the texel's
+/// nearest and furthest fragment and take one iteration (the weighted means); a second pass gives each
+/// cluster's weighted standard deviation around its mean. Cluster j's histogram bin spans
+/// mu_j +- sqrt(3) sigma_j (a uniform distribution's width from its variance); overlapping bins meet at
+/// the midpoint of the overlap; a fragment outside every bin goes to the nearest cluster.
+
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <numbers>
+#include <span>
+#include <string_view>
+
+namespace hairshadow {
+
+/// K depth clusters per texel, each a histogram bin.
+/// @tparam K number of clusters (4 in the paper: one RGBA texture per quantity)
+template <int K>
+class clustered {
+    static_assert(K >= 1, "clustered needs at least one cluster");
+
+public:
+    static constexpr int layer_count = K;
+    static constexpr bool cumulative = false; ///< a histogram: a fragment adds to its own bin only
+    static constexpr bool contiguous = false; ///< bins may leave gaps
+    static constexpr std::string_view name = "clustered";
+    static constexpr std::string_view glsl_name = "placement/clustered";
+    /// gamma = sqrt(3): the half-width of a uniform distribution with standard deviation sigma.
+    static constexpr float bin_half_width = std::numbers::sqrt3_v<float>;
+
+    /// The means and standard deviations maps; an empty cluster has sigma < 0.
+    struct texel_state {
+        std::array<float, K> mean{};
+        std::array<float, K> sigma{};
+    };
+    /// A cluster's bin [lo, hi], after overlaps are split.
+    struct bin {
+        float lo, hi;
+        bool empty;
+    };
+
+    void prepare(const fragment_buffer&) const noexcept {}
+
+    void prepare_texel(std::span<const fragment> fragments, texel_state& s) const noexcept {
+        s.sigma.fill(-1.0f);
+        if (fragments.empty()) return;
+        float lo = fragments[0].depth, hi = lo;
+        for (const auto& f : fragments) lo = std::min(lo, f.depth), hi = std::max(hi, f.depth);
+        // Initial centres: the middles of K equal parts of [nearest, furthest].
+        std::array<float, K> centre;
+        for (int j = 0; j < K; ++j) centre[std::size_t(j)] = lo + (hi - lo) * (float(j) + 0.5f) / float(K);
+        // One k-means iteration: weighted means of the fragments nearest each centre.
+        std::array<double, K> weight{}, sum{};
+        for (const auto& f : fragments) {
+            const auto j = std::size_t(nearest(centre, f.depth, [](int) { return true; }));
+            const double b = -std::log1p(-double(f.alpha));
+            weight[j] += b;
+            sum[j] += b * f.depth;
+        }
+        for (std::size_t j = 0; j < std::size_t(K); ++j) {
+            s.mean[j] = weight[j] > 0.0 ? float(sum[j] / weight[j]) : centre[j];
+            s.sigma[j] = weight[j] > 0.0 ? 0.0f : -1.0f;
+        }
+        // Second pass: weighted variance of each cluster's fragments around its mean.
+        std::array<double, K> var_weight{}, var_sum{};
+        for (const auto& f : fragments) {
+            const auto j = std::size_t(nearest(s.mean, f.depth, [&](int i) { return s.sigma[std::size_t(i)] >= 0.0f; }));
+            const double b = -std::log1p(-double(f.alpha)), d = double(f.depth) - s.mean[j];
+            var_weight[j] += b;
+            var_sum[j] += b * d * d;
+        }
+        for (std::size_t j = 0; j < std::size_t(K); ++j)
+            if (s.sigma[j] >= 0.0f && var_weight[j] > 0.0) s.sigma[j] = float(std::sqrt(var_sum[j] / var_weight[j]));
+    }
+
+    /// The bins of a texel in depth order; adjacent overlapping bins meet at the overlap's midpoint.
+    std::array<bin, K> bins(const texel_state& s) const noexcept {
+        std::array<bin, K> out;
+        int previous = -1;
+        for (int j = 0; j < K; ++j) {
+            const auto u = std::size_t(j);
+            const float sigma = s.sigma[u];
+            out[u] = {s.mean[u] - bin_half_width * std::max(sigma, 0.0f), s.mean[u] + bin_half_width * std::max(sigma, 0.0f), sigma < 0.0f};
+            if (out[u].empty) continue;
+            if (previous >= 0) {
+                auto& a = out[std::size_t(previous)];
+                if (a.hi > out[u].lo) {
+                    // R1 = L2 = (R1 + L2) / 2, kept within both bins so that neither turns inside out.
+                    const float mid = std::clamp(0.5f * (a.hi + out[u].lo), a.lo, out[u].hi);
+                    a.hi = out[u].lo = mid;
+                }
+            }
+            previous = j;
+        }
+        return out;
+    }
+
+    /// The bin holding `depth`, or else the cluster with the nearest mean.
+    int assign(const texel_state& s, float depth) const noexcept {
+        const auto b = bins(s);
+        for (int j = 0; j < K; ++j) {
+            const auto& x = b[std::size_t(j)];
+            if (!x.empty && depth >= x.lo && (depth < x.hi || (x.lo == x.hi && depth == x.lo))) return j;
+        }
+        return nearest(s.mean, depth, [&](int i) { return s.sigma[std::size_t(i)] >= 0.0f; });
+    }
+    /// Inside bin j: {j, fraction}; between bins: the end of the bin before; before all: -1.
+    layer_position locate(const texel_state& s, float depth) const noexcept {
+        const auto b = bins(s);
+        layer_position p{-1, 0.0f};
+        for (int j = 0; j < K; ++j) {
+            const auto& x = b[std::size_t(j)];
+            if (x.empty) continue;
+            if (!(depth > x.lo)) break;
+            if (depth >= x.hi) {
+                p = {j, 1.0f};
+                continue;
+            }
+            return {j, (depth - x.lo) / (x.hi - x.lo)};
+        }
+        return p;
+    }
+    static constexpr std::size_t global_bytes() noexcept { return 0; }
+
+private:
+    template <class Usable>
+    static int nearest(const std::array<float, K>& centres, float depth, Usable usable) noexcept {
+        int best = -1;
+        float best_distance = 0.0f;
+        for (int j = 0; j < K; ++j) {
+            if (!usable(j)) continue;
+            const float d = std::abs(depth - centres[std::size_t(j)]);
+            if (best < 0 || d < best_distance) best = j, best_distance = d;
+        }
+        return best < 0 ? 0 : best;
+    }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/placement/clustered.hpp
+// ---- begin hairshadow/placement/depth_range.hpp
+/// @file
+/// Occupancy maps' per-texel depth range (Sintorn & Assarsson 2009, section 3.1): the nearest and
+/// furthest fragment of each texel bound S equal slices, so that every slice lies inside the hair.
+
+
+#include <cmath>
+#include <cstddef>
+#include <span>
+#include <string_view>
+
+namespace hairshadow {
+
+/// S slices between each texel's nearest and furthest fragment.
+/// @tparam S number of slices (128 in the paper)
+template <int S>
+class depth_range {
+    static_assert(S >= 1, "depth_range needs at least one slice");
+
+public:
+    static constexpr int layer_count = S;
+    static constexpr bool cumulative = true; ///< read as opacity slices when interpolated
+    static constexpr bool contiguous = true;
+    static constexpr std::string_view name = "depth_range";
+    static constexpr std::string_view glsl_name = "placement/depth_range";
+    /// The depth-range map (MIN / MAX blending on GL).
+    struct texel_state {
+        float nearest = 0.0f;
+        float furthest = 0.0f;
+    };
+
+    void prepare(const fragment_buffer&) const noexcept {}
+    void prepare_texel(std::span<const fragment> fragments, texel_state& s) const noexcept {
+        if (fragments.empty()) return;
+        s.nearest = s.furthest = fragments[0].depth;
+        for (const auto& f : fragments) s.nearest = std::min(s.nearest, f.depth), s.furthest = std::max(s.furthest, f.depth);
+    }
+    /// Depth of slice boundary k in [0, S].
+    float boundary(const texel_state& s, int k) const noexcept { return s.nearest + (s.furthest - s.nearest) * (float(k) / float(S)); }
+    /// The slice floor(S (z - near) / (far - near)) of the paper, the furthest fragment in the last.
+    int assign(const texel_state& s, float depth) const noexcept {
+        if (!(s.furthest > s.nearest)) return 0;
+        return std::clamp(slice_of(s, depth), 0, S - 1);
+    }
+    layer_position locate(const texel_state& s, float depth) const noexcept {
+        if (!(s.furthest > s.nearest)) return depth > s.nearest ? layer_position{S, 0.0f} : layer_position{-1, 0.0f};
+        if (!(depth >= s.nearest)) return {-1, 0.0f};
+        const int k = slice_of(s, depth);
+        if (k >= S) return {S, 0.0f};
+        const float lo = boundary(s, k), hi = boundary(s, k + 1);
+        return {k, hi > lo ? std::clamp((depth - lo) / (hi - lo), 0.0f, 1.0f) : 0.0f};
+    }
+    static constexpr std::size_t global_bytes() noexcept { return 0; }
+
+private:
+    /// The k with boundary(k) <= depth < boundary(k + 1), or S past the furthest boundary. The closed
+    /// form can be off by one where rounding meets a boundary; comparing with the boundaries themselves
+    /// makes a fragment's slice and a query's slice agree exactly (so slab boundaries are exact).
+    int slice_of(const texel_state& s, float depth) const noexcept {
+        int k = std::clamp(int((depth - s.nearest) / (s.furthest - s.nearest) * float(S)), 0, S);
+        while (k > 0 && depth < boundary(s, k)) --k;
+        while (k < S && depth >= boundary(s, k + 1)) ++k;
+        return k;
+    }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/placement/depth_range.hpp
+// ---- begin hairshadow/placement/per_pixel_depth.hpp
+/// @file
+/// Deep opacity maps' per-pixel layers (Yuksel & Keyser 2008, section 3): a depth pass gives each
+/// texel the depth z0 of its first fragment; layer k spans [z0 + d_{k-1}, z0 + d_k) with d_0 = 0, the
+/// same d_k for every texel. A fragment adds to its layer and every later one.
+
+
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <type_traits>
+#include <span>
+#include <string_view>
+
+namespace hairshadow {
+
+/// How layer sizes grow with depth.
+enum class layer_sizes {
+    linear,  ///< layer k is k times as deep as the first (the paper's choice, section 5)
+    uniform, ///< all layers equally deep
+};
+
+/// What happens to fragments beyond the last layer, z0 + d_K (Yuksel & Keyser, section 3).
+enum class beyond_last_layer {
+    ignore, ///< they cast no shadow
+    clamp,  ///< they join the last layer (the paper's choice: "usually gave reasonable results")
+    extend, ///< each texel's layers are stretched to reach its last fragment
+};
+
+/// K layers starting at each texel's first fragment.
+/// @tparam K number of layers
+/// @tparam Sizes how layer depths grow
+/// @tparam Beyond what happens to fragments beyond the last layer
+template <int K, layer_sizes Sizes = layer_sizes::linear, beyond_last_layer Beyond = beyond_last_layer::clamp>
+class per_pixel_depth {
+    static_assert(K >= 1, "per_pixel_depth needs at least one layer");
+
+public:
+    static constexpr int layer_count = K;
+    static constexpr bool cumulative = true;
+    static constexpr bool contiguous = true;
+    static constexpr std::string_view name = "per_pixel_depth";
+    static constexpr std::string_view glsl_name = "placement/per_pixel_depth";
+
+    /// The depth map (z0), plus the stretch factor when layers extend to the last fragment.
+    struct z0_only {
+        float z0 = 0.0f;
+    };
+    struct z0_and_scale {
+        float z0 = 0.0f;
+        float scale = 1.0f;
+    };
+    using texel_state = std::conditional_t<Beyond == beyond_last_layer::extend, z0_and_scale, z0_only>;
+
+    /// Layers covering `extent` in linear depth in total (d_K); by default half the depth range of the
+    /// whole map, a choice of ours: the paper leaves d_k to the user.
+    per_pixel_depth() = default;
+    explicit per_pixel_depth(float extent) : requested_extent_(extent) {
+        if (!(extent > 0.0f && extent <= 1.0f)) throw argument_error("per_pixel_depth: the layer extent must be in (0, 1]");
+    }
+
+    void prepare(const fragment_buffer& fragments) noexcept {
+        const auto e = extent_of(fragments);
+        extent_ = requested_extent_ ? *requested_extent_ : std::max(0.5f * (e.furthest - e.nearest), 1e-6f);
+    }
+    /// The depth pass: z0 is the nearest fragment (and, to extend, the furthest sets the stretch).
+    void prepare_texel(std::span<const fragment> fragments, texel_state& s) const noexcept {
+        if (fragments.empty()) return;
+        float lo = fragments[0].depth, hi = lo;
+        for (const auto& f : fragments) lo = std::min(lo, f.depth), hi = std::max(hi, f.depth);
+        s.z0 = lo;
+        if constexpr (Beyond == beyond_last_layer::extend) s.scale = std::max(1.0f, detail::just_above(hi - lo) / extent_);
+    }
+
+    /// d_k / d_K for layer boundary k in [0, K].
+    static constexpr float relative_boundary(int k) noexcept {
+        if constexpr (Sizes == layer_sizes::linear) return float(k * (k + 1)) / float(K * (K + 1));
+        else return float(k) / float(K);
+    }
+    /// Depth of boundary k in [0, K] of a texel: z0 + d_k.
+    float boundary(const texel_state& s, int k) const noexcept { return s.z0 + span_of(s) * relative_boundary(k); }
+
+    int assign(const texel_state& s, float depth) const noexcept {
+        const auto p = locate(s, depth);
+        if (p.index < 0) return 0;
+        if (p.index >= K) return Beyond == beyond_last_layer::ignore ? -1 : K - 1;
+        return p.index;
+    }
+    layer_position locate(const texel_state& s, float depth) const noexcept {
+        const float rel = (depth - s.z0) / span_of(s);
+        if (!(rel >= 0.0f)) return {-1, 0.0f};
+        if (rel >= 1.0f) return {K, 0.0f};
+        int k;
+        if constexpr (Sizes == layer_sizes::linear) k = int((std::sqrt(1.0f + 4.0f * rel * float(K * (K + 1))) - 1.0f) * 0.5f);
+        else k = int(rel * float(K));
+        k = std::clamp(k, 0, K - 1);
+        while (k > 0 && rel < relative_boundary(k)) --k;
+        while (k < K - 1 && rel >= relative_boundary(k + 1)) ++k;
+        const float lo = relative_boundary(k), hi = relative_boundary(k + 1);
+        return {k, std::clamp((rel - lo) / (hi - lo), 0.0f, 1.0f)};
+    }
+    static constexpr std::size_t global_bytes() noexcept { return sizeof(float); }
+    /// d_K in linear depth.
+    float extent() const noexcept { return extent_; }
+
+private:
+    float span_of(const texel_state& s) const noexcept {
+        if constexpr (Beyond == beyond_last_layer::extend) return extent_ * s.scale;
+        else return extent_;
+    }
+    std::optional<float> requested_extent_;
+    float extent_ = 1.0f;
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/placement/per_pixel_depth.hpp
+// ---- begin hairshadow/placement/planar_slices.hpp
+/// @file
+/// Opacity shadow maps' planar slices (Kim & Neumann 2001, section 2): N maps at depths D_1..D_N
+/// between the nearest fragment D_0 and the furthest, the same for every texel. A fragment adds to the
+/// map of its slice and to every later one (each map holds the opacity in front of its depth); a query
+/// interpolates linearly in depth between the maps that enclose it.
+
+
+#include <cmath>
+#include <cstddef>
+#include <span>
+#include <string_view>
+
+namespace hairshadow {
+
+/// Slices of equal thickness (Kim & Neumann Fig. 3a).
+struct uniform_spacing {
+    static constexpr std::string_view name = "uniform";
+    static constexpr float boundary(float t) noexcept { return t; }
+    static float inverse(float u) noexcept { return u; }
+};
+
+/// Slices growing with depth, denser near the light, "analogous to gamma correction" (Kim & Neumann
+/// Fig. 3c). The paper gives no formula; we use D_i = D_0 + (D_N - D_0) (i / N)^2.
+struct gamma_spacing {
+    static constexpr std::string_view name = "gamma";
+    static constexpr float gamma = 2.0f;
+    static constexpr float boundary(float t) noexcept { return t * t; }
+    static float inverse(float u) noexcept { return std::sqrt(u); }
+};
+
+/// N planar slices between the nearest and furthest fragment of the whole map.
+/// @tparam N number of opacity maps
+/// @tparam Spacing uniform_spacing or gamma_spacing
+template <int N, class Spacing = uniform_spacing>
+class planar_slices {
+    static_assert(N >= 1, "planar_slices needs at least one slice");
+
+public:
+    static constexpr int layer_count = N;
+    static constexpr bool cumulative = true; ///< each map holds the opacity in front of its depth
+    static constexpr bool contiguous = true; ///< the slices tile [D_0, D_N) without gaps
+    static constexpr std::string_view name = Spacing::name;
+    static constexpr std::string_view glsl_name = "placement/planar_slices";
+    struct texel_state {};
+
+    /// Global pre-pass: D_0 is the nearest fragment, D_N just beyond the furthest.
+    void prepare(const fragment_buffer& fragments) noexcept {
+        const auto e = extent_of(fragments);
+        near_ = e.nearest;
+        far_ = detail::just_above(e.furthest);
+    }
+    void prepare_texel(std::span<const fragment>, texel_state&) const noexcept {}
+
+    /// Depth of map i, i in [0, N] (D_0 .. D_N).
+    float boundary(const texel_state&, int i) const noexcept {
+        return i >= N ? far_ : near_ + (far_ - near_) * Spacing::boundary(float(i) / float(N));
+    }
+    /// The slice a fragment at `depth` falls in: D_k <= depth < D_{k+1}.
+    int assign(const texel_state& s, float depth) const noexcept {
+        const int k = locate(s, depth).index;
+        return std::clamp(k, 0, N - 1);
+    }
+    layer_position locate(const texel_state& s, float depth) const noexcept {
+        if (!(depth >= near_)) return {-1, 0.0f};
+        if (depth >= far_) return {N, 0.0f};
+        int k = std::clamp(int(Spacing::inverse((depth - near_) / (far_ - near_)) * float(N)), 0, N - 1);
+        // The closed form can miss by one where rounding meets a boundary; the boundaries decide.
+        while (k > 0 && depth < boundary(s, k)) --k;
+        while (k < N - 1 && depth >= boundary(s, k + 1)) ++k;
+        const float lo = boundary(s, k), hi = boundary(s, k + 1);
+        return {k, hi > lo ? std::clamp((depth - lo) / (hi - lo), 0.0f, 1.0f) : 0.0f};
+    }
+    /// Bytes of global state the maps need besides their texels (D_0 and D_N).
+    static constexpr std::size_t global_bytes() noexcept { return 2 * sizeof(float); }
+    float nearest() const noexcept { return near_; }
+    float furthest() const noexcept { return far_; }
+
+private:
+    float near_ = 0.0f, far_ = 0.0f;
+};
+
+/// Uniformly spaced opacity maps (Kim & Neumann Fig. 3a).
+template <int N>
+using uniform_slices = planar_slices<N, uniform_spacing>;
+/// Opacity maps spaced like gamma correction (Kim & Neumann Fig. 3c).
+template <int N>
+using gamma_slices = planar_slices<N, gamma_spacing>;
+
+} // namespace hairshadow
+// ---- end hairshadow/placement/planar_slices.hpp
+// ---- begin hairshadow/reconstruction/interpolation.hpp
+/// @file
+/// Reconstruction by interpolation: each layer (opacity map, deep opacity layer or density cluster bin)
+/// stores its optical depth, and the optical depth at a query depth rises linearly across the layer it
+/// falls in (Kim & Neumann 2001 section 2; Yuksel & Keyser 2008 section 3; Mertens et al. 2004 section
+/// 3.2: piecewise-constant density, piecewise-linear optical depth).
+
+
+#include <array>
+#include <cmath>
+#include <span>
+#include <string_view>
+#include <vector>
+
+namespace hairshadow {
+
+/// Optical depth interpolated linearly inside each layer.
+struct interpolation {
+    static constexpr std::string_view name = "interpolation";
+    static constexpr std::string_view glsl_name = "reconstruction/interpolation";
+
+    /// Any placement's layers can be interpolated.
+    template <class Placement>
+    static constexpr bool accepts = Placement::layer_count >= 1;
+
+    /// One value per layer: cumulative (the optical depth in front of the layer's end) when the
+    /// placement's layers are opacity maps, per bin when they are histogram bins.
+    template <class Placement, class Accumulation>
+    struct storage {
+        std::array<typename Accumulation::value_type, std::size_t(Placement::layer_count)> layers{};
+    };
+
+    /// Sums the texel's fragments into its layers.
+    template <class Placement, class Accumulation>
+    static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const fragment> fragments,
+                      storage<Placement, Accumulation>& out) {
+        constexpr int L = Placement::layer_count;
+        std::array<typename Accumulation::sum_type, std::size_t(L)> sums{};
+        for (const auto& f : fragments) {
+            const int k = placement.assign(state, f.depth);
+            if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], -std::log1p(-f.alpha));
+        }
+        typename Accumulation::sum_type running{};
+        for (std::size_t k = 0; k < std::size_t(L); ++k) {
+            if constexpr (Placement::cumulative) {
+                running = Accumulation::combine(running, sums[k]);
+                out.layers[k] = Accumulation::store(running);
+            } else {
+                out.layers[k] = Accumulation::store(sums[k]);
+            }
+        }
+    }
+
+    /// Optical depth in front of the end of layer k.
+    template <class Placement, class Accumulation>
+    static float through_layer(const storage<Placement, Accumulation>& in, int k) noexcept {
+        if (k < 0) return 0.0f;
+        if constexpr (Placement::cumulative) {
+            return Accumulation::decode(in.layers[std::size_t(k)]);
+        } else {
+            float sum = 0.0f;
+            for (int i = 0; i <= k; ++i) sum += Accumulation::decode(in.layers[std::size_t(i)]);
+            return sum;
+        }
+    }
+
+    /// Maps a texel stores, for inspection: one per layer.
+    template <class Placement>
+    static constexpr int stored_maps = Placement::layer_count;
+    /// Optical depth stored through map k (the end of layer k).
+    template <class Placement, class Accumulation>
+    static float stored_optical_depth(const storage<Placement, Accumulation>& in, int k) noexcept {
+        return through_layer<Placement, Accumulation>(in, k);
+    }
+
+    template <class Placement, class Accumulation>
+    static float optical_depth(const Placement& placement, const typename Placement::texel_state& state,
+                               const storage<Placement, Accumulation>& in, float depth) noexcept {
+        constexpr int L = Placement::layer_count;
+        const layer_position p = placement.locate(state, depth);
+        if (p.index < 0) return 0.0f;
+        if (p.index >= L) return through_layer<Placement, Accumulation>(in, L - 1);
+        const float before = through_layer<Placement, Accumulation>(in, p.index - 1);
+        const float after = through_layer<Placement, Accumulation>(in, p.index);
+        return before + p.fraction * (after - before);
+    }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/reconstruction/interpolation.hpp
+// ---- begin hairshadow/reconstruction/occupancy_bitcount.hpp
+/// @file
+/// Occupancy-map reconstruction (Sintorn & Assarsson 2009, sections 3.1-3.3): one bit per slice says
+/// whether any fragment fell in it (OR blending); each slab of consecutive slices stores its exact sum.
+/// Each set bit in slab i is worth F_i / S_i (the slab's sum over its set bits), and a query
+/// interpolates linearly inside its slice, so the result is exact at slab boundaries. The paper sums
+/// fragment counts times a constant shadow weight; with per-fragment alpha we sum each fragment's
+/// optical depth b = -ln(1 - alpha), which is the same when every alpha is equal.
+
+
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+namespace hairshadow {
+
+/// Occupancy bits per slice plus B slabs of exact sums.
+/// @tparam Slabs number of slabs (4 in the paper: one RGBA32F texture)
+template <int Slabs>
+struct occupancy_bitcount {
+    static_assert(Slabs >= 1, "occupancy_bitcount needs at least one slab");
+    static constexpr int slab_count = Slabs;
+    static constexpr std::string_view name = "occupancy_bitcount";
+    static constexpr std::string_view glsl_name = "reconstruction/occupancy_bitcount";
+
+    /// Needs contiguous slices, a whole number of 32-bit words, split evenly into the slabs.
+    template <class Placement>
+    static constexpr bool accepts = Placement::contiguous && Placement::layer_count % 32 == 0 && Placement::layer_count % Slabs == 0;
+
+    template <class Placement, class Accumulation>
+    struct storage {
+        std::array<std::uint32_t, std::size_t(Placement::layer_count / 32)> bits{};
+        std::array<typename Accumulation::value_type, std::size_t(Slabs)> slabs{};
+    };
+
+    template <class Placement, class Accumulation>
+    static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const fragment> fragments,
+                      storage<Placement, Accumulation>& out) {
+        constexpr int per_slab = Placement::layer_count / Slabs;
+        std::array<typename Accumulation::sum_type, std::size_t(Slabs)> sums{};
+        for (const auto& f : fragments) {
+            const int k = placement.assign(state, f.depth);
+            if (k < 0) continue;
+            out.bits[std::size_t(k / 32)] |= std::uint32_t(1) << (k % 32);
+            sums[std::size_t(k / per_slab)] = Accumulation::add(sums[std::size_t(k / per_slab)], -std::log1p(-f.alpha));
+        }
+        for (std::size_t i = 0; i < std::size_t(Slabs); ++i) out.slabs[i] = Accumulation::store(sums[i]);
+    }
+
+    /// Set bits among slices [begin, end).
+    template <std::size_t Words>
+    static int count_bits(const std::array<std::uint32_t, Words>& bits, int begin, int end) noexcept {
+        int n = 0;
+        for (int w = begin / 32; w * 32 < end; ++w) {
+            std::uint32_t word = bits[std::size_t(w)];
+            const int lo = std::max(begin - w * 32, 0), hi = std::min(end - w * 32, 32);
+            if (hi < 32) word &= (std::uint32_t(1) << hi) - 1u;
+            word &= ~((std::uint32_t(1) << lo) - 1u);
+            n += std::popcount(word);
+        }
+        return n;
+    }
+
+    /// Maps a texel stores, for inspection: the slabs (the bits are not optical depths).
+    template <class Placement>
+    static constexpr int stored_maps = Slabs;
+    /// Optical depth through the end of slab k.
+    template <class Placement, class Accumulation>
+    static float stored_optical_depth(const storage<Placement, Accumulation>& in, int k) noexcept {
+        float omega = 0.0f;
+        for (int i = 0; i <= k; ++i) omega += Accumulation::decode(in.slabs[std::size_t(i)]);
+        return omega;
+    }
+
+    template <class Placement, class Accumulation>
+    static float optical_depth(const Placement& placement, const typename Placement::texel_state& state,
+                               const storage<Placement, Accumulation>& in, float depth) noexcept {
+        constexpr int S = Placement::layer_count, per_slab = S / Slabs;
+        const layer_position p = placement.locate(state, depth);
+        if (p.index < 0) return 0.0f;
+        const int slab = std::min(p.index, S) / per_slab;
+        float omega = 0.0f;
+        for (int i = 0; i < std::min(slab, Slabs); ++i) omega += Accumulation::decode(in.slabs[std::size_t(i)]);
+        if (p.index >= S) return omega;
+        const int first = slab * per_slab;
+        const int set = count_bits(in.bits, first, first + per_slab);
+        if (set == 0) return omega;
+        const float per_bit = Accumulation::decode(in.slabs[std::size_t(slab)]) / float(set);
+        const bool occupied = (in.bits[std::size_t(p.index / 32)] >> (p.index % 32)) & 1u;
+        return omega + per_bit * (float(count_bits(in.bits, first, p.index)) + (occupied ? p.fraction : 0.0f));
+    }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/reconstruction/occupancy_bitcount.hpp
+
+namespace hairshadow {
+
+/// Opacity shadow maps (Kim & Neumann 2001): N planar slices, float sums, linear interpolation.
+/// @tparam N number of maps
+/// @tparam Spacing uniform_spacing (Fig. 3a) or gamma_spacing (Fig. 3c)
+template <int N, class Spacing = uniform_spacing, class Accumulation = float_accumulation>
+using opacity_shadow_maps = shadow_method<planar_slices<N, Spacing>, Accumulation, interpolation>;
+
+/// Deep opacity maps (Yuksel & Keyser 2008): K layers from each texel's first fragment.
+template <int K, class Accumulation = float_accumulation>
+using deep_opacity_maps = shadow_method<per_pixel_depth<K>, Accumulation, interpolation>;
+
+/// Density clustering (Mertens et al. 2004): K k-means clusters per texel as histogram bins.
+template <int K, class Accumulation = float_accumulation>
+using density_clustering = shadow_method<clustered<K>, Accumulation, interpolation>;
+
+/// Occupancy maps (Sintorn & Assarsson 2009): S one-bit slices in each texel's depth range, B slabs.
+template <int S, int B, class Accumulation = float_accumulation>
+using occupancy_maps = shadow_method<depth_range<S>, Accumulation, occupancy_bitcount<B>>;
+
+// Hybrids: compositions no paper describes.
+
+/// Deep opacity maps accumulated the way an RGBA8 target would (Kim & Neumann's 8-bit buffers).
+template <int K>
+using deep_opacity_maps_8bit = deep_opacity_maps<K, emulated_8bit>;
+
+/// Occupancy bits and slabs in slices that start at each texel's first fragment and span a fixed
+/// depth (deep opacity maps' layers) instead of the texel's own range.
+template <int S, int B>
+using deep_occupancy_maps = shadow_method<per_pixel_depth<S, layer_sizes::uniform, beyond_last_layer::extend>, float_accumulation,
+                                          occupancy_bitcount<B>>;
+
+/// Opacity maps interpolated in each texel's own depth range (occupancy maps' placement).
+template <int N>
+using range_opacity_maps = shadow_method<depth_range<N>, float_accumulation, interpolation>;
+
+} // namespace hairshadow
+// ---- end hairshadow/methods/published.hpp
+// ---- begin hairshadow/methods/spec.hpp
+/// @file
+/// Method specs: the text form of a method (`osm:16`, `dom:3`, `occ:128:4:8bit`, `dsm`, ...).
+
+
+#include <algorithm>
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace hairshadow {
+
+/// The grammar of method specs.
+inline constexpr std::string_view method_grammar =
+    "osm:N[:uniform|gamma] (N = 1, 2, 4, ..., 512) | dom:K (K = 1..8) | dc:K (K = 1..8) | occ:S:B (S = 32, 64, 128, 256; "
+    "B = 1, 2, 4, 8) | docc:S:B (hybrid: occupancy slices from each texel's first fragment) | rosm:N (hybrid: opacity maps in "
+    "each texel's depth range, N = 4, 8, ..., 256) | dsm (exact) | dsm:EPS (Lokovic-Veach compression, 0 < EPS < 1); "
+    "append :8bit to osm, dom, dc or occ for emulated 8-bit accumulation";
+
+/// A bad method spec; what() quotes the valid grammar.
+class spec_error : public argument_error {
+public:
+    using argument_error::argument_error;
+};
+
+/// The method families.
+enum class method_family { osm, dom, dc, occ, docc, rosm, dsm };
+
+/// A parsed method spec.
+struct method_spec {
+    std::string text;
+    method_family family = method_family::dsm;
+    int layers = 0;                 ///< N, K or S
+    int slabs = 0;                  ///< B (occ, docc)
+    bool gamma = false;             ///< osm: gamma spacing
+    bool eight_bit = false;         ///< emulated 8-bit accumulation
+    std::optional<float> tolerance; ///< dsm: compression tolerance
+};
+
+namespace detail {
+inline constexpr std::array<int, 10> osm_sizes{1, 2, 4, 8, 16, 32, 64, 128, 256, 512};
+inline constexpr std::array<int, 8> small_sizes{1, 2, 3, 4, 5, 6, 7, 8};
+inline constexpr std::array<int, 4> slice_sizes{32, 64, 128, 256};
+inline constexpr std::array<int, 4> slab_sizes{1, 2, 4, 8};
+inline constexpr std::array<int, 7> rosm_sizes{4, 8, 16, 32, 64, 128, 256};
+
+template <std::size_t Size>
+bool one_of(int n, const std::array<int, Size>& allowed) {
+    return std::find(allowed.begin(), allowed.end(), n) != allowed.end();
+}
+} // namespace detail
+
+/// Parses a method spec; throws spec_error with the grammar on anything else.
+inline method_spec parse_method_spec(std::string_view text) {
+    const auto bad = [&](const std::string& why) {
+        return spec_error("bad method spec '" + std::string(text) + "': " + why + "; valid: " + std::string(method_grammar));
+    };
+    auto parts = detail::split(text, ':');
+    method_spec spec;
+    spec.text = std::string(text);
+    if (parts.size() > 1 && parts.back() == "8bit") {
+        spec.eight_bit = true;
+        parts.pop_back();
+    }
+    auto number = [&](std::string_view s) {
+        try {
+            return detail::parse_number<int>(s, "count");
+        } catch (const argument_error&) {
+            throw bad("'" + std::string(s) + "' is not a whole number");
+        }
+    };
+    const auto& name = parts[0];
+    if (name == "osm" && (parts.size() == 2 || parts.size() == 3)) {
+        spec.family = method_family::osm;
+        spec.layers = number(parts[1]);
+        if (!detail::one_of(spec.layers, detail::osm_sizes)) throw bad("osm needs N = 1, 2, 4, ..., 512");
+        if (parts.size() == 3) {
+            if (parts[2] == "gamma") spec.gamma = true;
+            else if (parts[2] != "uniform") throw bad("osm spacing must be uniform or gamma");
+        }
+    } else if ((name == "dom" || name == "dc") && parts.size() == 2) {
+        spec.family = name == "dom" ? method_family::dom : method_family::dc;
+        spec.layers = number(parts[1]);
+        if (!detail::one_of(spec.layers, detail::small_sizes)) throw bad(std::string(name) + " needs K = 1..8");
+    } else if ((name == "occ" || name == "docc") && parts.size() == 3) {
+        spec.family = name == "occ" ? method_family::occ : method_family::docc;
+        spec.layers = number(parts[1]);
+        spec.slabs = number(parts[2]);
+        if (!detail::one_of(spec.layers, detail::slice_sizes) || !detail::one_of(spec.slabs, detail::slab_sizes))
+            throw bad(std::string(name) + " needs S = 32, 64, 128 or 256 slices and B = 1, 2, 4 or 8 slabs");
+    } else if (name == "rosm" && parts.size() == 2) {
+        spec.family = method_family::rosm;
+        spec.layers = number(parts[1]);
+        if (!detail::one_of(spec.layers, detail::rosm_sizes)) throw bad("rosm needs N = 4, 8, ..., 256");
+    } else if (name == "dsm" && (parts.size() == 1 || parts.size() == 2)) {
+        spec.family = method_family::dsm;
+        if (parts.size() == 2) {
+            float eps = 0.0f;
+            try {
+                eps = detail::parse_number<float>(parts[1], "tolerance");
+            } catch (const argument_error&) {
+                throw bad("the tolerance is not a number");
+            }
+            if (!(eps > 0.0f && eps < 1.0f)) throw bad("the tolerance must be in (0, 1)");
+            spec.tolerance = eps;
+        }
+    } else {
+        throw bad("unknown method or wrong number of fields");
+    }
+    if (spec.eight_bit && (spec.family == method_family::dsm || spec.family == method_family::docc || spec.family == method_family::rosm))
+        throw bad(":8bit applies to osm, dom, dc and occ");
+    return spec;
+}
+
+} // namespace hairshadow
+// ---- end hairshadow/methods/spec.hpp
+
 // ---- begin hairshadow/reference/compressed_deep_shadow_map.hpp
 /// @file
 /// Lokovic & Veach's compression of a deep shadow map: each texel's transmittance function becomes a
@@ -1674,7 +2771,7 @@ inline fragment_buffer rasterize(const hair_model& model, const light_space& lig
 namespace hairshadow {
 
 /// Per-texel sorted fragment lists with cumulative optical depth.
-class deep_shadow_map {
+class deep_shadow_map : public map_queries<deep_shadow_map> {
 public:
     /// Sorts every texel's fragments by depth (ties keep segment order) and accumulates optical depth.
     deep_shadow_map(const fragment_buffer& fragments, const light_space& light, const execution& exec = {})
@@ -1712,19 +2809,7 @@ public:
         const std::size_t in_front = std::size_t(std::lower_bound(d.begin(), d.end(), depth) - d.begin());
         return in_front == 0 ? 0.0f : optical_depths(x, y)[in_front - 1];
     }
-    float transmittance(int x, int y, float depth) const noexcept { return std::exp(-optical_depth(x, y, depth)); }
-
-    /// Transmittance at a world point; 1 outside the map. `depth_bias` (in linear depth) moves the
-    /// query towards the light, so that a strand's own fragment does not shadow a point on it.
-    float transmittance(const glm::vec3& world, float depth_bias = 0.0f) const noexcept {
-        const auto td = light_.locate(world);
-        return td ? transmittance(td->x, td->y, td->depth - depth_bias) : 1.0f;
-    }
-    /// Transmittance at many world points, in parallel.
-    void transmittance(std::span<const glm::vec3> points, std::span<float> out, float depth_bias = 0.0f, const execution& exec = {}) const {
-        if (out.size() != points.size()) throw argument_error("output span must match the point count");
-        parallel_for(points.size(), exec, [&](std::size_t i) { out[i] = transmittance(points[i], depth_bias); }, 4096);
-    }
+    using map_queries<deep_shadow_map>::transmittance;
 
     std::size_t fragment_count() const noexcept { return depths_.size(); }
     /// Bytes held by the map: offsets, depths and optical depths.
@@ -1797,7 +2882,7 @@ inline void compress_function(std::span<const transmittance_vertex> in, float ep
 } // namespace detail
 
 /// A deep shadow map compressed to piecewise-linear transmittance functions within a tolerance.
-class compressed_deep_shadow_map {
+class compressed_deep_shadow_map : public map_queries<compressed_deep_shadow_map> {
 public:
     /// Compresses every texel of `exact` so that |T_compressed - T_exact| <= tolerance at every depth.
     compressed_deep_shadow_map(const deep_shadow_map& exact, float tolerance, const execution& exec = {})
@@ -1846,10 +2931,9 @@ public:
         const float t = (depth - a.depth) / (after->depth - a.depth);
         return a.transmittance + t * (after->transmittance - a.transmittance);
     }
-    float transmittance(const glm::vec3& world, float depth_bias = 0.0f) const noexcept {
-        const auto td = light_.locate(world);
-        return td ? transmittance(td->x, td->y, td->depth - depth_bias) : 1.0f;
-    }
+    /// -ln of the compressed transmittance, so that queries filter it like every other map.
+    float optical_depth(int x, int y, float depth) const noexcept { return -std::log(std::max(transmittance(x, y, depth), 1e-30f)); }
+    using map_queries<compressed_deep_shadow_map>::transmittance;
     std::size_t vertex_count() const noexcept { return vertices_.size(); }
     std::size_t memory_bytes() const noexcept { return offsets_.size() * sizeof(std::uint64_t) + vertices_.size() * sizeof(transmittance_vertex); }
 

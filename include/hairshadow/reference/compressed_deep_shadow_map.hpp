@@ -56,7 +56,7 @@ inline void compress_function(std::span<const transmittance_vertex> in, float ep
 } // namespace detail
 
 /// A deep shadow map compressed to piecewise-linear transmittance functions within a tolerance.
-class compressed_deep_shadow_map {
+class compressed_deep_shadow_map : public map_queries<compressed_deep_shadow_map> {
 public:
     /// Compresses every texel of `exact` so that |T_compressed - T_exact| <= tolerance at every depth.
     compressed_deep_shadow_map(const deep_shadow_map& exact, float tolerance, const execution& exec = {})
@@ -105,10 +105,9 @@ public:
         const float t = (depth - a.depth) / (after->depth - a.depth);
         return a.transmittance + t * (after->transmittance - a.transmittance);
     }
-    float transmittance(const glm::vec3& world, float depth_bias = 0.0f) const noexcept {
-        const auto td = light_.locate(world);
-        return td ? transmittance(td->x, td->y, td->depth - depth_bias) : 1.0f;
-    }
+    /// -ln of the compressed transmittance, so that queries filter it like every other map.
+    float optical_depth(int x, int y, float depth) const noexcept { return -std::log(std::max(transmittance(x, y, depth), 1e-30f)); }
+    using map_queries<compressed_deep_shadow_map>::transmittance;
     std::size_t vertex_count() const noexcept { return vertices_.size(); }
     std::size_t memory_bytes() const noexcept { return offsets_.size() * sizeof(std::uint64_t) + vertices_.size() * sizeof(transmittance_vertex); }
 

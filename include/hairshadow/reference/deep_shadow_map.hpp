@@ -6,6 +6,7 @@
 /// peeling, would give; every method is measured against it.
 
 #include <hairshadow/core/light.hpp>
+#include <hairshadow/core/map_queries.hpp>
 #include <hairshadow/core/parallel.hpp>
 #include <hairshadow/raster/fragment.hpp>
 
@@ -18,7 +19,7 @@
 namespace hairshadow {
 
 /// Per-texel sorted fragment lists with cumulative optical depth.
-class deep_shadow_map {
+class deep_shadow_map : public map_queries<deep_shadow_map> {
 public:
     /// Sorts every texel's fragments by depth (ties keep segment order) and accumulates optical depth.
     deep_shadow_map(const fragment_buffer& fragments, const light_space& light, const execution& exec = {})
@@ -56,19 +57,7 @@ public:
         const std::size_t in_front = std::size_t(std::lower_bound(d.begin(), d.end(), depth) - d.begin());
         return in_front == 0 ? 0.0f : optical_depths(x, y)[in_front - 1];
     }
-    float transmittance(int x, int y, float depth) const noexcept { return std::exp(-optical_depth(x, y, depth)); }
-
-    /// Transmittance at a world point; 1 outside the map. `depth_bias` (in linear depth) moves the
-    /// query towards the light, so that a strand's own fragment does not shadow a point on it.
-    float transmittance(const glm::vec3& world, float depth_bias = 0.0f) const noexcept {
-        const auto td = light_.locate(world);
-        return td ? transmittance(td->x, td->y, td->depth - depth_bias) : 1.0f;
-    }
-    /// Transmittance at many world points, in parallel.
-    void transmittance(std::span<const glm::vec3> points, std::span<float> out, float depth_bias = 0.0f, const execution& exec = {}) const {
-        if (out.size() != points.size()) throw argument_error("output span must match the point count");
-        parallel_for(points.size(), exec, [&](std::size_t i) { out[i] = transmittance(points[i], depth_bias); }, 4096);
-    }
+    using map_queries<deep_shadow_map>::transmittance;
 
     std::size_t fragment_count() const noexcept { return depths_.size(); }
     /// Bytes held by the map: offsets, depths and optical depths.

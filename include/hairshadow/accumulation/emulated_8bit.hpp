@@ -1,0 +1,35 @@
+#pragma once
+/// @file
+/// Emulated 8-bit accumulation (Kim & Neumann 2001, section 2): an RGBA8 target with additive blending.
+/// Each fragment writes b / kappa, which GL converts to 8 bits (round to nearest) before the blend
+/// adds it with saturation; a stored value q stands for the optical depth kappa * q / 255, with
+/// exp(-kappa) = 2^-8 so that a full texel (q = 255) lets 1/256 of the light through.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <string_view>
+
+namespace hairshadow {
+
+/// Every add quantised to 8 bits and saturated, as additive blending into an RGBA8 target does.
+struct emulated_8bit {
+    using value_type = std::uint8_t;
+    using sum_type = std::int32_t; ///< exact: saturating adds of non-negative steps equal min(255, sum)
+    static constexpr std::string_view name = "8bit";
+    static constexpr std::string_view glsl_name = "accumulation/emulated_8bit";
+    /// exp(-kappa) = 2^-8: kappa = 8 ln 2, about 5.545 (the paper rounds it to 5.56).
+    static constexpr float kappa = 8.0f * std::numbers::ln2_v<float>;
+
+    /// The 8-bit step a fragment of optical depth b adds: its output b / kappa in unorm8.
+    static std::int32_t quantise(float optical_depth) noexcept {
+        return std::int32_t(std::lround(std::clamp(optical_depth / kappa, 0.0f, 1.0f) * 255.0f));
+    }
+    static sum_type add(sum_type sum, float optical_depth) noexcept { return sum + quantise(optical_depth); }
+    static constexpr sum_type combine(sum_type a, sum_type b) noexcept { return a + b; }
+    static constexpr value_type store(sum_type sum) noexcept { return value_type(std::min<sum_type>(sum, 255)); }
+    static constexpr float decode(value_type v) noexcept { return kappa * float(v) / 255.0f; }
+};
+
+} // namespace hairshadow

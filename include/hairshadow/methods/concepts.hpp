@@ -1,0 +1,51 @@
+#pragma once
+/// @file
+/// The three policy families of a shadow method, as concepts. docs/policies.md describes each member.
+
+#include <hairshadow/placement/layer_position.hpp>
+
+#include <concepts>
+#include <span>
+#include <string_view>
+
+namespace hairshadow {
+
+/// Placement: which pre-passes run and where a depth falls among a texel's layers.
+template <class P>
+concept placement_policy = std::default_initializable<P> && std::copyable<P> && requires(P p, const P cp, const fragment_buffer& fb,
+                                                                                         std::span<const fragment> frags,
+                                                                                         typename P::texel_state& state, float depth) {
+    { P::layer_count } -> std::convertible_to<int>;
+    { P::cumulative } -> std::convertible_to<bool>;
+    { P::contiguous } -> std::convertible_to<bool>;
+    { P::glsl_name } -> std::convertible_to<std::string_view>;
+    requires std::default_initializable<typename P::texel_state>;
+    p.prepare(fb);
+    cp.prepare_texel(frags, state);
+    { cp.assign(state, depth) } -> std::same_as<int>;
+    { cp.locate(state, depth) } -> std::same_as<layer_position>;
+    { P::global_bytes() } -> std::convertible_to<std::size_t>;
+};
+
+/// Accumulation: how each fragment's optical depth is summed and stored.
+template <class A>
+concept accumulation_policy = requires(typename A::sum_type s, typename A::value_type v, float b) {
+    { A::add(s, b) } -> std::same_as<typename A::sum_type>;
+    { A::combine(s, s) } -> std::same_as<typename A::sum_type>;
+    { A::store(s) } -> std::same_as<typename A::value_type>;
+    { A::decode(v) } -> std::same_as<float>;
+    { A::glsl_name } -> std::convertible_to<std::string_view>;
+};
+
+/// Reconstruction: what a texel stores and how it turns into optical depth at a query depth.
+template <class R, class P, class A>
+concept reconstruction_policy =
+    requires(const P& p, const typename P::texel_state& state, std::span<const fragment> frags,
+             typename R::template storage<P, A>& out, const typename R::template storage<P, A>& in, float depth) {
+        { R::template accepts<P> } -> std::convertible_to<bool>;
+        { R::glsl_name } -> std::convertible_to<std::string_view>;
+        R::template build<P, A>(p, state, frags, out);
+        { R::template optical_depth<P, A>(p, state, in, depth) } -> std::same_as<float>;
+    };
+
+} // namespace hairshadow

@@ -1,0 +1,149 @@
+#pragma once
+/// @file
+/// Methods chosen at run time: any method spec becomes a shadow map behind one interface. This header
+/// instantiates every supported size of every method, so include it only where specs are parsed (the
+/// command line, the benchmarks); code that knows its method at compile time uses the templates.
+
+#include <hairshadow/methods/published.hpp>
+#include <hairshadow/methods/spec.hpp>
+#include <hairshadow/reference/compressed_deep_shadow_map.hpp>
+#include <hairshadow/reference/deep_shadow_map.hpp>
+
+#include <memory>
+#include <optional>
+#include <type_traits>
+#include <utility>
+
+namespace hairshadow {
+
+/// Any shadow map, built from fragments and queried like the others.
+class any_shadow_map : public map_queries<any_shadow_map> {
+public:
+    virtual ~any_shadow_map() = default;
+    virtual void build(const fragment_buffer& fragments, const light_space& light, const execution& exec = {}) = 0;
+    virtual float optical_depth(int x, int y, float depth) const = 0;
+    virtual const light_space& light() const = 0;
+    virtual std::size_t memory_bytes() const = 0;
+    /// Layers, clusters or slices the method stores per texel; 0 for the exact map.
+    virtual int layer_count() const = 0;
+    /// Bytes per texel and global bytes, known before building; nullopt for the exact map, whose size
+    /// depends on the fragments.
+    virtual std::optional<std::size_t> memory_bytes_at(int resolution) const = 0;
+    /// Maps the method stores per texel (layers, bins or slabs; 0 for the exact map), for inspection.
+    virtual int stored_maps() const = 0;
+    /// Optical depth stored in map k of texel (x, y).
+    virtual float stored_optical_depth(int x, int y, int k) const = 0;
+    const method_spec& spec() const noexcept { return spec_; }
+    using map_queries<any_shadow_map>::transmittance;
+
+protected:
+    explicit any_shadow_map(method_spec spec) : spec_(std::move(spec)) {}
+
+private:
+    method_spec spec_;
+};
+
+namespace detail {
+
+template <class Method>
+class method_map final : public any_shadow_map {
+public:
+    explicit method_map(method_spec spec) : any_shadow_map(std::move(spec)) {}
+    void build(const fragment_buffer& fragments, const light_space& light, const execution& exec) override { method_.build(fragments, light, exec); }
+    float optical_depth(int x, int y, float depth) const override { return method_.optical_depth(x, y, depth); }
+    const light_space& light() const override { return method_.light(); }
+    std::size_t memory_bytes() const override { return method_.memory_bytes(); }
+    int layer_count() const override { return Method::layer_count; }
+    std::optional<std::size_t> memory_bytes_at(int resolution) const override {
+        return std::size_t(resolution) * std::size_t(resolution) * Method::texel_bytes() + Method::placement_type::global_bytes();
+    }
+    int stored_maps() const override { return Method::stored_maps; }
+    float stored_optical_depth(int x, int y, int k) const override { return method_.stored_optical_depth(x, y, k); }
+    const Method& method() const noexcept { return method_; }
+
+private:
+    Method method_;
+};
+
+class reference_map final : public any_shadow_map {
+public:
+    explicit reference_map(method_spec spec) : any_shadow_map(std::move(spec)) {}
+    void build(const fragment_buffer& fragments, const light_space& light, const execution& exec) override {
+        compressed_.reset();
+        exact_.emplace(fragments, light, exec);
+        if (spec().tolerance) compressed_.emplace(*exact_, *spec().tolerance, exec);
+    }
+    float optical_depth(int x, int y, float depth) const override {
+        return compressed_ ? compressed_->optical_depth(x, y, depth) : exact_->optical_depth(x, y, depth);
+    }
+    const light_space& light() const override { return exact_->light(); }
+    std::size_t memory_bytes() const override { return compressed_ ? compressed_->memory_bytes() : exact_->memory_bytes(); }
+    int layer_count() const override { return 0; }
+    std::optional<std::size_t> memory_bytes_at(int) const override { return std::nullopt; }
+    int stored_maps() const override { return 0; }
+    float stored_optical_depth(int, int, int) const override { return 0.0f; }
+
+private:
+    std::optional<deep_shadow_map> exact_;
+    std::optional<compressed_deep_shadow_map> compressed_;
+};
+
+/// Calls make(std::integral_constant<int, n>) for the n in Allowed equal to `value`.
+template <auto Allowed, std::size_t I = 0, class Make>
+std::unique_ptr<any_shadow_map> with_size(int value, Make&& make) {
+    if constexpr (I == Allowed.size()) {
+        return nullptr;
+    } else {
+        if (value == Allowed[I]) return make(std::integral_constant<int, Allowed[I]>{});
+        return with_size<Allowed, I + 1>(value, make);
+    }
+}
+
+template <class Method>
+std::unique_ptr<any_shadow_map> make_map(const method_spec& spec) {
+    return std::make_unique<method_map<Method>>(spec);
+}
+
+template <class Accumulation>
+std::unique_ptr<any_shadow_map> make_with(const method_spec& s) {
+    switch (s.family) {
+    case method_family::osm:
+        return with_size<osm_sizes>(s.layers, [&](auto n) {
+            return s.gamma ? make_map<opacity_shadow_maps<n(), gamma_spacing, Accumulation>>(s)
+                           : make_map<opacity_shadow_maps<n(), uniform_spacing, Accumulation>>(s);
+        });
+    case method_family::dom: return with_size<small_sizes>(s.layers, [&](auto k) { return make_map<deep_opacity_maps<k(), Accumulation>>(s); });
+    case method_family::dc: return with_size<small_sizes>(s.layers, [&](auto k) { return make_map<density_clustering<k(), Accumulation>>(s); });
+    case method_family::occ:
+        return with_size<slice_sizes>(s.layers, [&](auto n) {
+            return with_size<slab_sizes>(s.slabs, [&](auto b) { return make_map<occupancy_maps<n(), b(), Accumulation>>(s); });
+        });
+    default: return nullptr;
+    }
+}
+
+} // namespace detail
+
+/// Makes the (not yet built) shadow map of a spec; throws spec_error for an unsupported one.
+inline std::unique_ptr<any_shadow_map> make_shadow_map(const method_spec& spec) {
+    std::unique_ptr<any_shadow_map> map;
+    switch (spec.family) {
+    case method_family::dsm: map = std::make_unique<detail::reference_map>(spec); break;
+    case method_family::docc:
+        map = detail::with_size<detail::slice_sizes>(spec.layers, [&](auto n) {
+            return detail::with_size<detail::slab_sizes>(spec.slabs, [&](auto b) { return detail::make_map<deep_occupancy_maps<n(), b()>>(spec); });
+        });
+        break;
+    case method_family::rosm:
+        map = detail::with_size<detail::rosm_sizes>(spec.layers, [&](auto n) { return detail::make_map<range_opacity_maps<n()>>(spec); });
+        break;
+    default: map = spec.eight_bit ? detail::make_with<emulated_8bit>(spec) : detail::make_with<float_accumulation>(spec);
+    }
+    if (!map) throw spec_error("unsupported method spec '" + spec.text + "'; valid: " + std::string(method_grammar));
+    return map;
+}
+
+/// Parses and makes in one step.
+inline std::unique_ptr<any_shadow_map> make_shadow_map(std::string_view spec) { return make_shadow_map(parse_method_spec(spec)); }
+
+} // namespace hairshadow

@@ -1,0 +1,97 @@
+#pragma once
+/// @file
+/// A shadow method composed of a placement, an accumulation and a reconstruction policy, with its
+/// CPU kernel: the placement's pre-passes, then one accumulation pass, texel by texel in parallel.
+
+#include <hairshadow/core/error.hpp>
+#include <hairshadow/core/light.hpp>
+#include <hairshadow/core/map_queries.hpp>
+#include <hairshadow/core/parallel.hpp>
+#include <hairshadow/methods/concepts.hpp>
+#include <hairshadow/raster/fragment.hpp>
+
+#include <vector>
+
+namespace hairshadow {
+
+/// A shadow method: `Placement` decides the layers, `Accumulation` how fragments sum into them and
+/// `Reconstruction` what is stored and read back. The published methods are aliases of this template
+/// (methods/published.hpp); any other valid composition is a hybrid.
+/// @tparam Placement a placement_policy (uniform_slices, gamma_slices, per_pixel_depth, clustered, depth_range)
+/// @tparam Accumulation an accumulation_policy (float_accumulation, emulated_8bit)
+/// @tparam Reconstruction a reconstruction_policy (interpolation, occupancy_bitcount)
+template <class Placement, class Accumulation, class Reconstruction>
+class shadow_method : public map_queries<shadow_method<Placement, Accumulation, Reconstruction>> {
+    static_assert(placement_policy<Placement>,
+                  "Placement must provide layer_count, cumulative, contiguous, glsl_name, texel_state, prepare(fragment_buffer), "
+                  "prepare_texel(fragments, state), assign(state, depth) -> int, locate(state, depth) -> layer_position and "
+                  "global_bytes() - see docs/policies.md");
+    static_assert(accumulation_policy<Accumulation>,
+                  "Accumulation must provide value_type, sum_type, add(sum, b), combine(sum, sum), store(sum), decode(value) -> float "
+                  "and glsl_name - see docs/policies.md");
+    static_assert(reconstruction_policy<Reconstruction, Placement, Accumulation>,
+                  "Reconstruction must provide accepts<Placement>, storage<Placement, Accumulation>, build(...), optical_depth(...) "
+                  "and glsl_name - see docs/policies.md");
+    static_assert(Reconstruction::template accepts<Placement>,
+                  "this Reconstruction cannot read this Placement's layers: occupancy_bitcount<B> needs contiguous slices whose "
+                  "count is a multiple of 32 and of B (depth_range, per_pixel_depth, uniform_slices), not clustered bins");
+
+public:
+    using placement_type = Placement;
+    using accumulation_type = Accumulation;
+    using reconstruction_type = Reconstruction;
+    static constexpr int layer_count = Placement::layer_count;
+
+    /// What one texel of the maps holds.
+    struct texel_maps {
+        [[no_unique_address]] typename Placement::texel_state placement{};
+        typename Reconstruction::template storage<Placement, Accumulation> data{};
+    };
+
+    explicit shadow_method(Placement placement = Placement()) : placement_(std::move(placement)) {}
+
+    /// Builds the maps from the fragments of `light`'s map: the placement's global and per-texel
+    /// pre-passes, then the accumulation pass. Identical for any thread count.
+    void build(const fragment_buffer& fragments, const light_space& light, const execution& exec = {}) {
+        if (fragments.resolution() != light.resolution()) throw argument_error("fragment buffer and light differ in resolution");
+        light_ = light;
+        placement_.prepare(fragments);
+        texels_.assign(fragments.texel_count(), texel_maps{});
+        parallel_for(texels_.size(), exec, [&](std::size_t t) {
+            const auto in = fragments.texel(t);
+            if (in.empty()) return;
+            auto& out = texels_[t];
+            placement_.prepare_texel(in, out.placement);
+            Reconstruction::template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
+        }, 512);
+    }
+
+    /// Optical depth at linear `depth` in texel (x, y).
+    float optical_depth(int x, int y, float depth) const noexcept {
+        const auto& t = texel(x, y);
+        return Reconstruction::template optical_depth<Placement, Accumulation>(placement_, t.placement, t.data, depth);
+    }
+    using map_queries<shadow_method>::transmittance;
+
+    /// Number of maps the method stores (layers, bins or slabs), for inspection.
+    static constexpr int stored_maps = Reconstruction::template stored_maps<Placement>;
+    /// Optical depth stored in map k of texel (x, y): through the end of layer, bin or slab k.
+    float stored_optical_depth(int x, int y, int k) const noexcept {
+        return Reconstruction::template stored_optical_depth<Placement, Accumulation>(texel(x, y).data, k);
+    }
+
+    const texel_maps& texel(int x, int y) const noexcept { return texels_[std::size_t(y) * std::size_t(light_.resolution()) + std::size_t(x)]; }
+    const Placement& placement() const noexcept { return placement_; }
+    const light_space& light() const noexcept { return light_; }
+    /// Bytes the maps hold: every texel's placement state and stored layers, plus the global state.
+    std::size_t memory_bytes() const noexcept { return texels_.size() * sizeof(texel_maps) + Placement::global_bytes(); }
+    /// Bytes per texel.
+    static constexpr std::size_t texel_bytes() noexcept { return sizeof(texel_maps); }
+
+private:
+    Placement placement_;
+    light_space light_;
+    std::vector<texel_maps> texels_;
+};
+
+} // namespace hairshadow

@@ -1,0 +1,68 @@
+#pragma once
+/// @file
+/// Occupancy maps' per-texel depth range (Sintorn & Assarsson 2009, section 3.1): the nearest and
+/// furthest fragment of each texel bound S equal slices, so that every slice lies inside the hair.
+
+#include <hairshadow/placement/layer_position.hpp>
+
+#include <cmath>
+#include <cstddef>
+#include <span>
+#include <string_view>
+
+namespace hairshadow {
+
+/// S slices between each texel's nearest and furthest fragment.
+/// @tparam S number of slices (128 in the paper)
+template <int S>
+class depth_range {
+    static_assert(S >= 1, "depth_range needs at least one slice");
+
+public:
+    static constexpr int layer_count = S;
+    static constexpr bool cumulative = true; ///< read as opacity slices when interpolated
+    static constexpr bool contiguous = true;
+    static constexpr std::string_view name = "depth_range";
+    static constexpr std::string_view glsl_name = "placement/depth_range";
+    /// The depth-range map (MIN / MAX blending on GL).
+    struct texel_state {
+        float nearest = 0.0f;
+        float furthest = 0.0f;
+    };
+
+    void prepare(const fragment_buffer&) const noexcept {}
+    void prepare_texel(std::span<const fragment> fragments, texel_state& s) const noexcept {
+        if (fragments.empty()) return;
+        s.nearest = s.furthest = fragments[0].depth;
+        for (const auto& f : fragments) s.nearest = std::min(s.nearest, f.depth), s.furthest = std::max(s.furthest, f.depth);
+    }
+    /// Depth of slice boundary k in [0, S].
+    float boundary(const texel_state& s, int k) const noexcept { return s.nearest + (s.furthest - s.nearest) * (float(k) / float(S)); }
+    /// The slice floor(S (z - near) / (far - near)) of the paper, the furthest fragment in the last.
+    int assign(const texel_state& s, float depth) const noexcept {
+        if (!(s.furthest > s.nearest)) return 0;
+        return std::clamp(slice_of(s, depth), 0, S - 1);
+    }
+    layer_position locate(const texel_state& s, float depth) const noexcept {
+        if (!(s.furthest > s.nearest)) return depth > s.nearest ? layer_position{S, 0.0f} : layer_position{-1, 0.0f};
+        if (!(depth >= s.nearest)) return {-1, 0.0f};
+        const int k = slice_of(s, depth);
+        if (k >= S) return {S, 0.0f};
+        const float lo = boundary(s, k), hi = boundary(s, k + 1);
+        return {k, hi > lo ? std::clamp((depth - lo) / (hi - lo), 0.0f, 1.0f) : 0.0f};
+    }
+    static constexpr std::size_t global_bytes() noexcept { return 0; }
+
+private:
+    /// The k with boundary(k) <= depth < boundary(k + 1), or S past the furthest boundary. The closed
+    /// form can be off by one where rounding meets a boundary; comparing with the boundaries themselves
+    /// makes a fragment's slice and a query's slice agree exactly (so slab boundaries are exact).
+    int slice_of(const texel_state& s, float depth) const noexcept {
+        int k = std::clamp(int((depth - s.nearest) / (s.furthest - s.nearest) * float(S)), 0, S);
+        while (k > 0 && depth < boundary(s, k)) --k;
+        while (k < S && depth >= boundary(s, k + 1)) ++k;
+        return k;
+    }
+};
+
+} // namespace hairshadow

@@ -1,0 +1,40 @@
+#pragma once
+/// @file
+/// Where a depth falls among a texel's layers, and the depth extent of a fragment buffer.
+
+#include <hairshadow/raster/fragment.hpp>
+
+#include <algorithm>
+#include <limits>
+
+namespace hairshadow {
+
+/// A query depth's place among `layer_count` layers: index -1 is in front of the first layer,
+/// index layer_count behind the last; otherwise `fraction` in [0, 1] says how far into layer `index`.
+struct layer_position {
+    int index;
+    float fraction;
+};
+
+/// Nearest and furthest fragment depth of a whole buffer (a global pre-pass); {0, 0} when empty.
+struct depth_extent {
+    float nearest = 0.0f;
+    float furthest = 0.0f;
+};
+
+inline depth_extent extent_of(const fragment_buffer& fragments) noexcept {
+    if (fragments.size() == 0) return {};
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (const auto& f : fragments.fragments()) {
+        lo = std::min(lo, f.depth);
+        hi = std::max(hi, f.depth);
+    }
+    return {lo, hi};
+}
+
+namespace detail {
+/// The smallest float above `hi`, so that a half-open range [lo, end) holds a fragment at hi.
+inline float just_above(float hi) noexcept { return std::nextafter(hi, std::numeric_limits<float>::infinity()); }
+} // namespace detail
+
+} // namespace hairshadow

@@ -1,0 +1,117 @@
+#pragma once
+/// @file
+/// Deep opacity maps' per-pixel layers (Yuksel & Keyser 2008, section 3): a depth pass gives each
+/// texel the depth z0 of its first fragment; layer k spans [z0 + d_{k-1}, z0 + d_k) with d_0 = 0, the
+/// same d_k for every texel. A fragment adds to its layer and every later one.
+
+#include <hairshadow/core/error.hpp>
+#include <hairshadow/placement/layer_position.hpp>
+
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <type_traits>
+#include <span>
+#include <string_view>
+
+namespace hairshadow {
+
+/// How layer sizes grow with depth.
+enum class layer_sizes {
+    linear,  ///< layer k is k times as deep as the first (the paper's choice, section 5)
+    uniform, ///< all layers equally deep
+};
+
+/// What happens to fragments beyond the last layer, z0 + d_K (Yuksel & Keyser, section 3).
+enum class beyond_last_layer {
+    ignore, ///< they cast no shadow
+    clamp,  ///< they join the last layer (the paper's choice: "usually gave reasonable results")
+    extend, ///< each texel's layers are stretched to reach its last fragment
+};
+
+/// K layers starting at each texel's first fragment.
+/// @tparam K number of layers
+/// @tparam Sizes how layer depths grow
+/// @tparam Beyond what happens to fragments beyond the last layer
+template <int K, layer_sizes Sizes = layer_sizes::linear, beyond_last_layer Beyond = beyond_last_layer::clamp>
+class per_pixel_depth {
+    static_assert(K >= 1, "per_pixel_depth needs at least one layer");
+
+public:
+    static constexpr int layer_count = K;
+    static constexpr bool cumulative = true;
+    static constexpr bool contiguous = true;
+    static constexpr std::string_view name = "per_pixel_depth";
+    static constexpr std::string_view glsl_name = "placement/per_pixel_depth";
+
+    /// The depth map (z0), plus the stretch factor when layers extend to the last fragment.
+    struct z0_only {
+        float z0 = 0.0f;
+    };
+    struct z0_and_scale {
+        float z0 = 0.0f;
+        float scale = 1.0f;
+    };
+    using texel_state = std::conditional_t<Beyond == beyond_last_layer::extend, z0_and_scale, z0_only>;
+
+    /// Layers covering `extent` in linear depth in total (d_K); by default half the depth range of the
+    /// whole map, a choice of ours: the paper leaves d_k to the user.
+    per_pixel_depth() = default;
+    explicit per_pixel_depth(float extent) : requested_extent_(extent) {
+        if (!(extent > 0.0f && extent <= 1.0f)) throw argument_error("per_pixel_depth: the layer extent must be in (0, 1]");
+    }
+
+    void prepare(const fragment_buffer& fragments) noexcept {
+        const auto e = extent_of(fragments);
+        extent_ = requested_extent_ ? *requested_extent_ : std::max(0.5f * (e.furthest - e.nearest), 1e-6f);
+    }
+    /// The depth pass: z0 is the nearest fragment (and, to extend, the furthest sets the stretch).
+    void prepare_texel(std::span<const fragment> fragments, texel_state& s) const noexcept {
+        if (fragments.empty()) return;
+        float lo = fragments[0].depth, hi = lo;
+        for (const auto& f : fragments) lo = std::min(lo, f.depth), hi = std::max(hi, f.depth);
+        s.z0 = lo;
+        if constexpr (Beyond == beyond_last_layer::extend) s.scale = std::max(1.0f, detail::just_above(hi - lo) / extent_);
+    }
+
+    /// d_k / d_K for layer boundary k in [0, K].
+    static constexpr float relative_boundary(int k) noexcept {
+        if constexpr (Sizes == layer_sizes::linear) return float(k * (k + 1)) / float(K * (K + 1));
+        else return float(k) / float(K);
+    }
+    /// Depth of boundary k in [0, K] of a texel: z0 + d_k.
+    float boundary(const texel_state& s, int k) const noexcept { return s.z0 + span_of(s) * relative_boundary(k); }
+
+    int assign(const texel_state& s, float depth) const noexcept {
+        const auto p = locate(s, depth);
+        if (p.index < 0) return 0;
+        if (p.index >= K) return Beyond == beyond_last_layer::ignore ? -1 : K - 1;
+        return p.index;
+    }
+    layer_position locate(const texel_state& s, float depth) const noexcept {
+        const float rel = (depth - s.z0) / span_of(s);
+        if (!(rel >= 0.0f)) return {-1, 0.0f};
+        if (rel >= 1.0f) return {K, 0.0f};
+        int k;
+        if constexpr (Sizes == layer_sizes::linear) k = int((std::sqrt(1.0f + 4.0f * rel * float(K * (K + 1))) - 1.0f) * 0.5f);
+        else k = int(rel * float(K));
+        k = std::clamp(k, 0, K - 1);
+        while (k > 0 && rel < relative_boundary(k)) --k;
+        while (k < K - 1 && rel >= relative_boundary(k + 1)) ++k;
+        const float lo = relative_boundary(k), hi = relative_boundary(k + 1);
+        return {k, std::clamp((rel - lo) / (hi - lo), 0.0f, 1.0f)};
+    }
+    static constexpr std::size_t global_bytes() noexcept { return sizeof(float); }
+    /// d_K in linear depth.
+    float extent() const noexcept { return extent_; }
+
+private:
+    float span_of(const texel_state& s) const noexcept {
+        if constexpr (Beyond == beyond_last_layer::extend) return extent_ * s.scale;
+        else return extent_;
+    }
+    std::optional<float> requested_extent_;
+    float extent_ = 1.0f;
+};
+
+} // namespace hairshadow

@@ -1,0 +1,90 @@
+#pragma once
+/// @file
+/// Reconstruction by interpolation: each layer (opacity map, deep opacity layer or density cluster bin)
+/// stores its optical depth, and the optical depth at a query depth rises linearly across the layer it
+/// falls in (Kim & Neumann 2001 section 2; Yuksel & Keyser 2008 section 3; Mertens et al. 2004 section
+/// 3.2: piecewise-constant density, piecewise-linear optical depth).
+
+#include <hairshadow/placement/layer_position.hpp>
+
+#include <array>
+#include <cmath>
+#include <span>
+#include <string_view>
+#include <vector>
+
+namespace hairshadow {
+
+/// Optical depth interpolated linearly inside each layer.
+struct interpolation {
+    static constexpr std::string_view name = "interpolation";
+    static constexpr std::string_view glsl_name = "reconstruction/interpolation";
+
+    /// Any placement's layers can be interpolated.
+    template <class Placement>
+    static constexpr bool accepts = Placement::layer_count >= 1;
+
+    /// One value per layer: cumulative (the optical depth in front of the layer's end) when the
+    /// placement's layers are opacity maps, per bin when they are histogram bins.
+    template <class Placement, class Accumulation>
+    struct storage {
+        std::array<typename Accumulation::value_type, std::size_t(Placement::layer_count)> layers{};
+    };
+
+    /// Sums the texel's fragments into its layers.
+    template <class Placement, class Accumulation>
+    static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const fragment> fragments,
+                      storage<Placement, Accumulation>& out) {
+        constexpr int L = Placement::layer_count;
+        std::array<typename Accumulation::sum_type, std::size_t(L)> sums{};
+        for (const auto& f : fragments) {
+            const int k = placement.assign(state, f.depth);
+            if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], -std::log1p(-f.alpha));
+        }
+        typename Accumulation::sum_type running{};
+        for (std::size_t k = 0; k < std::size_t(L); ++k) {
+            if constexpr (Placement::cumulative) {
+                running = Accumulation::combine(running, sums[k]);
+                out.layers[k] = Accumulation::store(running);
+            } else {
+                out.layers[k] = Accumulation::store(sums[k]);
+            }
+        }
+    }
+
+    /// Optical depth in front of the end of layer k.
+    template <class Placement, class Accumulation>
+    static float through_layer(const storage<Placement, Accumulation>& in, int k) noexcept {
+        if (k < 0) return 0.0f;
+        if constexpr (Placement::cumulative) {
+            return Accumulation::decode(in.layers[std::size_t(k)]);
+        } else {
+            float sum = 0.0f;
+            for (int i = 0; i <= k; ++i) sum += Accumulation::decode(in.layers[std::size_t(i)]);
+            return sum;
+        }
+    }
+
+    /// Maps a texel stores, for inspection: one per layer.
+    template <class Placement>
+    static constexpr int stored_maps = Placement::layer_count;
+    /// Optical depth stored through map k (the end of layer k).
+    template <class Placement, class Accumulation>
+    static float stored_optical_depth(const storage<Placement, Accumulation>& in, int k) noexcept {
+        return through_layer<Placement, Accumulation>(in, k);
+    }
+
+    template <class Placement, class Accumulation>
+    static float optical_depth(const Placement& placement, const typename Placement::texel_state& state,
+                               const storage<Placement, Accumulation>& in, float depth) noexcept {
+        constexpr int L = Placement::layer_count;
+        const layer_position p = placement.locate(state, depth);
+        if (p.index < 0) return 0.0f;
+        if (p.index >= L) return through_layer<Placement, Accumulation>(in, L - 1);
+        const float before = through_layer<Placement, Accumulation>(in, p.index - 1);
+        const float after = through_layer<Placement, Accumulation>(in, p.index);
+        return before + p.fraction * (after - before);
+    }
+};
+
+} // namespace hairshadow

@@ -1,0 +1,98 @@
+#pragma once
+/// @file
+/// Occupancy-map reconstruction (Sintorn & Assarsson 2009, sections 3.1-3.3): one bit per slice says
+/// whether any fragment fell in it (OR blending); each slab of consecutive slices stores its exact sum.
+/// Each set bit in slab i is worth F_i / S_i (the slab's sum over its set bits), and a query
+/// interpolates linearly inside its slice, so the result is exact at slab boundaries. The paper sums
+/// fragment counts times a constant shadow weight; with per-fragment alpha we sum each fragment's
+/// optical depth b = -ln(1 - alpha), which is the same when every alpha is equal.
+
+#include <hairshadow/placement/layer_position.hpp>
+
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+namespace hairshadow {
+
+/// Occupancy bits per slice plus B slabs of exact sums.
+/// @tparam Slabs number of slabs (4 in the paper: one RGBA32F texture)
+template <int Slabs>
+struct occupancy_bitcount {
+    static_assert(Slabs >= 1, "occupancy_bitcount needs at least one slab");
+    static constexpr int slab_count = Slabs;
+    static constexpr std::string_view name = "occupancy_bitcount";
+    static constexpr std::string_view glsl_name = "reconstruction/occupancy_bitcount";
+
+    /// Needs contiguous slices, a whole number of 32-bit words, split evenly into the slabs.
+    template <class Placement>
+    static constexpr bool accepts = Placement::contiguous && Placement::layer_count % 32 == 0 && Placement::layer_count % Slabs == 0;
+
+    template <class Placement, class Accumulation>
+    struct storage {
+        std::array<std::uint32_t, std::size_t(Placement::layer_count / 32)> bits{};
+        std::array<typename Accumulation::value_type, std::size_t(Slabs)> slabs{};
+    };
+
+    template <class Placement, class Accumulation>
+    static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const fragment> fragments,
+                      storage<Placement, Accumulation>& out) {
+        constexpr int per_slab = Placement::layer_count / Slabs;
+        std::array<typename Accumulation::sum_type, std::size_t(Slabs)> sums{};
+        for (const auto& f : fragments) {
+            const int k = placement.assign(state, f.depth);
+            if (k < 0) continue;
+            out.bits[std::size_t(k / 32)] |= std::uint32_t(1) << (k % 32);
+            sums[std::size_t(k / per_slab)] = Accumulation::add(sums[std::size_t(k / per_slab)], -std::log1p(-f.alpha));
+        }
+        for (std::size_t i = 0; i < std::size_t(Slabs); ++i) out.slabs[i] = Accumulation::store(sums[i]);
+    }
+
+    /// Set bits among slices [begin, end).
+    template <std::size_t Words>
+    static int count_bits(const std::array<std::uint32_t, Words>& bits, int begin, int end) noexcept {
+        int n = 0;
+        for (int w = begin / 32; w * 32 < end; ++w) {
+            std::uint32_t word = bits[std::size_t(w)];
+            const int lo = std::max(begin - w * 32, 0), hi = std::min(end - w * 32, 32);
+            if (hi < 32) word &= (std::uint32_t(1) << hi) - 1u;
+            word &= ~((std::uint32_t(1) << lo) - 1u);
+            n += std::popcount(word);
+        }
+        return n;
+    }
+
+    /// Maps a texel stores, for inspection: the slabs (the bits are not optical depths).
+    template <class Placement>
+    static constexpr int stored_maps = Slabs;
+    /// Optical depth through the end of slab k.
+    template <class Placement, class Accumulation>
+    static float stored_optical_depth(const storage<Placement, Accumulation>& in, int k) noexcept {
+        float omega = 0.0f;
+        for (int i = 0; i <= k; ++i) omega += Accumulation::decode(in.slabs[std::size_t(i)]);
+        return omega;
+    }
+
+    template <class Placement, class Accumulation>
+    static float optical_depth(const Placement& placement, const typename Placement::texel_state& state,
+                               const storage<Placement, Accumulation>& in, float depth) noexcept {
+        constexpr int S = Placement::layer_count, per_slab = S / Slabs;
+        const layer_position p = placement.locate(state, depth);
+        if (p.index < 0) return 0.0f;
+        const int slab = std::min(p.index, S) / per_slab;
+        float omega = 0.0f;
+        for (int i = 0; i < std::min(slab, Slabs); ++i) omega += Accumulation::decode(in.slabs[std::size_t(i)]);
+        if (p.index >= S) return omega;
+        const int first = slab * per_slab;
+        const int set = count_bits(in.bits, first, first + per_slab);
+        if (set == 0) return omega;
+        const float per_bit = Accumulation::decode(in.slabs[std::size_t(slab)]) / float(set);
+        const bool occupied = (in.bits[std::size_t(p.index / 32)] >> (p.index % 32)) & 1u;
+        return omega + per_bit * (float(count_bits(in.bits, first, p.index)) + (occupied ? p.fraction : 0.0f));
+    }
+};
+
+} // namespace hairshadow
