@@ -2,6 +2,7 @@
 #include "test_support.hpp"
 
 #include <hairshadow/io/data_format.hpp>
+#include <hairshadow/hairshadow.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -50,6 +51,70 @@ TEST_CASE("query with dsm gives the analytic transmittance behind each sheet", "
             CHECK(t == Approx(e).margin(method[3] ? 1.1e-3 : 1e-5));
         }
     }
+}
+
+TEST_CASE("every method spec answers queries: nothing in front, all of it behind", "[cli][methods]") {
+    test::temp_dir dir("cli_methods");
+    const auto scene = test::make_sheets(3, 64);
+    write_data(scene.model, dir.file("sheets.data"));
+    const float y = scene.row_y[scene.row_y.size() / 2 - 2];
+    test::write_text(dir.file("points.txt"), "0.2 " + std::to_string(y) + " 0.9\n0.2 " + std::to_string(y) + " -0.5\n");
+    for (const char* method : {"osm:1", "osm:16", "osm:16:gamma", "osm:512", "dom:3", "dom:8", "dc:1", "dc:4", "occ:128:4", "occ:32:1",
+                               "occ:256:8", "docc:128:4", "rosm:16", "dsm", "dsm:0.01", "osm:16:8bit", "dom:3:8bit", "dc:4:8bit",
+                               "occ:128:4:8bit"}) {
+        CAPTURE(method);
+        const auto r = test::run_cli(std::string("query ") + dir.file("sheets.data") + " --method " + method +
+                                     " --light dir:0,0,-1 --res 64 --alpha 0.4 --points " + dir.file("points.txt"));
+        REQUIRE(r.status == 0);
+        std::istringstream lines(r.out);
+        float front = -1, behind = -1;
+        lines >> front >> behind;
+        CHECK(front == 1.0f);
+        const bool eight_bit = std::string(method).ends_with("8bit");
+        // 8 bits hold each fragment's b = -ln 0.6 as round(255 b / kappa) steps of kappa / 255.
+        const float expected = eight_bit ? std::exp(-3.0f * float(std::lround(-std::log(0.6) / emulated_8bit::kappa * 255.0)) *
+                                                    emulated_8bit::kappa / 255.0f)
+                                         : std::pow(0.6f, 3.0f);
+        CHECK(behind == Approx(expected).margin(method == std::string("dsm:0.01") ? 0.01 : 2e-5));
+    }
+}
+
+TEST_CASE("memory reports what a method's maps hold", "[cli][methods]") {
+    auto r = test::run_cli("memory --method occ:128:4 --res 512");
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.out, Catch::Contains("10485760 bytes (10.00 MiB)"));
+    r = test::run_cli("memory --method dom:3 --res 512");
+    CHECK_THAT(r.out, Catch::Contains("4194308 bytes (4.00 MiB)"));
+    r = test::run_cli("memory procedural:straight:strands=100:segments=4 --method dsm --res 64");
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.out, Catch::Contains("dsm at 64x64 for procedural"));
+    CHECK(test::run_cli("memory --method osm:16 --res 0").status == 1);
+}
+
+TEST_CASE("compare prints and writes one row per method", "[cli][methods]") {
+    test::temp_dir dir("cli_compare");
+    const auto r = test::run_cli("compare procedural:curly:strands=300:segments=16 --res 128 --methods osm:16,dom:3,occ:128:4 --out " + dir.file("c"));
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.out, Catch::Contains("| method | layers | memory (MiB) | build (ms) | mean error | 95th percentile | max error |"));
+    CHECK_THAT(r.out, Catch::Contains("| occ:128:4 | 128 | 0.62 |"));
+    std::ifstream csv(dir.file("c/compare.csv"));
+    std::string header, row;
+    std::getline(csv, header);
+    CHECK(header == "method,layers,memory_bytes,build_ms,mean_error,p95_error,max_error");
+    int rows = 0;
+    while (std::getline(csv, row)) ++rows;
+    CHECK(rows == 3);
+    CHECK(std::filesystem::exists(dir.file("c/compare.md")));
+}
+
+TEST_CASE("render writes the stored maps for inspection", "[cli][methods]") {
+    test::temp_dir dir("cli_maps");
+    const auto r = test::run_cli("render procedural:straight:strands=200:segments=8 --res 32 --method dom:3 --out " + dir.file("t.png") +
+                                 " --maps " + dir.file("maps"));
+    REQUIRE(r.status == 0);
+    CHECK(std::filesystem::exists(dir.file("maps/map_000.png")));
+    CHECK(std::filesystem::exists(dir.file("maps/map_002.png")));
+    CHECK_FALSE(std::filesystem::exists(dir.file("maps/map_003.png")));
 }
 
 TEST_CASE("render writes a PNG of the light's view", "[cli]") {
