@@ -1816,6 +1816,7 @@ struct float_accumulation {
 
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace hairshadow {
@@ -1844,6 +1845,22 @@ inline depth_extent extent_of(const fragment_buffer& fragments) noexcept {
 }
 
 namespace detail {
+/// Moves an estimated layer index to the k in [0, last] with boundary(k) <= depth < boundary(k + 1).
+/// Closed forms for the layer of a depth can miss by one where rounding meets a boundary; settling
+/// against the boundary depths themselves makes fragments and queries agree exactly.
+template <class Boundary>
+int settle_layer(float estimate, int last, float depth, Boundary boundary) noexcept {
+    int k = estimate > 0.0f ? int(std::min(estimate, float(last))) : 0; // NaN and negatives give 0
+    while (k > 0 && depth < boundary(k)) --k;
+    while (k < last && depth >= boundary(k + 1)) ++k;
+    return k;
+}
+
+/// Layer k's position for a depth between its boundaries lo and hi.
+inline layer_position position_in(int k, float depth, float lo, float hi) noexcept {
+    return {k, hi > lo ? std::clamp((depth - lo) / (hi - lo), 0.0f, 1.0f) : 0.0f};
+}
+
 /// The smallest float above `hi`, so that a half-open range [lo, end) holds a fragment at hi.
 inline float just_above(float hi) noexcept { return std::nextafter(hi, std::numeric_limits<float>::infinity()); }
 } // namespace detail
@@ -2177,20 +2194,16 @@ public:
         if (!(depth >= s.nearest)) return {-1, 0.0f};
         const int k = slice_of(s, depth);
         if (k >= S) return {S, 0.0f};
-        const float lo = boundary(s, k), hi = boundary(s, k + 1);
-        return {k, hi > lo ? std::clamp((depth - lo) / (hi - lo), 0.0f, 1.0f) : 0.0f};
+        return detail::position_in(k, depth, boundary(s, k), boundary(s, k + 1));
     }
     static constexpr std::size_t global_bytes() noexcept { return 0; }
 
 private:
-    /// The k with boundary(k) <= depth < boundary(k + 1), or S past the furthest boundary. The closed
-    /// form can be off by one where rounding meets a boundary; comparing with the boundaries themselves
-    /// makes a fragment's slice and a query's slice agree exactly (so slab boundaries are exact).
+    /// The k with boundary(k) <= depth < boundary(k + 1), or S past the furthest boundary, settled
+    /// against the boundaries so that slab boundaries are exact.
     int slice_of(const texel_state& s, float depth) const noexcept {
-        int k = std::clamp(int((depth - s.nearest) / (s.furthest - s.nearest) * float(S)), 0, S);
-        while (k > 0 && depth < boundary(s, k)) --k;
-        while (k < S && depth >= boundary(s, k + 1)) ++k;
-        return k;
+        return detail::settle_layer((depth - s.nearest) / (s.furthest - s.nearest) * float(S), S, depth,
+                                    [&](int i) { return boundary(s, i); });
     }
 };
 
@@ -2288,14 +2301,11 @@ public:
         const float rel = (depth - s.z0) / span_of(s);
         if (!(rel >= 0.0f)) return {-1, 0.0f};
         if (rel >= 1.0f) return {K, 0.0f};
-        int k;
-        if constexpr (Sizes == layer_sizes::linear) k = int((std::sqrt(1.0f + 4.0f * rel * float(K * (K + 1))) - 1.0f) * 0.5f);
-        else k = int(rel * float(K));
-        k = std::clamp(k, 0, K - 1);
-        while (k > 0 && rel < relative_boundary(k)) --k;
-        while (k < K - 1 && rel >= relative_boundary(k + 1)) ++k;
-        const float lo = relative_boundary(k), hi = relative_boundary(k + 1);
-        return {k, std::clamp((rel - lo) / (hi - lo), 0.0f, 1.0f)};
+        float estimate; // closed form of the layer, settled against the boundaries below
+        if constexpr (Sizes == layer_sizes::linear) estimate = (std::sqrt(1.0f + 4.0f * rel * float(K * (K + 1))) - 1.0f) * 0.5f;
+        else estimate = rel * float(K);
+        const int k = detail::settle_layer(estimate, K - 1, rel, relative_boundary);
+        return detail::position_in(k, rel, relative_boundary(k), relative_boundary(k + 1));
     }
     static constexpr std::size_t global_bytes() noexcept { return sizeof(float); }
     /// d_K in linear depth.
@@ -2378,12 +2388,9 @@ public:
     layer_position locate(const texel_state& s, float depth) const noexcept {
         if (!(depth >= near_)) return {-1, 0.0f};
         if (depth >= far_) return {N, 0.0f};
-        int k = std::clamp(int(Spacing::inverse((depth - near_) / (far_ - near_)) * float(N)), 0, N - 1);
-        // The closed form can miss by one where rounding meets a boundary; the boundaries decide.
-        while (k > 0 && depth < boundary(s, k)) --k;
-        while (k < N - 1 && depth >= boundary(s, k + 1)) ++k;
-        const float lo = boundary(s, k), hi = boundary(s, k + 1);
-        return {k, hi > lo ? std::clamp((depth - lo) / (hi - lo), 0.0f, 1.0f) : 0.0f};
+        const int k = detail::settle_layer(Spacing::inverse((depth - near_) / (far_ - near_)) * float(N), N - 1, depth,
+                                           [&](int i) { return boundary(s, i); });
+        return detail::position_in(k, depth, boundary(s, k), boundary(s, k + 1));
     }
     /// Bytes of global state the maps need besides their texels (D_0 and D_N).
     static constexpr std::size_t global_bytes() noexcept { return 2 * sizeof(float); }

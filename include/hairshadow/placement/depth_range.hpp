@@ -48,20 +48,16 @@ public:
         if (!(depth >= s.nearest)) return {-1, 0.0f};
         const int k = slice_of(s, depth);
         if (k >= S) return {S, 0.0f};
-        const float lo = boundary(s, k), hi = boundary(s, k + 1);
-        return {k, hi > lo ? std::clamp((depth - lo) / (hi - lo), 0.0f, 1.0f) : 0.0f};
+        return detail::position_in(k, depth, boundary(s, k), boundary(s, k + 1));
     }
     static constexpr std::size_t global_bytes() noexcept { return 0; }
 
 private:
-    /// The k with boundary(k) <= depth < boundary(k + 1), or S past the furthest boundary. The closed
-    /// form can be off by one where rounding meets a boundary; comparing with the boundaries themselves
-    /// makes a fragment's slice and a query's slice agree exactly (so slab boundaries are exact).
+    /// The k with boundary(k) <= depth < boundary(k + 1), or S past the furthest boundary, settled
+    /// against the boundaries so that slab boundaries are exact.
     int slice_of(const texel_state& s, float depth) const noexcept {
-        int k = std::clamp(int((depth - s.nearest) / (s.furthest - s.nearest) * float(S)), 0, S);
-        while (k > 0 && depth < boundary(s, k)) --k;
-        while (k < S && depth >= boundary(s, k + 1)) ++k;
-        return k;
+        return detail::settle_layer((depth - s.nearest) / (s.furthest - s.nearest) * float(S), S, depth,
+                                    [&](int i) { return boundary(s, i); });
     }
 };
 

@@ -5,6 +5,7 @@
 #include <hairshadow/raster/fragment.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace hairshadow {
@@ -33,6 +34,22 @@ inline depth_extent extent_of(const fragment_buffer& fragments) noexcept {
 }
 
 namespace detail {
+/// Moves an estimated layer index to the k in [0, last] with boundary(k) <= depth < boundary(k + 1).
+/// Closed forms for the layer of a depth can miss by one where rounding meets a boundary; settling
+/// against the boundary depths themselves makes fragments and queries agree exactly.
+template <class Boundary>
+int settle_layer(float estimate, int last, float depth, Boundary boundary) noexcept {
+    int k = estimate > 0.0f ? int(std::min(estimate, float(last))) : 0; // NaN and negatives give 0
+    while (k > 0 && depth < boundary(k)) --k;
+    while (k < last && depth >= boundary(k + 1)) ++k;
+    return k;
+}
+
+/// Layer k's position for a depth between its boundaries lo and hi.
+inline layer_position position_in(int k, float depth, float lo, float hi) noexcept {
+    return {k, hi > lo ? std::clamp((depth - lo) / (hi - lo), 0.0f, 1.0f) : 0.0f};
+}
+
 /// The smallest float above `hi`, so that a half-open range [lo, end) holds a fragment at hi.
 inline float just_above(float hi) noexcept { return std::nextafter(hi, std::numeric_limits<float>::infinity()); }
 } // namespace detail

@@ -92,14 +92,11 @@ public:
         const float rel = (depth - s.z0) / span_of(s);
         if (!(rel >= 0.0f)) return {-1, 0.0f};
         if (rel >= 1.0f) return {K, 0.0f};
-        int k;
-        if constexpr (Sizes == layer_sizes::linear) k = int((std::sqrt(1.0f + 4.0f * rel * float(K * (K + 1))) - 1.0f) * 0.5f);
-        else k = int(rel * float(K));
-        k = std::clamp(k, 0, K - 1);
-        while (k > 0 && rel < relative_boundary(k)) --k;
-        while (k < K - 1 && rel >= relative_boundary(k + 1)) ++k;
-        const float lo = relative_boundary(k), hi = relative_boundary(k + 1);
-        return {k, std::clamp((rel - lo) / (hi - lo), 0.0f, 1.0f)};
+        float estimate; // closed form of the layer, settled against the boundaries below
+        if constexpr (Sizes == layer_sizes::linear) estimate = (std::sqrt(1.0f + 4.0f * rel * float(K * (K + 1))) - 1.0f) * 0.5f;
+        else estimate = rel * float(K);
+        const int k = detail::settle_layer(estimate, K - 1, rel, relative_boundary);
+        return detail::position_in(k, rel, relative_boundary(k), relative_boundary(k + 1));
     }
     static constexpr std::size_t global_bytes() noexcept { return sizeof(float); }
     /// d_K in linear depth.

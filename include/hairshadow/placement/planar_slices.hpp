@@ -65,12 +65,9 @@ public:
     layer_position locate(const texel_state& s, float depth) const noexcept {
         if (!(depth >= near_)) return {-1, 0.0f};
         if (depth >= far_) return {N, 0.0f};
-        int k = std::clamp(int(Spacing::inverse((depth - near_) / (far_ - near_)) * float(N)), 0, N - 1);
-        // The closed form can miss by one where rounding meets a boundary; the boundaries decide.
-        while (k > 0 && depth < boundary(s, k)) --k;
-        while (k < N - 1 && depth >= boundary(s, k + 1)) ++k;
-        const float lo = boundary(s, k), hi = boundary(s, k + 1);
-        return {k, hi > lo ? std::clamp((depth - lo) / (hi - lo), 0.0f, 1.0f) : 0.0f};
+        const int k = detail::settle_layer(Spacing::inverse((depth - near_) / (far_ - near_)) * float(N), N - 1, depth,
+                                           [&](int i) { return boundary(s, i); });
+        return detail::position_in(k, depth, boundary(s, k), boundary(s, k + 1));
     }
     /// Bytes of global state the maps need besides their texels (D_0 and D_N).
     static constexpr std::size_t global_bytes() noexcept { return 2 * sizeof(float); }
