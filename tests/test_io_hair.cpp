@@ -123,10 +123,16 @@ TEST_CASE("malformed .hair files raise io_error naming the file", "[io][hair][er
         auto b = good;
         const std::uint32_t huge = 0xFFFFFFF0u;
         std::memcpy(b.data() + 4, &huge, 4); // strands
-        expect_error(b, "truncated");
+        expect_error(b, "strands cannot share 12 points");
         b = good;
         std::memcpy(b.data() + 8, &huge, 4); // points
-        expect_error(b, "header says");
+        expect_error(b, "truncated: points array needs 4294967280 x 12 bytes");
+    }
+    SECTION("more strands than points, without a segments array") {
+        auto b = encode_hair(test::grid_model(3, 4), 2u, 3);
+        const std::uint32_t huge = 0xFFFFFFFFu;
+        std::memcpy(b.data() + 4, &huge, 4);
+        expect_error(b, "strands cannot share");
     }
     SECTION("point count disagreeing with the segments") {
         auto b = good;

@@ -26,12 +26,12 @@ std::set<texel> fragments_of(fixed_point a, fixed_point b, texel_rect clip = {-6
 }
 
 /// The diamond-exit rule straight from the GL specification's wording, by brute force over candidate
-/// texels, with the perturbation (e, e^2) made concrete: coordinates are scaled by 2^40 and moved by
-/// 2^20 and 1 units, which no tie in the scaled problem can survive. Independent of rasterize_line.
+/// texels, with the perturbation -(e, e^2) made concrete: coordinates are scaled by 2^40 and moved by
+/// -2^20 and -1 units, which no tie in the scaled problem can survive. Independent of rasterize_line.
 std::set<texel> diamond_exit_brute_force(fixed_point a, fixed_point b) {
     __extension__ typedef __int128 i128;
     const i128 K = i128(1) << 40, S = subpixel_scale;
-    const i128 ax = a.x * K + (i128(1) << 20), ay = a.y * K + 1, bx = b.x * K + (i128(1) << 20), by = b.y * K + 1;
+    const i128 ax = a.x * K - (i128(1) << 20), ay = a.y * K - 1, bx = b.x * K - (i128(1) << 20), by = b.y * K - 1;
     const i128 R = S / 2 * K;
     auto abs128 = [](i128 v) { return v < 0 ? -v : v; };
     std::set<texel> out;
@@ -67,9 +67,11 @@ TEST_CASE("hand-worked segments give the hand-computed fragments", "[raster][lin
     CHECK(fragments_of(at(4.5, 0.5), at(0.5, 0.5)) == std::set<texel>{{1, 0}, {2, 0}, {3, 0}, {4, 0}});
     // A diagonal from corner to corner.
     CHECK(fragments_of(at(0, 0), at(3, 3)) == std::set<texel>{{0, 0}, {1, 1}, {2, 2}});
-    // Along a row of texel corners: the perturbation lifts the line into the row above; the start
-    // misses its diamond's bottom vertex, the end leaves the last diamond through it.
-    CHECK(fragments_of(at(0.5, 1.0), at(4.5, 1.0)) == std::set<texel>{{1, 1}, {2, 1}, {3, 1}, {4, 1}});
+    // Along a row of texel corners: the perturbation lowers the line into the row below; it starts
+    // left of the first diamond's top vertex and ends left of the last one's.
+    CHECK(fragments_of(at(0.5, 1.0), at(4.5, 1.0)) == std::set<texel>{{0, 0}, {1, 0}, {2, 0}, {3, 0}});
+    // Along a column of texel corners: the perturbation moves the line into the column on the left.
+    CHECK(fragments_of(at(2.0, 0.5), at(2.0, 3.5)) == std::set<texel>{{1, 0}, {1, 1}, {1, 2}});
     // A short vertical segment that ends inside the diamond it entered draws nothing...
     CHECK(fragments_of(at(2.5, 0.2), at(2.5, 0.8)).empty());
     // ...and one that leaves it draws that texel.

@@ -233,3 +233,28 @@ TEST_CASE("maps hold what the papers store", "[policy][memory]") {
     CHECK(occ.memory_bytes() <= 10u * 1024 * 1024);
     CHECK(osm.memory_bytes() == texels * 16 * 4 + 2 * sizeof(float)); // N MiB plus the range
 }
+
+TEST_CASE("8-bit sums saturate at every step", "[policy][accumulation]") {
+    using A = emulated_8bit;
+    CHECK(A::add(250, A::kappa) == 255);
+    CHECK(A::combine(200, 200) == 255);
+    A::sum_type s = 0;
+    for (int i = 0; i < 10000000; ++i) s = A::add(s, A::kappa);
+    CHECK(A::store(s) == 255);
+}
+
+TEST_CASE("density clustering bins stay ordered when splits cascade", "[policy][placement][dc]") {
+    clustered<3> c;
+    clustered<3>::texel_state s;
+    s.mean = {0.0f, 1.0f, 1.2f};
+    s.sigma = {3.0f, 0.5f, 0.01f};
+    const auto bins = c.bins(s);
+    for (const auto& b : bins) CHECK(b.lo <= b.hi);
+    CHECK(bins[0].hi <= bins[1].lo);
+    CHECK(bins[1].hi <= bins[2].lo);
+}
+
+TEST_CASE("a method queried before it is built sees no shadow", "[policy]") {
+    const deep_opacity_maps<3> dom;
+    CHECK(dom.transmittance(glm::vec3(0, 0, 0)) == 1.0f);
+}

@@ -66,3 +66,18 @@ TEST_CASE("procedural specs parse and reject bad input", "[procedural][errors]")
     CHECK_THROWS_AS(make_procedural(parse_procedural_spec("procedural:curly:strands=4000000000:segments=60000")), argument_error);
     CHECK_THROWS_AS(parse_procedural_spec("procedural:curly:length=nan"), argument_error);
 }
+
+TEST_CASE("absurd procedural sizes are refused before any work", "[procedural][errors]") {
+    CHECK_THROWS_AS(make_procedural(parse_procedural_spec("procedural:clumped:strands=100:clumps=10000000000")), argument_error);
+    CHECK_THROWS_AS(make_procedural(parse_procedural_spec("procedural:clumped:strands=100:clumps=101")), argument_error);
+    CHECK_NOTHROW(make_procedural(parse_procedural_spec("procedural:clumped:strands=100:clumps=100")));
+    hair_model single_points;
+    for (int i = 0; i < 1000; ++i) single_points.add_strand(std::vector<glm::vec3>{{float(i), 0, 0}});
+    CHECK_THROWS_AS(grow_follow_hair(single_points, std::size_t(1) << 20, 0.01f), argument_error);
+}
+
+TEST_CASE("parallel loops survive absurd thread counts", "[parallel]") {
+    std::vector<int> hits(1000, 0);
+    parallel_for(hits.size(), execution{100000}, [&](std::size_t i) { hits[i] += 1; });
+    CHECK(std::count(hits.begin(), hits.end(), 1) == 1000);
+}

@@ -141,3 +141,47 @@ TEST_CASE("bad raster options raise argument_error", "[raster][errors]") {
     o.wide_line_width = -1.0f;
     CHECK_THROWS_AS(rasterize(m, ls, o), argument_error);
 }
+
+TEST_CASE("wide lines narrower than 2 texels are refused", "[raster][errors]") {
+    const auto m = test::grid_model(3, 3);
+    const auto ls = light_space::fit(light_spec::directional({0, 0, -1}), m.bounds(), 32);
+    for (float width : {1e-30f, 0.5f, 1.9f, 65.0f}) {
+        raster_options o;
+        o.wide_line_width = width;
+        CHECK_THROWS_AS(rasterize(m, ls, o), argument_error);
+    }
+}
+
+TEST_CASE("a long diagonal segment at high resolution gets one fragment per column", "[raster]") {
+    hair_model m;
+    m.add_strand(std::vector<glm::vec3>{{-1, -1, 0}, {1, 0.9f, 0}});
+    m.add_strand(std::vector<glm::vec3>{{-1, 1, 0.1f}, {-1, 1, 0.2f}});
+    const auto ls = light_space::fit(light_spec::directional({0, 0, -1}), m.bounds(), 4096);
+    const auto fb = rasterize(m, ls);
+    std::vector<int> per_column(4096, 0);
+    for (int y = 0; y < 4096; ++y)
+        for (int x = 0; x < 4096; ++x) per_column[std::size_t(x)] += int(fb.texel(x, y).size());
+    int columns = 0;
+    for (int n : per_column) {
+        CHECK(n <= 1);
+        columns += n;
+    }
+    CHECK(columns > 4000);
+}
+
+TEST_CASE("a segment from far outside a perspective map is clipped, not dropped", "[raster]") {
+    // From near the light, far off-axis (beyond the +-2^20-texel guard band), to the map's centre.
+    hair_model m;
+    m.add_strand(std::vector<glm::vec3>{{50.0f, 0.0f, -0.002f}, {0.0f, 0.0f, -1.0f}});
+    m.default_thickness = 0.001f;
+    const auto ls = light_space::fit(light_spec::spot({0, 0, 0}, {0, 0, -1}, 10.0f), m.bounds(), 256);
+    REQUIRE(ls.project({50.0f, 0.0f, -0.002f}).window.x > float(1 << 20));
+    raster_options o;
+    o.fixed_alpha = 0.5f;
+    const auto fb = rasterize(m, ls, o);
+    int found = 0; // the segment runs along a row boundary, so count the rows on both sides
+    for (int y = 126; y < 130; ++y)
+        for (int x = 130; x < 250; ++x) found += int(fb.texel(x, y).size());
+    CHECK(found > 100);
+    CHECK(found < 130);
+}

@@ -280,7 +280,7 @@ void add_map_options(CLI::App* cmd, map_options& o, bool with_method = true) {
     cmd->add_option("--light", o.light, "light spec: " + std::string(light_grammar));
     cmd->add_option("--res", o.resolution, "shadow map resolution, 1.." + std::to_string(HAIRSHADOW_MAX_RESOLUTION));
     cmd->add_option("--alpha", o.alpha, "use this alpha for every fragment instead of the strand coverage")->check(CLI::Range(0.0f, 1.0f));
-    cmd->add_option("--wide", o.wide, "pre-filtered wide lines of this width in texels (Mertens et al. 3.4); 0 = aliased lines")
+    cmd->add_option("--wide", o.wide, "pre-filtered wide lines of this width in texels, 2 to 64 (Mertens et al. 3.4); 0 = aliased lines")
         ->check(CLI::Range(0.0f, 64.0f));
 }
 

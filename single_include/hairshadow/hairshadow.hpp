@@ -128,6 +128,7 @@ public:
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -164,6 +165,8 @@ struct hair_model {
     }
     /// Appends a strand; the per-point arrays, when present, must be appended by the caller.
     void add_strand(std::span<const glm::vec3> strand_points) {
+        if (strand_points.size() > std::numeric_limits<std::uint32_t>::max() - points.size())
+            throw model_error("more than 2^32 points");
         points.insert(points.end(), strand_points.begin(), strand_points.end());
         strand_offsets.push_back(static_cast<std::uint32_t>(points.size()));
     }
@@ -506,6 +509,7 @@ private:
 #include <cstddef>
 #include <exception>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -529,7 +533,9 @@ void parallel_for(std::size_t count, const execution& exec, Body&& body, std::si
     if (count == 0) return;
     grain = std::max<std::size_t>(grain, 1);
     const std::size_t chunks = (count + grain - 1) / grain;
-    const unsigned threads = static_cast<unsigned>(std::min<std::size_t>(exec.resolved(), chunks));
+    // More threads than items, or than a few per core, only cost start-up time.
+    const std::size_t useful = std::max<std::size_t>(4 * std::max(1u, std::thread::hardware_concurrency()), 1);
+    const unsigned threads = static_cast<unsigned>(std::min({std::size_t(exec.resolved()), chunks, useful}));
     if (threads <= 1) {
         for (std::size_t i = 0; i < count; ++i) body(i);
         return;
@@ -551,7 +557,11 @@ void parallel_for(std::size_t count, const execution& exec, Body&& body, std::si
     };
     std::vector<std::thread> pool;
     pool.reserve(threads - 1);
-    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+    try {
+        for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+    } catch (const std::system_error&) {
+        // The system refused another thread: the ones started (and this one) drain every chunk anyway.
+    }
     worker();
     for (auto& t : pool) t.join();
     if (failure) std::rethrow_exception(failure);
@@ -832,8 +842,11 @@ inline hair_model read_hair(const std::string& path) {
     if (!(fields & hair_has_points)) in.fail("the bit field announces no points array");
     if (fields & ~std::uint32_t(31)) in.fail("unknown bits in the bit field");
     if (strands == 0) in.fail("the model has no strands");
-    // A strand holds at least one point, so the point array bounds the strand count before allocating.
+    // A strand holds at least one point, and every point takes 12 bytes: both bound the counts before
+    // anything is allocated or looped over.
+    if (strands > point_total) in.fail(std::to_string(strands) + " strands cannot share " + std::to_string(point_total) + " points");
     in.require(strands, fields & hair_has_segments ? 2 : 0, "segments array");
+    in.require(point_total, 12, "points array");
 
     std::vector<std::uint16_t> segments;
     if (fields & hair_has_segments) {
@@ -985,7 +998,8 @@ inline hair_model make_procedural(const procedural_options& o) {
     if (!(o.head_radius > 0) || !(o.length > 0) || !std::isfinite(o.head_radius) || !std::isfinite(o.length) ||
         !std::isfinite(o.wave_amplitude) || !(o.wave_length > 0) || !std::isfinite(o.wave_length))
         throw argument_error("procedural model: radius, length and wave length must be positive and finite");
-    if (o.style == hair_style::clumped && o.clumps == 0) throw argument_error("procedural model: clumps must be at least 1");
+    if (o.style == hair_style::clumped && (o.clumps == 0 || o.clumps > o.strands))
+        throw argument_error("procedural model: clumps must be between 1 and the number of strands");
 
     random_stream rng(o.seed);
     std::vector<glm::vec3> clump_normals;
@@ -1048,8 +1062,8 @@ inline hair_model grow_follow_hair(const hair_model& guides, std::size_t per_gui
                                    float tip_spread = 1.5f) {
     if (per_guide == 0) throw argument_error("follow hair: at least 1 strand per guide is needed");
     if (!(radius >= 0) || !std::isfinite(radius) || !std::isfinite(tip_spread)) throw argument_error("follow hair: radius must be finite and >= 0");
-    if (guides.segment_count() > max_procedural_segments / per_guide)
-        throw argument_error("follow hair: the result would exceed " + std::to_string(max_procedural_segments) + " segments");
+    if (guides.point_count() > max_procedural_segments / per_guide)
+        throw argument_error("follow hair: the result would exceed " + std::to_string(max_procedural_segments) + " points");
     hair_model out;
     out.default_thickness = guides.default_thickness;
     out.default_transparency = guides.default_transparency;
@@ -1249,8 +1263,8 @@ private:
 /// @file
 /// OpenGL's aliased line rule (the diamond-exit rule, GL 4.6 core section 14.5.1) in exact fixed-point
 /// arithmetic. Fragment f is produced when the segment meets f's diamond |x - xc| + |y - yc| < 1/2 and
-/// the segment's end is not inside it, with both endpoints perturbed by (e, e^2) for a vanishing e so
-/// that boundary cases are decided the way the specification describes.
+/// the segment's end is not inside it, with both endpoints moved by -(e, e^2) for a vanishing e, as the
+/// specification perturbs them, so that boundary cases are decided the way it describes.
 
 
 #include <cstdint>
@@ -1278,22 +1292,25 @@ inline std::int64_t floor_div(std::int64_t a, std::int64_t b) noexcept { // b > 
     const std::int64_t q = a / b;
     return (a % b != 0 && a < 0) ? q - 1 : q;
 }
+inline std::int64_t ceil_div(std::int64_t a, std::int64_t b) noexcept { return -floor_div(-a, b); } // b > 0
 
-/// Is point p, perturbed by (e, e^2), inside the open diamond of texel (c, r)? On the boundary the
-/// perturbation's x term decides: the point is inside exactly when it lies left of the centre.
+/// Is point p, moved by -(e, e^2), inside the open diamond of texel (c, r)? On the boundary the
+/// perturbation's x term decides: the point is inside exactly when it lies right of the centre.
 inline bool inside_diamond(const fixed_point& p, std::int64_t c, std::int64_t r) noexcept {
     constexpr std::int64_t half = subpixel_scale / 2;
     const std::int64_t u = p.x - (c * subpixel_scale + half);
     const std::int64_t v = p.y - (r * subpixel_scale + half);
     const std::int64_t l1 = std::llabs(u) + std::llabs(v);
-    return l1 < half || (l1 == half && u < 0);
+    return l1 < half || (l1 == half && u > 0);
 }
 } // namespace detail
 
 /// Calls emit(x, y) for every fragment of the segment a -> b inside `clip`, following the diamond-exit
-/// rule. A zero-length segment produces nothing. Coordinates must be within +-2^26 texels.
+/// rule. A zero-length segment produces nothing. Coordinates must be within +-2^20 texels (the
+/// rasteriser's guard band), which keeps every product below 2^63.
 template <class Emit>
 void rasterize_line(const fixed_point& a, const fixed_point& b, const texel_rect& clip, Emit&& emit) {
+    using detail::ceil_div;
     using detail::floor_div;
     using detail::inside_diamond;
     constexpr std::int64_t S = subpixel_scale, H = subpixel_scale / 2;
@@ -1304,15 +1321,16 @@ void rasterize_line(const fixed_point& a, const fixed_point& b, const texel_rect
     const std::int64_t d_major = x_major ? dx : dy, d_minor = x_major ? dy : dx;
     const std::int64_t minor_a = x_major ? a.y : a.x;
     // Texel centres c*S + H on the major axis that the perturbed segment crosses: for increasing
-    // coordinates major_a < centre <= major_b, for decreasing major_b < centre <= major_a.
+    // coordinates major_a <= centre < major_b, for decreasing major_b <= centre < major_a.
     const std::int64_t lo_end = d_major > 0 ? major_a : major_b, hi_end = d_major > 0 ? major_b : major_a;
-    const std::int64_t first = floor_div(lo_end - H, S) + 1, last = floor_div(hi_end - H, S);
+    const std::int64_t first = ceil_div(lo_end - H, S), last = ceil_div(hi_end - H, S) - 1;
     const std::int64_t clip_lo = x_major ? clip.x0 : clip.y0, clip_hi = x_major ? clip.x1 : clip.y1;
     const std::int64_t denom = (d_major > 0 ? d_major : -d_major) * S;
     const std::int64_t sign = d_major > 0 ? 1 : -1;
-    // Ties on the minor axis: an x-major line through a texel corner row goes to the lower row when the
-    // slope is positive (the perturbation moves it by -slope*e); a y-major line always goes right (+e).
-    const bool lower_on_tie = x_major && (dx > 0) == (dy > 0) && dy != 0;
+    // Ties on the minor axis (the line through a texel corner row or column): an x-major line moves by
+    // slope * e - e^2, so it goes to the lower row unless its slope is positive; a y-major line moves
+    // by -e in x and always goes to the left column.
+    const bool lower_on_tie = !x_major || dy == 0 || (dx > 0) != (dy > 0);
     const std::int64_t m_begin = std::max(first, clip_lo), m_end = std::min(last, clip_hi - 1);
     if (m_begin <= m_end) {
         // The minor coordinate at successive centres, num / denom, advances by a constant step: keep its
@@ -1330,8 +1348,9 @@ void rasterize_line(const fixed_point& a, const fixed_point& b, const texel_rect
             if (rem >= denom) rem -= denom, ++n;
         }
     }
-    // A segment that starts inside a diamond it does not cross the centre line of still exits it.
-    const std::int64_t ax = floor_div(a.x, S), ay = floor_div(a.y, S);
+    // A segment that starts inside a diamond it does not cross the centre line of still exits it. The
+    // perturbed start lies in the texel of (a.x - e, a.y - e^2).
+    const std::int64_t ax = floor_div(a.x - 1, S), ay = floor_div(a.y - 1, S);
     const std::int64_t a_major = x_major ? ax : ay;
     if (inside_diamond(a, ax, ay) && (a_major < first || a_major > last) && !inside_diamond(b, ax, ay) && clip.contains(ax, ay))
         emit(int(ax), int(ay));
@@ -1361,7 +1380,8 @@ struct raster_options {
     /// When set, every fragment gets this alpha instead of its coverage (`--alpha A`).
     std::optional<float> fixed_alpha{};
     /// Pre-filtered wide lines (Mertens et al. 2004, section 3.4): a screen-aligned band of this many
-    /// texels across each segment with a Gaussian profile, instead of the aliased line rule. 0 = off.
+    /// texels across each segment with a Gaussian profile, instead of the aliased line rule. 0 = off;
+    /// otherwise at least 2, below which texel-centre samples of the profile alias.
     float wide_line_width = 0.0f;
     /// Perspective lights: weight coverage by reciprocal depth (Mertens et al. 2004, section 3.4), i.e.
     /// divide the thickness by the texel's footprint at the fragment's depth rather than at mid-range.
@@ -1405,12 +1425,42 @@ inline bool prepare_segment(const light_space& ls, glm::vec3 p0, glm::vec3 p1, f
         const float v0 = o0 + (o1 - o0) * s0, v1 = o0 + (o1 - o0) * s1;
         p0 = q0, p1 = q1, t0 = u0, t1 = u1, o0 = v0, o1 = v1;
     }
-    const light_point a = ls.project(p0), b = ls.project(p1);
-    // Keep coordinates well inside the fixed-point range; such far-off points only arise for
-    // perspective lights and lie outside the map anyway.
-    const float guard = float(1 << 24);
-    if (!(std::abs(a.window.x) < guard && std::abs(a.window.y) < guard && std::abs(b.window.x) < guard && std::abs(b.window.y) < guard))
-        return false;
+    light_point a = ls.project(p0), b = ls.project(p1);
+    // Clip to a guard band of +-2^20 texels in window space (perspective lights can throw points
+    // near the near plane far off the map), keeping the fixed-point line rule free of overflow.
+    // Attributes at a clipped end are interpolated perspective-correctly, as GL would.
+    const float guard = float(1 << 20);
+    if (!(std::abs(a.window.x) <= guard && std::abs(a.window.y) <= guard && std::abs(b.window.x) <= guard && std::abs(b.window.y) <= guard)) {
+        double lo_s = 0.0, hi_s = 1.0;
+        for (int axis = 0; axis < 2; ++axis) {
+            const double from = a.window[axis], delta = double(b.window[axis]) - from;
+            for (const double limit : {-double(guard), double(guard)}) {
+                const bool upper = limit > 0;
+                if (delta == 0.0) {
+                    if (upper ? from > limit : from < limit) return false;
+                    continue;
+                }
+                const double s = (limit - from) / delta;
+                if ((delta > 0) == upper) hi_s = std::min(hi_s, s);
+                else lo_s = std::max(lo_s, s);
+            }
+        }
+        if (!(lo_s < hi_s)) return false;
+        const light_point a0 = a, b0 = b;
+        auto at = [&](double s, float fa, float fb) {
+            const double ia = 1.0 / a0.w, ib = 1.0 / b0.w, inv = (1.0 - s) * ia + s * ib;
+            return float(((1.0 - s) * fa * ia + s * fb * ib) / inv);
+        };
+        auto end = [&](double s) {
+            const double ia = 1.0 / a0.w, ib = 1.0 / b0.w;
+            return light_point{glm::vec2(float(a0.window.x + s * (double(b0.window.x) - a0.window.x)),
+                                         float(a0.window.y + s * (double(b0.window.y) - a0.window.y))),
+                               at(s, a0.depth, b0.depth), float(1.0 / ((1.0 - s) * ia + s * ib))};
+        };
+        const float t_lo = at(lo_s, t0, t1), t_hi = at(hi_s, t0, t1), o_lo = at(lo_s, o0, o1), o_hi = at(hi_s, o0, o1);
+        a = end(lo_s), b = end(hi_s);
+        t0 = t_lo, t1 = t_hi, o0 = o_lo, o1 = o_hi;
+    }
     out = {{snap(a.window.x), snap(a.window.y)}, {snap(b.window.x), snap(b.window.y)}, a.depth, b.depth, 1.0f / a.w, 1.0f / b.w,
            t0, t1, o0, o1};
     return !(out.a == out.b);
@@ -1431,7 +1481,7 @@ inline fragment shade_fragment(const light_space& ls, const raster_options& opt,
         const float footprint = ls.texel_size(opt.depth_weighting ? depth : 0.5f);
         alpha = opacity * std::min(1.0f, thickness / footprint) * weight;
     }
-    return {depth, std::clamp(alpha, 0.0f, HAIRSHADOW_ALPHA_MAX)};
+    return {depth, alpha > 0.0f ? std::min(alpha, HAIRSHADOW_ALPHA_MAX) : 0.0f}; // NaN gives 0
 }
 
 /// Window-space parameter of the texel centre (x, y) along a -> b, as in GL's line interpolation.
@@ -1477,7 +1527,8 @@ public:
     explicit rasterizer(const raster_options& options = {}) : opt_(options) {
         if (opt_.fixed_alpha && !(*opt_.fixed_alpha >= 0.0f && *opt_.fixed_alpha <= 1.0f))
             throw argument_error("fixed alpha must be in [0, 1]");
-        if (!(opt_.wide_line_width >= 0.0f && opt_.wide_line_width <= 64.0f)) throw argument_error("wide line width must be in [0, 64] texels");
+        if (!(opt_.wide_line_width == 0.0f || (opt_.wide_line_width >= 2.0f && opt_.wide_line_width <= 64.0f)))
+            throw argument_error("wide line width must be 0 (off) or in [2, 64] texels");
         if (opt_.tile_size < 8 || opt_.tile_size > 1024) throw argument_error("tile size must be in [8, 1024]");
     }
 
@@ -1524,22 +1575,13 @@ private:
         const std::size_t tile_count = std::size_t(tiles_x_) * std::size_t(tiles_x_);
         const std::size_t segment_count = segments_.size();
         const std::size_t chunk_size = (segment_count + chunks - 1) / chunks;
-        const std::int64_t reach = std::int64_t(std::ceil(1.0 + 0.5 * double(opt_.wide_line_width))) * subpixel_scale;
+        const double reach = 1.0 + 0.5 * double(opt_.wide_line_width); // texels around the segment that it may touch
         auto for_each_tile_of_chunk = [&](std::size_t c, auto&& visit) {
             const std::size_t begin = c * chunk_size, end = std::min(segment_count, begin + chunk_size);
             for (std::size_t seg = begin; seg < end; ++seg) {
                 const auto& s = segments_[seg];
                 if (s.a == s.b) continue; // nothing to draw (clipped away or zero length)
-                // Texel bounds of the segment plus its reach; arithmetic shifts floor negative values.
-                const std::int64_t lo_x = (std::min(s.a.x, s.b.x) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
-                const std::int64_t hi_x = (std::max(s.a.x, s.b.x) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
-                const std::int64_t lo_y = (std::min(s.a.y, s.b.y) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
-                const std::int64_t hi_y = (std::max(s.a.y, s.b.y) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
-                if (hi_x < 0 || hi_y < 0 || lo_x >= res || lo_y >= res) continue;
-                const int tx0 = int(std::max<std::int64_t>(lo_x, 0)) / opt_.tile_size, tx1 = int(std::min<std::int64_t>(hi_x, res - 1)) / opt_.tile_size;
-                const int ty0 = int(std::max<std::int64_t>(lo_y, 0)) / opt_.tile_size, ty1 = int(std::min<std::int64_t>(hi_y, res - 1)) / opt_.tile_size;
-                for (int ty = ty0; ty <= ty1; ++ty)
-                    for (int tx = tx0; tx <= tx1; ++tx) visit(seg, std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx));
+                visit_tiles(s, reach, [&](std::size_t t) { visit(seg, t); });
             }
         };
         cursor_.assign(chunks * tile_count, 0);
@@ -1561,6 +1603,33 @@ private:
         parallel_for(chunks, opt_.exec, [&](std::size_t c) {
             for_each_tile_of_chunk(c, [&](std::size_t seg, std::size_t t) { binned_[cursor_[c * tile_count + t]++] = std::uint32_t(seg); });
         });
+    }
+
+    /// Calls visit(tile) for each tile within `reach` texels of the segment: row by row of tiles, only
+    /// the columns the segment's piece in that row (widened by reach) spans, so that a long diagonal
+    /// segment visits O(its length) tiles rather than its bounding box.
+    template <class Visit>
+    void visit_tiles(const detail::prepared_segment& s, double reach, Visit&& visit) const {
+        const double ax = double(s.a.x) / subpixel_scale, ay = double(s.a.y) / subpixel_scale;
+        const double bx = double(s.b.x) / subpixel_scale, by = double(s.b.y) / subpixel_scale;
+        const double tile = opt_.tile_size;
+        const double lo_y = std::min(ay, by) - reach, hi_y = std::max(ay, by) + reach;
+        if (hi_y < 0 || lo_y >= res_ || std::max(ax, bx) + reach < 0 || std::min(ax, bx) - reach >= res_) return;
+        const int ty0 = std::max(0, int(std::floor(lo_y / tile))), ty1 = std::min(tiles_x_ - 1, int(std::floor(hi_y / tile)));
+        for (int ty = ty0; ty <= ty1; ++ty) {
+            // The part of the segment whose y lies in this tile row's band, widened by reach.
+            const double band_lo = ty * tile - reach, band_hi = (ty + 1) * tile + reach;
+            double s0 = 0.0, s1 = 1.0;
+            if (by != ay) {
+                const double u = (band_lo - ay) / (by - ay), v = (band_hi - ay) / (by - ay);
+                s0 = std::max(s0, std::min(u, v)), s1 = std::min(s1, std::max(u, v));
+                if (s0 > s1) continue;
+            }
+            const double x0 = ax + s0 * (bx - ax), x1 = ax + s1 * (bx - ax);
+            const int tx0 = std::max(0, int(std::floor((std::min(x0, x1) - reach) / tile)));
+            const int tx1 = std::min(tiles_x_ - 1, int(std::floor((std::max(x0, x1) + reach) / tile)));
+            for (int tx = tx0; tx <= tx1; ++tx) visit(std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx));
+        }
     }
 
     texel_rect tile_rect(std::size_t t) const noexcept {
@@ -1756,7 +1825,7 @@ namespace hairshadow {
 /// Every add quantised to 8 bits and saturated, as additive blending into an RGBA8 target does.
 struct emulated_8bit {
     using value_type = std::uint8_t;
-    using sum_type = std::int32_t; ///< exact: saturating adds of non-negative steps equal min(255, sum)
+    using sum_type = std::int32_t; ///< saturated at 255 after every add, exactly as the blend does
     static constexpr std::string_view name = "8bit";
     static constexpr std::string_view glsl_name = "accumulation/emulated_8bit";
     /// exp(-kappa) = 2^-8: kappa = 8 ln 2, about 5.545 (the paper rounds it to 5.56).
@@ -1766,8 +1835,8 @@ struct emulated_8bit {
     static std::int32_t quantise(float optical_depth) noexcept {
         return std::int32_t(std::lround(std::clamp(optical_depth / kappa, 0.0f, 1.0f) * 255.0f));
     }
-    static sum_type add(sum_type sum, float optical_depth) noexcept { return sum + quantise(optical_depth); }
-    static constexpr sum_type combine(sum_type a, sum_type b) noexcept { return a + b; }
+    static sum_type add(sum_type sum, float optical_depth) noexcept { return std::min<sum_type>(sum + quantise(optical_depth), 255); }
+    static constexpr sum_type combine(sum_type a, sum_type b) noexcept { return std::min<sum_type>(a + b, 255); }
     static constexpr value_type store(sum_type sum) noexcept { return value_type(std::min<sum_type>(sum, 255)); }
     static constexpr float decode(value_type v) noexcept { return kappa * float(v) / 255.0f; }
 };
@@ -1995,8 +2064,8 @@ public:
 
 private:
     Placement placement_;
-    light_space light_;
-    std::vector<texel_maps> texels_;
+    light_space light_;                                  // 1x1 until built, so early queries see no shadow
+    std::vector<texel_maps> texels_ = std::vector<texel_maps>(1);
 };
 
 } // namespace hairshadow
@@ -2093,8 +2162,9 @@ public:
                 auto& a = out[std::size_t(previous)];
                 if (a.hi > out[u].lo) {
                     // R1 = L2 = (R1 + L2) / 2, kept within both bins so that neither turns inside out.
-                    const float mid = std::clamp(0.5f * (a.hi + out[u].lo), a.lo, out[u].hi);
+                    const float mid = std::clamp(0.5f * (a.hi + out[u].lo), a.lo, std::max(a.lo, out[u].hi));
                     a.hi = out[u].lo = mid;
+                    out[u].hi = std::max(out[u].hi, mid);
                 }
             }
             previous = j;

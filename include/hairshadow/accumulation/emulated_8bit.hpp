@@ -16,7 +16,7 @@ namespace hairshadow {
 /// Every add quantised to 8 bits and saturated, as additive blending into an RGBA8 target does.
 struct emulated_8bit {
     using value_type = std::uint8_t;
-    using sum_type = std::int32_t; ///< exact: saturating adds of non-negative steps equal min(255, sum)
+    using sum_type = std::int32_t; ///< saturated at 255 after every add, exactly as the blend does
     static constexpr std::string_view name = "8bit";
     static constexpr std::string_view glsl_name = "accumulation/emulated_8bit";
     /// exp(-kappa) = 2^-8: kappa = 8 ln 2, about 5.545 (the paper rounds it to 5.56).
@@ -26,8 +26,8 @@ struct emulated_8bit {
     static std::int32_t quantise(float optical_depth) noexcept {
         return std::int32_t(std::lround(std::clamp(optical_depth / kappa, 0.0f, 1.0f) * 255.0f));
     }
-    static sum_type add(sum_type sum, float optical_depth) noexcept { return sum + quantise(optical_depth); }
-    static constexpr sum_type combine(sum_type a, sum_type b) noexcept { return a + b; }
+    static sum_type add(sum_type sum, float optical_depth) noexcept { return std::min<sum_type>(sum + quantise(optical_depth), 255); }
+    static constexpr sum_type combine(sum_type a, sum_type b) noexcept { return std::min<sum_type>(a + b, 255); }
     static constexpr value_type store(sum_type sum) noexcept { return value_type(std::min<sum_type>(sum, 255)); }
     static constexpr float decode(value_type v) noexcept { return kappa * float(v) / 255.0f; }
 };

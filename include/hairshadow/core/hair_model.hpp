@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -46,6 +47,8 @@ struct hair_model {
     }
     /// Appends a strand; the per-point arrays, when present, must be appended by the caller.
     void add_strand(std::span<const glm::vec3> strand_points) {
+        if (strand_points.size() > std::numeric_limits<std::uint32_t>::max() - points.size())
+            throw model_error("more than 2^32 points");
         points.insert(points.end(), strand_points.begin(), strand_points.end());
         strand_offsets.push_back(static_cast<std::uint32_t>(points.size()));
     }

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <exception>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -31,7 +32,9 @@ void parallel_for(std::size_t count, const execution& exec, Body&& body, std::si
     if (count == 0) return;
     grain = std::max<std::size_t>(grain, 1);
     const std::size_t chunks = (count + grain - 1) / grain;
-    const unsigned threads = static_cast<unsigned>(std::min<std::size_t>(exec.resolved(), chunks));
+    // More threads than items, or than a few per core, only cost start-up time.
+    const std::size_t useful = std::max<std::size_t>(4 * std::max(1u, std::thread::hardware_concurrency()), 1);
+    const unsigned threads = static_cast<unsigned>(std::min({std::size_t(exec.resolved()), chunks, useful}));
     if (threads <= 1) {
         for (std::size_t i = 0; i < count; ++i) body(i);
         return;
@@ -53,7 +56,11 @@ void parallel_for(std::size_t count, const execution& exec, Body&& body, std::si
     };
     std::vector<std::thread> pool;
     pool.reserve(threads - 1);
-    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+    try {
+        for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+    } catch (const std::system_error&) {
+        // The system refused another thread: the ones started (and this one) drain every chunk anyway.
+    }
     worker();
     for (auto& t : pool) t.join();
     if (failure) std::rethrow_exception(failure);

@@ -48,8 +48,11 @@ inline hair_model read_hair(const std::string& path) {
     if (!(fields & hair_has_points)) in.fail("the bit field announces no points array");
     if (fields & ~std::uint32_t(31)) in.fail("unknown bits in the bit field");
     if (strands == 0) in.fail("the model has no strands");
-    // A strand holds at least one point, so the point array bounds the strand count before allocating.
+    // A strand holds at least one point, and every point takes 12 bytes: both bound the counts before
+    // anything is allocated or looped over.
+    if (strands > point_total) in.fail(std::to_string(strands) + " strands cannot share " + std::to_string(point_total) + " points");
     in.require(strands, fields & hair_has_segments ? 2 : 0, "segments array");
+    in.require(point_total, 12, "points array");
 
     std::vector<std::uint16_t> segments;
     if (fields & hair_has_segments) {

@@ -74,10 +74,17 @@ public:
         if (spec().tolerance) compressed_.emplace(*exact_, *spec().tolerance, exec);
     }
     float optical_depth(int x, int y, float depth) const override {
+        if (!exact_) return 0.0f; // not built: no shadow, like an unbuilt shadow_method
         return compressed_ ? compressed_->optical_depth(x, y, depth) : exact_->optical_depth(x, y, depth);
     }
-    const light_space& light() const override { return exact_->light(); }
-    std::size_t memory_bytes() const override { return compressed_ ? compressed_->memory_bytes() : exact_->memory_bytes(); }
+    const light_space& light() const override {
+        if (!exact_) throw argument_error("the exact map has no light before build()");
+        return exact_->light();
+    }
+    std::size_t memory_bytes() const override {
+        if (!exact_) return 0;
+        return compressed_ ? compressed_->memory_bytes() : exact_->memory_bytes();
+    }
     int layer_count() const override { return 0; }
     std::optional<std::size_t> memory_bytes_at(int) const override { return std::nullopt; }
     int stored_maps() const override { return 0; }

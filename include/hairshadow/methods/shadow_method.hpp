@@ -90,8 +90,8 @@ public:
 
 private:
     Placement placement_;
-    light_space light_;
-    std::vector<texel_maps> texels_;
+    light_space light_;                                  // 1x1 until built, so early queries see no shadow
+    std::vector<texel_maps> texels_ = std::vector<texel_maps>(1);
 };
 
 } // namespace hairshadow

@@ -91,8 +91,9 @@ public:
                 auto& a = out[std::size_t(previous)];
                 if (a.hi > out[u].lo) {
                     // R1 = L2 = (R1 + L2) / 2, kept within both bins so that neither turns inside out.
-                    const float mid = std::clamp(0.5f * (a.hi + out[u].lo), a.lo, out[u].hi);
+                    const float mid = std::clamp(0.5f * (a.hi + out[u].lo), a.lo, std::max(a.lo, out[u].hi));
                     a.hi = out[u].lo = mid;
+                    out[u].hi = std::max(out[u].hi, mid);
                 }
             }
             previous = j;

@@ -80,7 +80,8 @@ inline hair_model make_procedural(const procedural_options& o) {
     if (!(o.head_radius > 0) || !(o.length > 0) || !std::isfinite(o.head_radius) || !std::isfinite(o.length) ||
         !std::isfinite(o.wave_amplitude) || !(o.wave_length > 0) || !std::isfinite(o.wave_length))
         throw argument_error("procedural model: radius, length and wave length must be positive and finite");
-    if (o.style == hair_style::clumped && o.clumps == 0) throw argument_error("procedural model: clumps must be at least 1");
+    if (o.style == hair_style::clumped && (o.clumps == 0 || o.clumps > o.strands))
+        throw argument_error("procedural model: clumps must be between 1 and the number of strands");
 
     random_stream rng(o.seed);
     std::vector<glm::vec3> clump_normals;
@@ -143,8 +144,8 @@ inline hair_model grow_follow_hair(const hair_model& guides, std::size_t per_gui
                                    float tip_spread = 1.5f) {
     if (per_guide == 0) throw argument_error("follow hair: at least 1 strand per guide is needed");
     if (!(radius >= 0) || !std::isfinite(radius) || !std::isfinite(tip_spread)) throw argument_error("follow hair: radius must be finite and >= 0");
-    if (guides.segment_count() > max_procedural_segments / per_guide)
-        throw argument_error("follow hair: the result would exceed " + std::to_string(max_procedural_segments) + " segments");
+    if (guides.point_count() > max_procedural_segments / per_guide)
+        throw argument_error("follow hair: the result would exceed " + std::to_string(max_procedural_segments) + " points");
     hair_model out;
     out.default_thickness = guides.default_thickness;
     out.default_transparency = guides.default_transparency;

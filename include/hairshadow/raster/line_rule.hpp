@@ -2,8 +2,8 @@
 /// @file
 /// OpenGL's aliased line rule (the diamond-exit rule, GL 4.6 core section 14.5.1) in exact fixed-point
 /// arithmetic. Fragment f is produced when the segment meets f's diamond |x - xc| + |y - yc| < 1/2 and
-/// the segment's end is not inside it, with both endpoints perturbed by (e, e^2) for a vanishing e so
-/// that boundary cases are decided the way the specification describes.
+/// the segment's end is not inside it, with both endpoints moved by -(e, e^2) for a vanishing e, as the
+/// specification perturbs them, so that boundary cases are decided the way it describes.
 
 #include <hairshadow/config.hpp>
 
@@ -32,22 +32,25 @@ inline std::int64_t floor_div(std::int64_t a, std::int64_t b) noexcept { // b > 
     const std::int64_t q = a / b;
     return (a % b != 0 && a < 0) ? q - 1 : q;
 }
+inline std::int64_t ceil_div(std::int64_t a, std::int64_t b) noexcept { return -floor_div(-a, b); } // b > 0
 
-/// Is point p, perturbed by (e, e^2), inside the open diamond of texel (c, r)? On the boundary the
-/// perturbation's x term decides: the point is inside exactly when it lies left of the centre.
+/// Is point p, moved by -(e, e^2), inside the open diamond of texel (c, r)? On the boundary the
+/// perturbation's x term decides: the point is inside exactly when it lies right of the centre.
 inline bool inside_diamond(const fixed_point& p, std::int64_t c, std::int64_t r) noexcept {
     constexpr std::int64_t half = subpixel_scale / 2;
     const std::int64_t u = p.x - (c * subpixel_scale + half);
     const std::int64_t v = p.y - (r * subpixel_scale + half);
     const std::int64_t l1 = std::llabs(u) + std::llabs(v);
-    return l1 < half || (l1 == half && u < 0);
+    return l1 < half || (l1 == half && u > 0);
 }
 } // namespace detail
 
 /// Calls emit(x, y) for every fragment of the segment a -> b inside `clip`, following the diamond-exit
-/// rule. A zero-length segment produces nothing. Coordinates must be within +-2^26 texels.
+/// rule. A zero-length segment produces nothing. Coordinates must be within +-2^20 texels (the
+/// rasteriser's guard band), which keeps every product below 2^63.
 template <class Emit>
 void rasterize_line(const fixed_point& a, const fixed_point& b, const texel_rect& clip, Emit&& emit) {
+    using detail::ceil_div;
     using detail::floor_div;
     using detail::inside_diamond;
     constexpr std::int64_t S = subpixel_scale, H = subpixel_scale / 2;
@@ -58,15 +61,16 @@ void rasterize_line(const fixed_point& a, const fixed_point& b, const texel_rect
     const std::int64_t d_major = x_major ? dx : dy, d_minor = x_major ? dy : dx;
     const std::int64_t minor_a = x_major ? a.y : a.x;
     // Texel centres c*S + H on the major axis that the perturbed segment crosses: for increasing
-    // coordinates major_a < centre <= major_b, for decreasing major_b < centre <= major_a.
+    // coordinates major_a <= centre < major_b, for decreasing major_b <= centre < major_a.
     const std::int64_t lo_end = d_major > 0 ? major_a : major_b, hi_end = d_major > 0 ? major_b : major_a;
-    const std::int64_t first = floor_div(lo_end - H, S) + 1, last = floor_div(hi_end - H, S);
+    const std::int64_t first = ceil_div(lo_end - H, S), last = ceil_div(hi_end - H, S) - 1;
     const std::int64_t clip_lo = x_major ? clip.x0 : clip.y0, clip_hi = x_major ? clip.x1 : clip.y1;
     const std::int64_t denom = (d_major > 0 ? d_major : -d_major) * S;
     const std::int64_t sign = d_major > 0 ? 1 : -1;
-    // Ties on the minor axis: an x-major line through a texel corner row goes to the lower row when the
-    // slope is positive (the perturbation moves it by -slope*e); a y-major line always goes right (+e).
-    const bool lower_on_tie = x_major && (dx > 0) == (dy > 0) && dy != 0;
+    // Ties on the minor axis (the line through a texel corner row or column): an x-major line moves by
+    // slope * e - e^2, so it goes to the lower row unless its slope is positive; a y-major line moves
+    // by -e in x and always goes to the left column.
+    const bool lower_on_tie = !x_major || dy == 0 || (dx > 0) != (dy > 0);
     const std::int64_t m_begin = std::max(first, clip_lo), m_end = std::min(last, clip_hi - 1);
     if (m_begin <= m_end) {
         // The minor coordinate at successive centres, num / denom, advances by a constant step: keep its
@@ -84,8 +88,9 @@ void rasterize_line(const fixed_point& a, const fixed_point& b, const texel_rect
             if (rem >= denom) rem -= denom, ++n;
         }
     }
-    // A segment that starts inside a diamond it does not cross the centre line of still exits it.
-    const std::int64_t ax = floor_div(a.x, S), ay = floor_div(a.y, S);
+    // A segment that starts inside a diamond it does not cross the centre line of still exits it. The
+    // perturbed start lies in the texel of (a.x - e, a.y - e^2).
+    const std::int64_t ax = floor_div(a.x - 1, S), ay = floor_div(a.y - 1, S);
     const std::int64_t a_major = x_major ? ax : ay;
     if (inside_diamond(a, ax, ay) && (a_major < first || a_major > last) && !inside_diamond(b, ax, ay) && clip.contains(ax, ay))
         emit(int(ax), int(ay));

@@ -27,7 +27,8 @@ struct raster_options {
     /// When set, every fragment gets this alpha instead of its coverage (`--alpha A`).
     std::optional<float> fixed_alpha{};
     /// Pre-filtered wide lines (Mertens et al. 2004, section 3.4): a screen-aligned band of this many
-    /// texels across each segment with a Gaussian profile, instead of the aliased line rule. 0 = off.
+    /// texels across each segment with a Gaussian profile, instead of the aliased line rule. 0 = off;
+    /// otherwise at least 2, below which texel-centre samples of the profile alias.
     float wide_line_width = 0.0f;
     /// Perspective lights: weight coverage by reciprocal depth (Mertens et al. 2004, section 3.4), i.e.
     /// divide the thickness by the texel's footprint at the fragment's depth rather than at mid-range.
@@ -71,12 +72,42 @@ inline bool prepare_segment(const light_space& ls, glm::vec3 p0, glm::vec3 p1, f
         const float v0 = o0 + (o1 - o0) * s0, v1 = o0 + (o1 - o0) * s1;
         p0 = q0, p1 = q1, t0 = u0, t1 = u1, o0 = v0, o1 = v1;
     }
-    const light_point a = ls.project(p0), b = ls.project(p1);
-    // Keep coordinates well inside the fixed-point range; such far-off points only arise for
-    // perspective lights and lie outside the map anyway.
-    const float guard = float(1 << 24);
-    if (!(std::abs(a.window.x) < guard && std::abs(a.window.y) < guard && std::abs(b.window.x) < guard && std::abs(b.window.y) < guard))
-        return false;
+    light_point a = ls.project(p0), b = ls.project(p1);
+    // Clip to a guard band of +-2^20 texels in window space (perspective lights can throw points
+    // near the near plane far off the map), keeping the fixed-point line rule free of overflow.
+    // Attributes at a clipped end are interpolated perspective-correctly, as GL would.
+    const float guard = float(1 << 20);
+    if (!(std::abs(a.window.x) <= guard && std::abs(a.window.y) <= guard && std::abs(b.window.x) <= guard && std::abs(b.window.y) <= guard)) {
+        double lo_s = 0.0, hi_s = 1.0;
+        for (int axis = 0; axis < 2; ++axis) {
+            const double from = a.window[axis], delta = double(b.window[axis]) - from;
+            for (const double limit : {-double(guard), double(guard)}) {
+                const bool upper = limit > 0;
+                if (delta == 0.0) {
+                    if (upper ? from > limit : from < limit) return false;
+                    continue;
+                }
+                const double s = (limit - from) / delta;
+                if ((delta > 0) == upper) hi_s = std::min(hi_s, s);
+                else lo_s = std::max(lo_s, s);
+            }
+        }
+        if (!(lo_s < hi_s)) return false;
+        const light_point a0 = a, b0 = b;
+        auto at = [&](double s, float fa, float fb) {
+            const double ia = 1.0 / a0.w, ib = 1.0 / b0.w, inv = (1.0 - s) * ia + s * ib;
+            return float(((1.0 - s) * fa * ia + s * fb * ib) / inv);
+        };
+        auto end = [&](double s) {
+            const double ia = 1.0 / a0.w, ib = 1.0 / b0.w;
+            return light_point{glm::vec2(float(a0.window.x + s * (double(b0.window.x) - a0.window.x)),
+                                         float(a0.window.y + s * (double(b0.window.y) - a0.window.y))),
+                               at(s, a0.depth, b0.depth), float(1.0 / ((1.0 - s) * ia + s * ib))};
+        };
+        const float t_lo = at(lo_s, t0, t1), t_hi = at(hi_s, t0, t1), o_lo = at(lo_s, o0, o1), o_hi = at(hi_s, o0, o1);
+        a = end(lo_s), b = end(hi_s);
+        t0 = t_lo, t1 = t_hi, o0 = o_lo, o1 = o_hi;
+    }
     out = {{snap(a.window.x), snap(a.window.y)}, {snap(b.window.x), snap(b.window.y)}, a.depth, b.depth, 1.0f / a.w, 1.0f / b.w,
            t0, t1, o0, o1};
     return !(out.a == out.b);
@@ -97,7 +128,7 @@ inline fragment shade_fragment(const light_space& ls, const raster_options& opt,
         const float footprint = ls.texel_size(opt.depth_weighting ? depth : 0.5f);
         alpha = opacity * std::min(1.0f, thickness / footprint) * weight;
     }
-    return {depth, std::clamp(alpha, 0.0f, HAIRSHADOW_ALPHA_MAX)};
+    return {depth, alpha > 0.0f ? std::min(alpha, HAIRSHADOW_ALPHA_MAX) : 0.0f}; // NaN gives 0
 }
 
 /// Window-space parameter of the texel centre (x, y) along a -> b, as in GL's line interpolation.
@@ -143,7 +174,8 @@ public:
     explicit rasterizer(const raster_options& options = {}) : opt_(options) {
         if (opt_.fixed_alpha && !(*opt_.fixed_alpha >= 0.0f && *opt_.fixed_alpha <= 1.0f))
             throw argument_error("fixed alpha must be in [0, 1]");
-        if (!(opt_.wide_line_width >= 0.0f && opt_.wide_line_width <= 64.0f)) throw argument_error("wide line width must be in [0, 64] texels");
+        if (!(opt_.wide_line_width == 0.0f || (opt_.wide_line_width >= 2.0f && opt_.wide_line_width <= 64.0f)))
+            throw argument_error("wide line width must be 0 (off) or in [2, 64] texels");
         if (opt_.tile_size < 8 || opt_.tile_size > 1024) throw argument_error("tile size must be in [8, 1024]");
     }
 
@@ -190,22 +222,13 @@ private:
         const std::size_t tile_count = std::size_t(tiles_x_) * std::size_t(tiles_x_);
         const std::size_t segment_count = segments_.size();
         const std::size_t chunk_size = (segment_count + chunks - 1) / chunks;
-        const std::int64_t reach = std::int64_t(std::ceil(1.0 + 0.5 * double(opt_.wide_line_width))) * subpixel_scale;
+        const double reach = 1.0 + 0.5 * double(opt_.wide_line_width); // texels around the segment that it may touch
         auto for_each_tile_of_chunk = [&](std::size_t c, auto&& visit) {
             const std::size_t begin = c * chunk_size, end = std::min(segment_count, begin + chunk_size);
             for (std::size_t seg = begin; seg < end; ++seg) {
                 const auto& s = segments_[seg];
                 if (s.a == s.b) continue; // nothing to draw (clipped away or zero length)
-                // Texel bounds of the segment plus its reach; arithmetic shifts floor negative values.
-                const std::int64_t lo_x = (std::min(s.a.x, s.b.x) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
-                const std::int64_t hi_x = (std::max(s.a.x, s.b.x) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
-                const std::int64_t lo_y = (std::min(s.a.y, s.b.y) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
-                const std::int64_t hi_y = (std::max(s.a.y, s.b.y) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
-                if (hi_x < 0 || hi_y < 0 || lo_x >= res || lo_y >= res) continue;
-                const int tx0 = int(std::max<std::int64_t>(lo_x, 0)) / opt_.tile_size, tx1 = int(std::min<std::int64_t>(hi_x, res - 1)) / opt_.tile_size;
-                const int ty0 = int(std::max<std::int64_t>(lo_y, 0)) / opt_.tile_size, ty1 = int(std::min<std::int64_t>(hi_y, res - 1)) / opt_.tile_size;
-                for (int ty = ty0; ty <= ty1; ++ty)
-                    for (int tx = tx0; tx <= tx1; ++tx) visit(seg, std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx));
+                visit_tiles(s, reach, [&](std::size_t t) { visit(seg, t); });
             }
         };
         cursor_.assign(chunks * tile_count, 0);
@@ -227,6 +250,33 @@ private:
         parallel_for(chunks, opt_.exec, [&](std::size_t c) {
             for_each_tile_of_chunk(c, [&](std::size_t seg, std::size_t t) { binned_[cursor_[c * tile_count + t]++] = std::uint32_t(seg); });
         });
+    }
+
+    /// Calls visit(tile) for each tile within `reach` texels of the segment: row by row of tiles, only
+    /// the columns the segment's piece in that row (widened by reach) spans, so that a long diagonal
+    /// segment visits O(its length) tiles rather than its bounding box.
+    template <class Visit>
+    void visit_tiles(const detail::prepared_segment& s, double reach, Visit&& visit) const {
+        const double ax = double(s.a.x) / subpixel_scale, ay = double(s.a.y) / subpixel_scale;
+        const double bx = double(s.b.x) / subpixel_scale, by = double(s.b.y) / subpixel_scale;
+        const double tile = opt_.tile_size;
+        const double lo_y = std::min(ay, by) - reach, hi_y = std::max(ay, by) + reach;
+        if (hi_y < 0 || lo_y >= res_ || std::max(ax, bx) + reach < 0 || std::min(ax, bx) - reach >= res_) return;
+        const int ty0 = std::max(0, int(std::floor(lo_y / tile))), ty1 = std::min(tiles_x_ - 1, int(std::floor(hi_y / tile)));
+        for (int ty = ty0; ty <= ty1; ++ty) {
+            // The part of the segment whose y lies in this tile row's band, widened by reach.
+            const double band_lo = ty * tile - reach, band_hi = (ty + 1) * tile + reach;
+            double s0 = 0.0, s1 = 1.0;
+            if (by != ay) {
+                const double u = (band_lo - ay) / (by - ay), v = (band_hi - ay) / (by - ay);
+                s0 = std::max(s0, std::min(u, v)), s1 = std::min(s1, std::max(u, v));
+                if (s0 > s1) continue;
+            }
+            const double x0 = ax + s0 * (bx - ax), x1 = ax + s1 * (bx - ax);
+            const int tx0 = std::max(0, int(std::floor((std::min(x0, x1) - reach) / tile)));
+            const int tx1 = std::min(tiles_x_ - 1, int(std::floor((std::max(x0, x1) + reach) / tile)));
+            for (int tx = tx0; tx <= tx1; ++tx) visit(std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx));
+        }
     }
 
     texel_rect tile_rect(std::size_t t) const noexcept {

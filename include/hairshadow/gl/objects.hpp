@@ -1,0 +1,116 @@
+#pragma once
+/// @file
+/// RAII owners of GL objects, and shader programs whose compile and link logs become exceptions.
+
+#include <hairshadow/gl/error.hpp>
+
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace hairshadow::gl {
+
+/// Owns one GL name; `Delete` frees it.
+template <void (*Delete)(GLuint)>
+class object {
+public:
+    object() = default;
+    explicit object(GLuint name) : name_(name) {}
+    ~object() { reset(); }
+    object(object&& o) noexcept : name_(std::exchange(o.name_, 0)) {}
+    object& operator=(object&& o) noexcept {
+        if (this != &o) reset(), name_ = std::exchange(o.name_, 0);
+        return *this;
+    }
+    object(const object&) = delete;
+    object& operator=(const object&) = delete;
+    GLuint get() const noexcept { return name_; }
+    explicit operator bool() const noexcept { return name_ != 0; }
+    void reset() noexcept {
+        if (name_) Delete(name_);
+        name_ = 0;
+    }
+
+private:
+    GLuint name_ = 0;
+};
+
+namespace detail {
+inline void delete_buffer(GLuint n) { glDeleteBuffers(1, &n); }
+inline void delete_texture(GLuint n) { glDeleteTextures(1, &n); }
+inline void delete_framebuffer(GLuint n) { glDeleteFramebuffers(1, &n); }
+inline void delete_vertex_array(GLuint n) { glDeleteVertexArrays(1, &n); }
+inline void delete_shader(GLuint n) { glDeleteShader(n); }
+inline void delete_program(GLuint n) { glDeleteProgram(n); }
+inline void delete_query(GLuint n) { glDeleteQueries(1, &n); }
+
+} // namespace detail
+
+using buffer = object<detail::delete_buffer>;
+using texture = object<detail::delete_texture>;
+using framebuffer = object<detail::delete_framebuffer>;
+using vertex_array = object<detail::delete_vertex_array>;
+using shader = object<detail::delete_shader>;
+using program = object<detail::delete_program>;
+using query = object<detail::delete_query>;
+
+inline buffer make_buffer() {
+    GLuint n = 0;
+    glGenBuffers(1, &n);
+    return buffer(n);
+}
+inline texture make_texture() {
+    GLuint n = 0;
+    glGenTextures(1, &n);
+    return texture(n);
+}
+inline framebuffer make_framebuffer() {
+    GLuint n = 0;
+    glGenFramebuffers(1, &n);
+    return framebuffer(n);
+}
+inline vertex_array make_vertex_array() {
+    GLuint n = 0;
+    glGenVertexArrays(1, &n);
+    return vertex_array(n);
+}
+
+/// Compiles one stage from pieces (the version line, defines, snippets); throws gl_error with the log.
+inline shader compile_shader(GLenum stage, const std::vector<std::string_view>& pieces, const std::string& name) {
+    shader s(glCreateShader(stage));
+    std::vector<const GLchar*> sources;
+    std::vector<GLint> lengths;
+    for (auto p : pieces) sources.push_back(p.data()), lengths.push_back(GLint(p.size()));
+    glShaderSource(s.get(), GLsizei(sources.size()), sources.data(), lengths.data());
+    glCompileShader(s.get());
+    GLint ok = 0;
+    glGetShaderiv(s.get(), GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetShaderiv(s.get(), GL_INFO_LOG_LENGTH, &length);
+        std::string log(std::size_t(std::max(length, 1)), '\0');
+        glGetShaderInfoLog(s.get(), length, nullptr, log.data());
+        throw gl_error("cannot compile " + name + ":\n" + log);
+    }
+    return s;
+}
+
+/// Links stages into a program; throws gl_error with the log.
+inline program link_program(const std::vector<const shader*>& stages, const std::string& name) {
+    program p(glCreateProgram());
+    for (const auto* s : stages) glAttachShader(p.get(), s->get());
+    glLinkProgram(p.get());
+    GLint ok = 0;
+    glGetProgramiv(p.get(), GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetProgramiv(p.get(), GL_INFO_LOG_LENGTH, &length);
+        std::string log(std::size_t(std::max(length, 1)), '\0');
+        glGetProgramInfoLog(p.get(), length, nullptr, log.data());
+        throw gl_error("cannot link " + name + ":\n" + log);
+    }
+    return p;
+}
+
+} // namespace hairshadow::gl

@@ -1,0 +1,97 @@
+#!/usr/bin/env python3
+"""Validates the GLSL snippets under shaders/ with glslangValidator (Debian's glslang-tools): each
+composition below is what a program would concatenate (version line, defines, snippets, a main), so
+every snippet is compiled in every configuration it is used in.
+
+    scripts/validate_shaders.py [--validator PATH]   exit 1 on the first failure, printing the log
+"""
+import pathlib
+import subprocess
+import sys
+import tempfile
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+SHADERS = ROOT / "shaders"
+VERSION = "#version 430 core\n"
+ALPHA = "#define HS_ALPHA_MAX 0.999\n"
+
+# A fragment-stage main that exercises a placement's and a reconstruction's functions.
+PLANAR_MAIN = """
+float hs_through_layer(int k) { return float(k); }
+#include reconstruction/interpolation
+out vec4 hs_out;
+void main() { hs_out = vec4(hs_interpolate(hs_locate(hs_fragment_optical_depth())), float(hs_assign(0.5)), hs_encode(1.0), hs_decode(1.0)); }
+"""
+DEPTH_RANGE_MAIN = """
+#include reconstruction/occupancy_bitcount
+out vec4 hs_out;
+void main() {
+    uint bits[HS_WORDS];
+    for (int i = 0; i < HS_WORDS; ++i) bits[i] = uint(i);
+    float slabs[HS_SLABS];
+    for (int i = 0; i < HS_SLABS; ++i) slabs[i] = float(i);
+    vec2 range = vec2(0.1, 0.9);
+    hs_out = vec4(hs_occupancy_optical_depth(hs_locate(range, hs_fragment_optical_depth()), bits, slabs), float(hs_assign(range, 0.5)), 0.0, 1.0);
+}
+"""
+PER_PIXEL_MAIN = """
+float hs_through_layer(int k) { return float(k); }
+#include reconstruction/interpolation
+out vec4 hs_out;
+void main() { hs_out = vec4(hs_interpolate(hs_locate(0.1, 1.0, hs_fragment_optical_depth())), float(hs_assign(0.1, 1.0, 0.5)), 0.0, 1.0); }
+"""
+
+COMPOSITIONS = {
+    "vertex": ("vert", "", ["raster/vertex"], "void hs_unused() {}\n"),
+}
+for accumulation in ("float", "emulated_8bit"):
+    for defines, tag in (("", "uniform"), ("#define HS_GAMMA_SPACING\n", "gamma")):
+        COMPOSITIONS[f"planar_{tag}_{accumulation}"] = ("frag", "#define HS_LAYERS 16\n" + defines,
+            ["raster/coverage", f"accumulation/{accumulation}", "placement/common", "placement/planar_slices"], PLANAR_MAIN)
+    for defines, tag in (("", "linear_clamp"), ("#define HS_UNIFORM_SIZES\n#define HS_BEYOND_EXTEND\n", "uniform_extend"),
+                         ("#define HS_BEYOND_IGNORE\n", "linear_ignore")):
+        COMPOSITIONS[f"per_pixel_{tag}_{accumulation}"] = ("frag", "#define HS_LAYERS 3\n" + defines,
+            ["raster/coverage", f"accumulation/{accumulation}", "placement/common", "placement/per_pixel_depth"], PER_PIXEL_MAIN)
+    for layers, slabs in ((128, 4), (32, 1), (256, 8)):
+        COMPOSITIONS[f"depth_range_{layers}_{slabs}_{accumulation}"] = ("frag", f"#define HS_LAYERS {layers}\n#define HS_SLABS {slabs}\n",
+            ["raster/coverage", f"accumulation/{accumulation}", "placement/common", "placement/depth_range"], DEPTH_RANGE_MAIN)
+
+
+def expand(text: str) -> str:
+    """Inlines '#include family/name' lines (our composition shorthand, not GLSL's)."""
+    out = []
+    for line in text.splitlines():
+        if line.startswith("#include "):
+            out.append((SHADERS / (line.split()[1] + ".glsl")).read_text(encoding="utf-8"))
+        else:
+            out.append(line)
+    return "\n".join(out) + "\n"
+
+
+def main() -> int:
+    validator = "glslangValidator"
+    if "--validator" in sys.argv:
+        validator = sys.argv[sys.argv.index("--validator") + 1]
+    used = set()
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, (stage, defines, snippets, main_text) in COMPOSITIONS.items():
+            used.update(snippets)
+            source = VERSION + ALPHA + defines + "".join(expand(f"#include {s}") for s in snippets) + expand(main_text)
+            used.update(line.split()[1] for line in main_text.splitlines() if line.startswith("#include "))
+            path = pathlib.Path(tmp) / f"{name}.{stage}"
+            path.write_text(source, encoding="utf-8")
+            result = subprocess.run([validator, str(path)], capture_output=True, text=True)
+            if result.returncode != 0:
+                print(f"validate_shaders: {name} failed:\n{result.stdout}{result.stderr}", file=sys.stderr)
+                return 1
+    every = {str(p.relative_to(SHADERS).with_suffix("")) for p in SHADERS.rglob("*.glsl")}
+    unvalidated = sorted(every - used)
+    if unvalidated:
+        print(f"validate_shaders: not validated by any composition: {', '.join(unvalidated)}", file=sys.stderr)
+        return 1
+    print(f"validate_shaders: {len(COMPOSITIONS)} compositions of {len(every)} snippets are valid GLSL")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,38 @@
+// Deep opacity maps' per-pixel layers (Yuksel & Keyser 2008, section 3): layer k spans
+// [z0 + d_{k-1}, z0 + d_k), d_k = d_K k(k+1) / (K(K+1)) (linear sizes) or d_K k / K when
+// HS_UNIFORM_SIZES is defined; beyond d_K fragments clamp into the last layer, are dropped
+// (HS_BEYOND_IGNORE) or the layers stretch to the texel's last fragment (HS_BEYOND_EXTEND, with the
+// stretch factor in hs_scale). Mirrors per_pixel_depth.
+uniform float hs_layer_extent; // d_K in linear depth
+
+float hs_relative_boundary(int k) {
+#ifdef HS_UNIFORM_SIZES
+    return float(k) / float(HS_LAYERS);
+#else
+    return float(k * (k + 1)) / float(HS_LAYERS * (HS_LAYERS + 1));
+#endif
+}
+
+hs_layer_position hs_locate(float z0, float hs_scale, float depth) {
+    precise float rel = (depth - z0) / (hs_layer_extent * hs_scale);
+    if (!(rel >= 0.0)) return hs_layer_position(-1, 0.0);
+    if (rel >= 1.0) return hs_layer_position(HS_LAYERS, 0.0);
+#ifdef HS_UNIFORM_SIZES
+    float estimate = rel * float(HS_LAYERS);
+#else
+    float estimate = (sqrt(1.0 + 4.0 * rel * float(HS_LAYERS * (HS_LAYERS + 1))) - 1.0) * 0.5;
+#endif
+    int k = hs_estimate_index(estimate, HS_LAYERS - 1);
+    while (k > 0 && rel < hs_relative_boundary(k)) --k;
+    while (k < HS_LAYERS - 1 && rel >= hs_relative_boundary(k + 1)) ++k;
+    return hs_position_in(k, rel, hs_relative_boundary(k), hs_relative_boundary(k + 1));
+}
+
+int hs_assign(float z0, float hs_scale, float depth) {
+    hs_layer_position p = hs_locate(z0, hs_scale, depth);
+    if (p.index < 0) return 0;
+#ifdef HS_BEYOND_IGNORE
+    if (p.index >= HS_LAYERS) return -1;
+#endif
+    return min(p.index, HS_LAYERS - 1);
+}
