@@ -49,7 +49,7 @@ inline bool inside_diamond(const fixed_point& p, std::int64_t c, std::int64_t r)
 /// rule. A zero-length segment produces nothing. Coordinates must be within +-2^20 texels (the
 /// rasteriser's guard band), which keeps every product below 2^63.
 template <class Emit>
-void rasterize_line(const fixed_point& a, const fixed_point& b, const texel_rect& clip, Emit&& emit) {
+HAIRSHADOW_ALWAYS_INLINE inline void rasterize_line(const fixed_point& a, const fixed_point& b, const texel_rect& clip, Emit&& emit) {
     using detail::ceil_div;
     using detail::floor_div;
     using detail::inside_diamond;
