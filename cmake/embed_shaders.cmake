@@ -1,10 +1,13 @@
 # Embeds every shaders/<family>/<name>.glsl as a raw string literal in a C++ header.
 #   cmake -DSHADER_DIR=<dir> -DOUTPUT=<header> -P embed_shaders.cmake
-# The header is written only when its content changes, so that nothing rebuilds needlessly.
+# The header is written only when its content changes, so that nothing rebuilds needlessly. With
+# -DCHECK=ON nothing is written: the script fails if <header> differs from a fresh generation.
 cmake_minimum_required(VERSION 3.21)
 if(NOT SHADER_DIR OR NOT OUTPUT)
     message(FATAL_ERROR "usage: cmake -DSHADER_DIR=<dir> -DOUTPUT=<header> -P embed_shaders.cmake")
 endif()
+get_filename_component(SHADER_DIR "${SHADER_DIR}" ABSOLUTE)
+get_filename_component(OUTPUT "${OUTPUT}" ABSOLUTE)
 file(GLOB_RECURSE sources RELATIVE "${SHADER_DIR}" "${SHADER_DIR}/*.glsl")
 list(SORT sources)
 set(body "")
@@ -42,10 +45,16 @@ ${table}}};
 
 } // namespace hairshadow::gl::shaders
 ")
+set(current "")
 if(EXISTS "${OUTPUT}")
     file(READ "${OUTPUT}" current)
-    if(current STREQUAL content)
-        return()
-    endif()
 endif()
-file(WRITE "${OUTPUT}" "${content}")
+if(CHECK)
+    if(NOT current STREQUAL content)
+        message(FATAL_ERROR "${OUTPUT} is stale: regenerate it with cmake -DSHADER_DIR=shaders -DOUTPUT=${OUTPUT} -P cmake/embed_shaders.cmake")
+    endif()
+    return()
+endif()
+if(NOT current STREQUAL content)
+    file(WRITE "${OUTPUT}" "${content}")
+endif()
