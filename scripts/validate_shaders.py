@@ -57,6 +57,23 @@ for accumulation in ("float", "emulated_8bit"):
             ["raster/coverage", f"accumulation/{accumulation}", "placement/common", "placement/depth_range"], DEPTH_RANGE_MAIN)
 
 
+LOOKUP_MAIN = """
+layout(location = 0) in vec3 hs_point;
+layout(std430, binding = 1) buffer hs_results_buffer { float hs_results[]; };
+void main() { hs_results[gl_VertexID] = hs_transmittance(hs_point); gl_Position = vec4(0.0); }
+"""
+COMPOSITIONS["capture"] = ("frag", "", ["raster/coverage", "passes/capture"], "")
+COMPOSITIONS["depth_range_pass"] = ("frag", "", ["raster/coverage", "passes/depth_range"], "")
+for layers, slabs in ((128, 4), (32, 1), (256, 8)):
+    targets = f"#define HS_LAYERS {layers}\n#define HS_SLABS {slabs}\n#define HS_BIT_TARGETS {(layers + 127) // 128}\n" \
+              f"#define HS_SLAB_TARGETS {(slabs + 3) // 4}\n"
+    occupancy = ["raster/coverage", "accumulation/float", "placement/common", "placement/depth_range"]
+    COMPOSITIONS[f"occupancy_bits_{layers}"] = ("frag", targets, occupancy + ["passes/occupancy_bits"], "")
+    COMPOSITIONS[f"occupancy_slabs_{layers}_{slabs}"] = ("frag", targets, occupancy + ["passes/occupancy_slabs"], "")
+    COMPOSITIONS[f"lookup_occupancy_{layers}_{slabs}"] = ("vert", targets, ["accumulation/float", "placement/common", "placement/depth_range",
+                                                                          "reconstruction/occupancy_bitcount", "lookup/occupancy"], LOOKUP_MAIN)
+
+
 def expand(text: str) -> str:
     """Inlines '#include family/name' lines (our composition shorthand, not GLSL's)."""
     out = []

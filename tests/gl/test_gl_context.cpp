@@ -7,6 +7,7 @@
 #include <hairshadow/hairshadow.hpp>
 
 #include "../test_support.hpp"
+#include "gl_test_context.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -16,13 +17,7 @@ using namespace hairshadow;
 
 namespace {
 
-gl::osmesa_context& context() {
-    static gl::osmesa_context ctx(4, 5);
-    static const bool loaded = gladLoadGL(ctx.loader()) != 0;
-    REQUIRE(loaded);
-    ctx.make_current();
-    return ctx;
-}
+gl::osmesa_context& context() { return test::gl_context(); }
 
 const std::string_view version = "#version 450 core\n";
 const std::string_view defines = "#define HS_ALPHA_MAX 0.999\n";

@@ -24,6 +24,90 @@ float hs_encode(float optical_depth) { return optical_depth; }
 float hs_decode(float stored) { return stored; }
 )hs_glsl";
 
+/// shaders/lookup/occupancy.glsl
+inline constexpr std::string_view lookup_occupancy = R"hs_glsl(// float hs_transmittance(vec3 world_pos) for occupancy maps: any user shader can call it after the
+// placement, accumulation and reconstruction snippets. Outside the map the light is unshadowed.
+uniform mat4 hs_lookup_view_projection;
+uniform mat4 hs_lookup_view;
+uniform float hs_lookup_near;
+uniform float hs_lookup_far;
+uniform int hs_lookup_resolution;
+uniform sampler2D hs_range_texture;
+uniform usampler2D hs_bits_texture[HS_BIT_TARGETS];
+uniform sampler2D hs_slabs_texture[HS_SLAB_TARGETS];
+
+float hs_transmittance(vec3 world_pos) {
+    vec4 clip = hs_lookup_view_projection * vec4(world_pos, 1.0);
+    vec2 window = (clip.xy / clip.w + 1.0) * (0.5 * float(hs_lookup_resolution));
+    if (!(clip.w > 0.0) || any(lessThan(window, vec2(0.0))) || any(greaterThanEqual(window, vec2(float(hs_lookup_resolution)))))
+        return 1.0;
+    ivec2 texel = ivec2(window);
+    float depth = (-(hs_lookup_view * vec4(world_pos, 1.0)).z - hs_lookup_near) / (hs_lookup_far - hs_lookup_near);
+    vec4 range = texelFetch(hs_range_texture, texel, 0);
+    uint bits[HS_WORDS];
+    for (int w = 0; w < HS_WORDS; ++w) bits[w] = texelFetch(hs_bits_texture[w / 4], texel, 0)[w % 4];
+    float slabs[HS_SLABS];
+    for (int s = 0; s < HS_SLABS; ++s) slabs[s] = texelFetch(hs_slabs_texture[s / 4], texel, 0)[s % 4];
+    return exp(-hs_occupancy_optical_depth(hs_locate(vec2(range.x, range.w), depth), bits, slabs));
+}
+)hs_glsl";
+
+/// shaders/passes/capture.glsl
+inline constexpr std::string_view passes_capture = R"hs_glsl(// Fragment capture: every fragment's texel, depth, alpha and segment (gl_PrimitiveID) appended to a
+// buffer, so that CPU maps can be built from exactly the fragments GL rasterised.
+layout(std430, binding = 0) buffer hs_capture_buffer {
+    uint hs_captured;
+    uint hs_capture_pad[3];
+    uvec4 hs_capture[];
+};
+uniform int hs_resolution;
+
+void main() {
+    uint i = atomicAdd(hs_captured, 1u);
+    if (i < uint(hs_capture.length()))
+        hs_capture[i] = uvec4(uint(gl_FragCoord.y) * uint(hs_resolution) + uint(gl_FragCoord.x), floatBitsToUint(hs_v_depth),
+                              floatBitsToUint(hs_fragment_alpha()), uint(gl_PrimitiveID));
+}
+)hs_glsl";
+
+/// shaders/passes/depth_range.glsl
+inline constexpr std::string_view passes_depth_range = R"hs_glsl(// Depth-range pass (Sintorn & Assarsson 2009, section 3.1): red keeps the nearest fragment under MIN
+// blending, alpha the furthest under MAX blending (glBlendEquationSeparate(GL_MIN, GL_MAX)).
+out vec4 hs_range_out;
+
+void main() { hs_range_out = vec4(hs_v_depth, 0.0, 0.0, hs_v_depth); }
+)hs_glsl";
+
+/// shaders/passes/occupancy_bits.glsl
+inline constexpr std::string_view passes_occupancy_bits = R"hs_glsl(// Occupancy pass (Sintorn & Assarsson 2009, section 3.1): the bit of the fragment's slice, OR-ed into
+// RGBA32UI targets of 128 bits each by glLogicOp(GL_OR).
+uniform sampler2D hs_range_map; // red: nearest, alpha: furthest
+layout(location = 0) out uvec4 hs_bits_out[HS_BIT_TARGETS];
+
+void main() {
+    vec4 range = texelFetch(hs_range_map, ivec2(gl_FragCoord.xy), 0);
+    int k = hs_assign(vec2(range.x, range.w), hs_v_depth);
+    uvec4 word = uvec4(0u);
+    word[(k % 128) / 32] = 1u << uint(k % 32);
+    for (int t = 0; t < HS_BIT_TARGETS; ++t) hs_bits_out[t] = (k / 128 == t) ? word : uvec4(0u);
+}
+)hs_glsl";
+
+/// shaders/passes/occupancy_slabs.glsl
+inline constexpr std::string_view passes_occupancy_slabs = R"hs_glsl(// Slab pass (Sintorn & Assarsson 2009, section 3.1): the fragment's optical depth added to its slab's
+// channel of RGBA targets (4 slabs each) by additive blending.
+uniform sampler2D hs_range_map;
+layout(location = 0) out vec4 hs_slabs_out[HS_SLAB_TARGETS];
+
+void main() {
+    vec4 range = texelFetch(hs_range_map, ivec2(gl_FragCoord.xy), 0);
+    int slab = hs_assign(vec2(range.x, range.w), hs_v_depth) / (HS_LAYERS / HS_SLABS);
+    vec4 value = vec4(0.0);
+    value[slab % 4] = hs_encode(hs_fragment_optical_depth());
+    for (int t = 0; t < HS_SLAB_TARGETS; ++t) hs_slabs_out[t] = (slab / 4 == t) ? value : vec4(0.0);
+}
+)hs_glsl";
+
 /// shaders/placement/common.glsl
 inline constexpr std::string_view placement_common = R"hs_glsl(// Where a depth falls among a texel's layers: index -1 in front of all, HS_LAYERS behind all,
 // otherwise a fraction of the way through layer `index`. Mirrors hairshadow::layer_position.
@@ -258,9 +342,14 @@ struct entry {
 };
 
 /// Every snippet, sorted by name.
-inline constexpr std::array<entry, 10> all{{
+inline constexpr std::array<entry, 15> all{{
     {"accumulation/emulated_8bit", accumulation_emulated_8bit},
     {"accumulation/float", accumulation_float},
+    {"lookup/occupancy", lookup_occupancy},
+    {"passes/capture", passes_capture},
+    {"passes/depth_range", passes_depth_range},
+    {"passes/occupancy_bits", passes_occupancy_bits},
+    {"passes/occupancy_slabs", passes_occupancy_slabs},
     {"placement/common", placement_common},
     {"placement/depth_range", placement_depth_range},
     {"placement/per_pixel_depth", placement_per_pixel_depth},

@@ -1,0 +1,207 @@
+#pragma once
+/// @file
+/// Occupancy maps on GL (Sintorn & Assarsson 2009, section 3.1): a depth-range pass (MIN / MAX
+/// blending), an occupancy pass (RGBA32UI targets, glLogicOp(GL_OR)) and a slab pass (additive RGBA32F),
+/// the programs composed from the same policy snippets as the CPU kernels' GLSL twins; and the GLSL
+/// look-up hs_transmittance(vec3) for user shaders.
+
+#include <hairshadow/gl/context.hpp>
+#include <hairshadow/gl/hair_mesh.hpp>
+#include <hairshadow/gl/shaders.generated.hpp>
+#include <hairshadow/methods/published.hpp>
+
+#include <string>
+#include <vector>
+
+namespace hairshadow::gl {
+
+/// GL twin of occupancy_maps<S, B> (float accumulation).
+template <int S, int B>
+class occupancy_maps_gl {
+    static_assert(S % 32 == 0 && S % B == 0, "occupancy maps need S a multiple of 32 and of B");
+
+public:
+    static constexpr int bit_targets = (S + 127) / 128;
+    static constexpr int slab_targets = (B + 3) / 4;
+    using cpu_method = occupancy_maps<S, B>;
+
+    /// Compiles the passes; throws feature_error if the context lacks GL 4.3 or enough draw buffers.
+    occupancy_maps_gl() {
+        require_version(4, 3, "occupancy maps on GL");
+        GLint draw_buffers = 0;
+        glGetIntegerv(GL_MAX_DRAW_BUFFERS, &draw_buffers);
+        if (draw_buffers < std::max(bit_targets, slab_targets))
+            throw feature_error("occupancy maps with " + std::to_string(S) + " slices and " + std::to_string(B) + " slabs need " +
+                                std::to_string(std::max(bit_targets, slab_targets)) + " draw buffers; the context has " +
+                                std::to_string(draw_buffers));
+        const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::raster_vertex}, "raster/vertex");
+        const std::string defs = defines();
+        auto fragment = [&](std::string_view pass, const char* name) {
+            return compile_shader(GL_FRAGMENT_SHADER, {version, defs, shaders::raster_coverage, shaders::accumulation_float,
+                                                       shaders::placement_common, shaders::placement_depth_range, pass}, name);
+        };
+        const auto range_fs = fragment(shaders::passes_depth_range, "passes/depth_range");
+        const auto bits_fs = fragment(shaders::passes_occupancy_bits, "passes/occupancy_bits");
+        const auto slabs_fs = fragment(shaders::passes_occupancy_slabs, "passes/occupancy_slabs");
+        range_program_ = link_program({&vs, &range_fs}, "depth-range pass");
+        bits_program_ = link_program({&vs, &bits_fs}, "occupancy pass");
+        slabs_program_ = link_program({&vs, &slabs_fs}, "slab pass");
+    }
+
+    /// The GLSL that defines float hs_transmittance(vec3 world_pos) for these maps: prepend a version
+    /// line to it and bind the maps with bind_lookup().
+    static std::string lookup_source() {
+        std::string s = defines();
+        for (auto piece : {shaders::accumulation_float, shaders::placement_common, shaders::placement_depth_range,
+                           shaders::reconstruction_occupancy_bitcount, shaders::lookup_occupancy})
+            s += piece;
+        return s;
+    }
+
+    /// Builds the maps of `mesh` seen from `light`.
+    void build(const hair_mesh& mesh, const light_space& light, const raster_options& options = {}) {
+        light_ = light;
+        const int res = light.resolution();
+        allocate(res);
+        auto fbo = make_framebuffer();
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo.get());
+        glViewport(0, 0, res, res);
+        glDisable(GL_DEPTH_TEST);
+
+        // 1. Depth range: red = MIN, alpha = MAX.
+        attach({range_.get()});
+        const float clear_range[4] = {3.0e38f, 0.0f, 0.0f, -3.0e38f};
+        glClearBufferfv(GL_COLOR, 0, clear_range);
+        glEnable(GL_BLEND);
+        glBlendEquationSeparate(GL_MIN, GL_MAX);
+        glBlendFunc(GL_ONE, GL_ONE);
+        draw(range_program_, mesh, light, options);
+
+        // 2. Occupancy bits: OR of each fragment's slice bit.
+        glDisable(GL_BLEND);
+        std::vector<GLuint> targets;
+        for (auto& t : bits_) targets.push_back(t.get());
+        attach(targets);
+        const GLuint zero_u[4] = {0, 0, 0, 0};
+        for (int i = 0; i < bit_targets; ++i) glClearBufferuiv(GL_COLOR, i, zero_u);
+        glEnable(GL_COLOR_LOGIC_OP);
+        glLogicOp(GL_OR);
+        draw(bits_program_, mesh, light, options);
+        glDisable(GL_COLOR_LOGIC_OP);
+
+        // 3. Slabs: additive sums of optical depth.
+        targets.clear();
+        for (auto& t : slabs_) targets.push_back(t.get());
+        attach(targets);
+        const float zero_f[4] = {0, 0, 0, 0};
+        for (int i = 0; i < slab_targets; ++i) glClearBufferfv(GL_COLOR, i, zero_f);
+        glEnable(GL_BLEND);
+        glBlendEquation(GL_FUNC_ADD);
+        glBlendFunc(GL_ONE, GL_ONE);
+        draw(slabs_program_, mesh, light, options);
+        glDisable(GL_BLEND);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        check("occupancy maps build");
+    }
+
+    /// Reads the maps back in the CPU method's texel layout.
+    std::vector<typename cpu_method::texel_maps> read_back() const {
+        const int res = light_.resolution();
+        const std::size_t n = std::size_t(res) * std::size_t(res);
+        std::vector<float> range(4 * n), slabs(4 * n * std::size_t(slab_targets));
+        std::vector<std::uint32_t> bits(4 * n * std::size_t(bit_targets));
+        glBindTexture(GL_TEXTURE_2D, range_.get());
+        glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, range.data());
+        for (int t = 0; t < bit_targets; ++t) {
+            glBindTexture(GL_TEXTURE_2D, bits_[std::size_t(t)].get());
+            glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, bits.data() + 4 * n * std::size_t(t));
+        }
+        for (int t = 0; t < slab_targets; ++t) {
+            glBindTexture(GL_TEXTURE_2D, slabs_[std::size_t(t)].get());
+            glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, slabs.data() + 4 * n * std::size_t(t));
+        }
+        check("occupancy maps read-back");
+        std::vector<typename cpu_method::texel_maps> out(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            auto& t = out[i];
+            if (range[4 * i] > range[4 * i + 3]) continue; // no fragment: the CPU leaves the texel zero
+            t.placement.nearest = range[4 * i];
+            t.placement.furthest = range[4 * i + 3];
+            for (int w = 0; w < S / 32; ++w) t.data.bits[std::size_t(w)] = bits[4 * n * std::size_t(w / 4) + 4 * i + std::size_t(w % 4)];
+            for (int s = 0; s < B; ++s) t.data.slabs[std::size_t(s)] = slabs[4 * n * std::size_t(s / 4) + 4 * i + std::size_t(s % 4)];
+        }
+        return out;
+    }
+
+    /// Binds the maps and the light for the look-up in program `prog`, on texture units from `first_unit`.
+    void bind_lookup(GLuint prog, int first_unit = 0) const {
+        glUniformMatrix4fv(glGetUniformLocation(prog, "hs_lookup_view_projection"), 1, GL_FALSE, &light_.view_projection()[0][0]);
+        glUniformMatrix4fv(glGetUniformLocation(prog, "hs_lookup_view"), 1, GL_FALSE, &light_.view()[0][0]);
+        glUniform1f(glGetUniformLocation(prog, "hs_lookup_near"), light_.near_plane());
+        glUniform1f(glGetUniformLocation(prog, "hs_lookup_far"), light_.far_plane());
+        glUniform1i(glGetUniformLocation(prog, "hs_lookup_resolution"), light_.resolution());
+        int unit = first_unit;
+        auto bind = [&](const texture& t, const std::string& name) {
+            glActiveTexture(GLenum(GL_TEXTURE0 + unit));
+            glBindTexture(GL_TEXTURE_2D, t.get());
+            glUniform1i(glGetUniformLocation(prog, name.c_str()), unit++);
+        };
+        bind(range_, "hs_range_texture");
+        for (int t = 0; t < bit_targets; ++t) bind(bits_[std::size_t(t)], "hs_bits_texture[" + std::to_string(t) + "]");
+        for (int t = 0; t < slab_targets; ++t) bind(slabs_[std::size_t(t)], "hs_slabs_texture[" + std::to_string(t) + "]");
+        glActiveTexture(GL_TEXTURE0);
+    }
+
+private:
+    static constexpr std::string_view version = "#version 430 core\n";
+    static std::string defines() {
+        return "#define HS_ALPHA_MAX " + std::to_string(HAIRSHADOW_ALPHA_MAX) + "\n#define HS_LAYERS " + std::to_string(S) +
+               "\n#define HS_SLABS " + std::to_string(B) + "\n#define HS_BIT_TARGETS " + std::to_string(bit_targets) +
+               "\n#define HS_SLAB_TARGETS " + std::to_string(slab_targets) + "\n";
+    }
+
+    void allocate(int res) {
+        if (res == allocated_) return;
+        auto make = [&](GLenum format) {
+            auto t = make_texture();
+            glBindTexture(GL_TEXTURE_2D, t.get());
+            glTexStorage2D(GL_TEXTURE_2D, 1, format, res, res);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            return t;
+        };
+        range_ = make(GL_RGBA32F);
+        bits_.clear();
+        slabs_.clear();
+        for (int t = 0; t < bit_targets; ++t) bits_.push_back(make(GL_RGBA32UI));
+        for (int t = 0; t < slab_targets; ++t) slabs_.push_back(make(GL_RGBA32F));
+        allocated_ = res;
+    }
+
+    static void attach(const std::vector<GLuint>& textures) {
+        std::vector<GLenum> buffers;
+        for (std::size_t i = 0; i < 8; ++i) glFramebufferTexture(GL_FRAMEBUFFER, GLenum(GL_COLOR_ATTACHMENT0 + i), i < textures.size() ? textures[i] : 0, 0);
+        for (std::size_t i = 0; i < textures.size(); ++i) buffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
+        glDrawBuffers(GLsizei(buffers.size()), buffers.data());
+        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) throw gl_error("occupancy maps: incomplete framebuffer");
+    }
+
+    void draw(const program& p, const hair_mesh& mesh, const light_space& light, const raster_options& options) const {
+        glUseProgram(p.get());
+        set_light_uniforms(p.get(), light, options);
+        if (p.get() != range_program_.get()) {
+            glActiveTexture(GL_TEXTURE0);
+            glBindTexture(GL_TEXTURE_2D, range_.get());
+            glUniform1i(glGetUniformLocation(p.get(), "hs_range_map"), 0);
+        }
+        mesh.draw();
+    }
+
+    light_space light_;
+    int allocated_ = 0;
+    program range_program_, bits_program_, slabs_program_;
+    texture range_;
+    std::vector<texture> bits_, slabs_;
+};
+
+} // namespace hairshadow::gl
