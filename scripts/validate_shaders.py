@@ -74,6 +74,17 @@ for layers, slabs in ((128, 4), (32, 1), (256, 8)):
                                                                           "reconstruction/occupancy_bitcount", "lookup/occupancy"], LOOKUP_MAIN)
 
 
+for placement, defines in (("planar_slices", "#define HS_LAYERS 64\n#define HS_GAMMA_SPACING\n#define HS_CUMULATIVE\n"),
+                          ("per_pixel_depth", "#define HS_LAYERS 3\n#define HS_BEYOND_EXTEND\n#define HS_CUMULATIVE\n"),
+                          ("depth_range", "#define HS_LAYERS 16\n")):
+    for accumulation in ("float", "emulated_8bit"):
+        base = ["accumulation/" + accumulation, "placement/common", "placement/" + placement, "texel_state/" + placement]
+        COMPOSITIONS[f"layers_{placement}_{accumulation}"] = ("frag", defines + "#define HS_LAYER_TARGETS 8\n",
+                                                              ["raster/coverage"] + base + ["passes/layers"], "")
+        COMPOSITIONS[f"lookup_layers_{placement}_{accumulation}"] = ("vert", defines, base + ["lookup/layers", "reconstruction/interpolation",
+                                                                                             "lookup/interpolation"], LOOKUP_MAIN)
+
+
 def expand(text: str) -> str:
     """Inlines '#include family/name' lines (our composition shorthand, not GLSL's)."""
     out = []

@@ -24,6 +24,49 @@ float hs_encode(float optical_depth) { return optical_depth; }
 float hs_decode(float stored) { return stored; }
 )hs_glsl";
 
+/// shaders/lookup/interpolation.glsl
+inline constexpr std::string_view lookup_interpolation = R"hs_glsl(// float hs_transmittance(vec3 world_pos) for interpolated methods (opacity shadow maps, deep opacity
+// maps, range opacity maps): any user shader can call it. Outside the map the light is unshadowed.
+uniform mat4 hs_lookup_view_projection;
+uniform mat4 hs_lookup_view;
+uniform float hs_lookup_near;
+uniform float hs_lookup_far;
+uniform int hs_lookup_resolution;
+uniform sampler2D hs_range_texture;
+
+float hs_transmittance(vec3 world_pos) {
+    vec4 clip = hs_lookup_view_projection * vec4(world_pos, 1.0);
+    vec2 window = (clip.xy / clip.w + 1.0) * (0.5 * float(hs_lookup_resolution));
+    if (!(clip.w > 0.0) || any(lessThan(window, vec2(0.0))) || any(greaterThanEqual(window, vec2(float(hs_lookup_resolution)))))
+        return 1.0;
+    hs_lookup_texel = ivec2(window);
+    float depth = (-(hs_lookup_view * vec4(world_pos, 1.0)).z - hs_lookup_near) / (hs_lookup_far - hs_lookup_near);
+    vec4 range = texelFetch(hs_range_texture, hs_lookup_texel, 0);
+    if (range.x > range.w) return 1.0; // no fragment in this texel
+    return exp(-hs_interpolate(hs_locate_from(range, depth)));
+}
+)hs_glsl";
+
+/// shaders/lookup/layers.glsl
+inline constexpr std::string_view lookup_layers = R"hs_glsl(// The stored layers of an interpolated method at the look-up's texel: hs_through_layer(k) is the
+// optical depth in front of the end of layer k. Layers are channels of a 2D array texture (four per
+// array layer); HS_CUMULATIVE layers hold it directly, histogram bins are summed.
+uniform sampler2DArray hs_layers_texture;
+ivec2 hs_lookup_texel;
+
+float hs_stored_layer(int k) { return hs_decode(texelFetch(hs_layers_texture, ivec3(hs_lookup_texel, k / 4), 0)[k % 4]); }
+
+float hs_through_layer(int k) {
+#ifdef HS_CUMULATIVE
+    return hs_stored_layer(k);
+#else
+    float sum = 0.0;
+    for (int i = 0; i <= k; ++i) sum += hs_stored_layer(i);
+    return sum;
+#endif
+}
+)hs_glsl";
+
 /// shaders/lookup/occupancy.glsl
 inline constexpr std::string_view lookup_occupancy = R"hs_glsl(// float hs_transmittance(vec3 world_pos) for occupancy maps: any user shader can call it after the
 // placement, accumulation and reconstruction snippets. Outside the map the light is unshadowed.
@@ -76,6 +119,34 @@ inline constexpr std::string_view passes_depth_range = R"hs_glsl(// Depth-range 
 out vec4 hs_range_out;
 
 void main() { hs_range_out = vec4(hs_v_depth, 0.0, 0.0, hs_v_depth); }
+)hs_glsl";
+
+/// shaders/passes/layers.glsl
+inline constexpr std::string_view passes_layers = R"hs_glsl(// Accumulation pass of interpolated methods (Kim & Neumann 2001; Yuksel & Keyser 2008): the
+// fragment's encoded optical depth goes to its layer's channel (HS_CUMULATIVE: and to every later
+// layer's), layers [hs_first_layer, hs_first_layer + 4 HS_LAYER_TARGETS) in this pass, by additive
+// blending into RGBA32F (float) or RGBA8 (emulated 8-bit) layers of a 2D array texture.
+uniform sampler2D hs_range_map;
+uniform int hs_first_layer;
+layout(location = 0) out vec4 hs_layers_out[HS_LAYER_TARGETS];
+
+void main() {
+    vec4 range = texelFetch(hs_range_map, ivec2(gl_FragCoord.xy), 0);
+    int k = hs_assign_from(range, hs_v_depth);
+    float value = k < 0 ? 0.0 : hs_encode(hs_fragment_optical_depth());
+    for (int t = 0; t < HS_LAYER_TARGETS; ++t) {
+        vec4 v = vec4(0.0);
+        for (int c = 0; c < 4; ++c) {
+            int layer = hs_first_layer + 4 * t + c;
+#ifdef HS_CUMULATIVE
+            v[c] = (k >= 0 && layer >= k && layer < HS_LAYERS) ? value : 0.0;
+#else
+            v[c] = layer == k ? value : 0.0;
+#endif
+        }
+        hs_layers_out[t] = v;
+    }
+}
 )hs_glsl";
 
 /// shaders/passes/occupancy_bits.glsl
@@ -335,6 +406,33 @@ float hs_occupancy_optical_depth(hs_layer_position p, uint bits[HS_WORDS], float
 }
 )hs_glsl";
 
+/// shaders/texel_state/depth_range.glsl
+inline constexpr std::string_view texel_state_depth_range = R"hs_glsl(// Occupancy maps' per-texel state: the depth-range map itself (nearest in red, furthest in alpha).
+int hs_assign_from(vec4 range, float depth) { return hs_assign(vec2(range.x, range.w), depth); }
+hs_layer_position hs_locate_from(vec4 range, float depth) { return hs_locate(vec2(range.x, range.w), depth); }
+)hs_glsl";
+
+/// shaders/texel_state/per_pixel_depth.glsl
+inline constexpr std::string_view texel_state_per_pixel_depth = R"hs_glsl(// Deep opacity maps' per-texel state from the depth-range map: z0 is its nearest fragment; with
+// HS_BEYOND_EXTEND the layers stretch to reach the furthest (the smallest float above furthest - z0,
+// as the CPU's std::nextafter gives).
+float hs_scale_from(vec4 range) {
+#ifdef HS_BEYOND_EXTEND
+    return max(1.0, uintBitsToFloat(floatBitsToUint(range.w - range.x) + 1u) / hs_layer_extent);
+#else
+    return 1.0;
+#endif
+}
+int hs_assign_from(vec4 range, float depth) { return hs_assign(range.x, hs_scale_from(range), depth); }
+hs_layer_position hs_locate_from(vec4 range, float depth) { return hs_locate(range.x, hs_scale_from(range), depth); }
+)hs_glsl";
+
+/// shaders/texel_state/planar_slices.glsl
+inline constexpr std::string_view texel_state_planar_slices = R"hs_glsl(// Planar slices keep no per-texel state: the slices are global (uniforms of placement/planar_slices).
+int hs_assign_from(vec4 range, float depth) { return hs_assign(depth); }
+hs_layer_position hs_locate_from(vec4 range, float depth) { return hs_locate(depth); }
+)hs_glsl";
+
 /// A shader snippet and its name (its path under shaders/ without .glsl).
 struct entry {
     std::string_view name;
@@ -342,12 +440,15 @@ struct entry {
 };
 
 /// Every snippet, sorted by name.
-inline constexpr std::array<entry, 15> all{{
+inline constexpr std::array<entry, 21> all{{
     {"accumulation/emulated_8bit", accumulation_emulated_8bit},
     {"accumulation/float", accumulation_float},
+    {"lookup/interpolation", lookup_interpolation},
+    {"lookup/layers", lookup_layers},
     {"lookup/occupancy", lookup_occupancy},
     {"passes/capture", passes_capture},
     {"passes/depth_range", passes_depth_range},
+    {"passes/layers", passes_layers},
     {"passes/occupancy_bits", passes_occupancy_bits},
     {"passes/occupancy_slabs", passes_occupancy_slabs},
     {"placement/common", placement_common},
@@ -358,6 +459,9 @@ inline constexpr std::array<entry, 15> all{{
     {"raster/vertex", raster_vertex},
     {"reconstruction/interpolation", reconstruction_interpolation},
     {"reconstruction/occupancy_bitcount", reconstruction_occupancy_bitcount},
+    {"texel_state/depth_range", texel_state_depth_range},
+    {"texel_state/per_pixel_depth", texel_state_per_pixel_depth},
+    {"texel_state/planar_slices", texel_state_planar_slices},
 }};
 
 } // namespace hairshadow::gl::shaders

@@ -31,6 +31,7 @@ public:
     };
 
     void prepare(const fragment_buffer&) const noexcept {}
+    void prepare(const depth_extent&) const noexcept {}
     void prepare_texel(std::span<const fragment> fragments, texel_state& s) const noexcept {
         if (fragments.empty()) return;
         s.nearest = s.furthest = fragments[0].depth;

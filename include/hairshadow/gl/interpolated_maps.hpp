@@ -1,0 +1,230 @@
+#pragma once
+/// @file
+/// Interpolated methods on GL: opacity shadow maps (planar slices), deep opacity maps (per-pixel
+/// depth) and range opacity maps (depth range), float or emulated 8-bit. A depth-range pass (MIN /
+/// MAX blending) gives every placement its per-texel state (z0; nearest and furthest) and, reduced
+/// on the CPU, the global depth extent; then additive passes write up to 8 RGBA targets (32 layers)
+/// at a time into the layers of a 2D array texture (RGBA32F, or RGBA8 for 8 bits). Programs are
+/// composed from the same policy snippets whose CPU twins build the CPU maps.
+
+#include <hairshadow/gl/context.hpp>
+#include <hairshadow/gl/hair_mesh.hpp>
+#include <hairshadow/gl/shaders.generated.hpp>
+#include <hairshadow/methods/published.hpp>
+
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace hairshadow::gl {
+
+namespace detail {
+template <class P>
+struct placement_glsl; // what a placement needs on GL
+
+template <int N, class Spacing>
+struct placement_glsl<planar_slices<N, Spacing>> {
+    static std::string defines() { return std::is_same_v<Spacing, gamma_spacing> ? "#define HS_GAMMA_SPACING\n" : ""; }
+    static constexpr std::string_view snippet = shaders::placement_planar_slices, state = shaders::texel_state_planar_slices;
+    static void set_uniforms(GLuint prog, const planar_slices<N, Spacing>& p) {
+        glUniform1f(glGetUniformLocation(prog, "hs_slices_near"), p.nearest());
+        glUniform1f(glGetUniformLocation(prog, "hs_slices_far"), p.furthest());
+    }
+};
+
+template <int K, layer_sizes Sizes, beyond_last_layer Beyond>
+struct placement_glsl<per_pixel_depth<K, Sizes, Beyond>> {
+    using P = per_pixel_depth<K, Sizes, Beyond>;
+    static std::string defines() {
+        return std::string(Sizes == layer_sizes::uniform ? "#define HS_UNIFORM_SIZES\n" : "") +
+               (Beyond == beyond_last_layer::ignore ? "#define HS_BEYOND_IGNORE\n" : "") +
+               (Beyond == beyond_last_layer::extend ? "#define HS_BEYOND_EXTEND\n" : "");
+    }
+    static constexpr std::string_view snippet = shaders::placement_per_pixel_depth, state = shaders::texel_state_per_pixel_depth;
+    static void set_uniforms(GLuint prog, const P& p) { glUniform1f(glGetUniformLocation(prog, "hs_layer_extent"), p.extent()); }
+};
+
+template <int S>
+struct placement_glsl<depth_range<S>> {
+    static std::string defines() { return ""; }
+    static constexpr std::string_view snippet = shaders::placement_depth_range, state = shaders::texel_state_depth_range;
+    static void set_uniforms(GLuint, const depth_range<S>&) {}
+};
+
+/// The CPU texel state of a placement, from a depth-range texel (nearest in [0], furthest in [3]).
+template <class P>
+typename P::texel_state texel_state_from(const P& placement, const float* range) {
+    typename P::texel_state s{};
+    const fragment pair[2] = {{range[0], 0.0f}, {range[3], 0.0f}};
+    placement.prepare_texel(std::span<const fragment>(pair, 2), s); // the state's own pre-pass, on the two extremes
+    return s;
+}
+} // namespace detail
+
+/// GL twin of a shadow_method whose reconstruction is `interpolation` and whose placement is planar,
+/// per-pixel-depth or depth-range.
+template <class Method>
+class interpolated_maps_gl {
+    using P = typename Method::placement_type;
+    using A = typename Method::accumulation_type;
+    static_assert(std::is_same_v<typename Method::reconstruction_type, interpolation>, "interpolated_maps_gl needs the interpolation reconstruction");
+    static constexpr bool eight_bit = std::is_same_v<A, emulated_8bit>;
+
+public:
+    static constexpr int layers = P::layer_count;
+    static constexpr int array_layers = (layers + 3) / 4;
+
+    /// Compiles the passes; throws feature_error if the context lacks GL 4.3 or 8 draw buffers.
+    explicit interpolated_maps_gl(P placement = P()) : placement_(std::move(placement)) {
+        require_version(4, 3, "interpolated shadow maps on GL");
+        GLint draw_buffers = 0;
+        glGetIntegerv(GL_MAX_DRAW_BUFFERS, &draw_buffers);
+        targets_per_pass_ = std::min(std::min(draw_buffers, 8), array_layers);
+        if (targets_per_pass_ < 1) throw feature_error("interpolated shadow maps need at least one draw buffer");
+        const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::raster_vertex}, "raster/vertex");
+        const auto range_fs = compile_shader(GL_FRAGMENT_SHADER, {version, defines(1), shaders::raster_coverage, shaders::passes_depth_range},
+                                             "passes/depth_range");
+        const auto layers_fs = compile_shader(GL_FRAGMENT_SHADER,
+                                              {version, defines(targets_per_pass_), shaders::raster_coverage, accumulation_snippet(),
+                                               shaders::placement_common, detail::placement_glsl<P>::snippet, detail::placement_glsl<P>::state,
+                                               shaders::passes_layers},
+                                              "passes/layers");
+        range_program_ = link_program({&vs, &range_fs}, "depth-range pass");
+        layers_program_ = link_program({&vs, &layers_fs}, "layers pass");
+    }
+
+    /// GLSL defining float hs_transmittance(vec3 world_pos); prepend a version line, bind with bind_lookup().
+    std::string lookup_source() const {
+        std::string s = defines(1);
+        for (auto piece : {accumulation_snippet(), shaders::placement_common, detail::placement_glsl<P>::snippet,
+                           detail::placement_glsl<P>::state, shaders::lookup_layers, shaders::reconstruction_interpolation,
+                           shaders::lookup_interpolation})
+            s += piece;
+        return s;
+    }
+
+    void build(const hair_mesh& mesh, const light_space& light, const raster_options& options = {}) {
+        light_ = light;
+        const int res = light.resolution();
+        allocate(res);
+        auto fbo = make_framebuffer();
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo.get());
+        glViewport(0, 0, res, res);
+        glDisable(GL_DEPTH_TEST);
+
+        // 1. Depth range (red MIN, alpha MAX): per-texel state, and the global extent.
+        glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, range_.get(), 0);
+        const GLenum first = GL_COLOR_ATTACHMENT0;
+        glDrawBuffers(1, &first);
+        const float clear_range[4] = {3.0e38f, 0.0f, 0.0f, -3.0e38f};
+        glClearBufferfv(GL_COLOR, 0, clear_range);
+        glEnable(GL_BLEND);
+        glBlendEquationSeparate(GL_MIN, GL_MAX);
+        glBlendFunc(GL_ONE, GL_ONE);
+        glUseProgram(range_program_.get());
+        set_light_uniforms(range_program_.get(), light, options);
+        mesh.draw();
+        range_values_.resize(4 * std::size_t(res) * std::size_t(res));
+        glBindTexture(GL_TEXTURE_2D, range_.get());
+        glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, range_values_.data());
+        depth_extent extent{3.0e38f, -3.0e38f};
+        for (std::size_t i = 0; i < range_values_.size(); i += 4)
+            if (range_values_[i] <= range_values_[i + 3])
+                extent.nearest = std::min(extent.nearest, range_values_[i]), extent.furthest = std::max(extent.furthest, range_values_[i + 3]);
+        if (extent.nearest > extent.furthest) extent = {};
+        placement_.prepare(extent);
+
+        // 2. Layers, 4 per target, up to 8 targets a pass.
+        glBlendEquation(GL_FUNC_ADD);
+        glBlendFunc(GL_ONE, GL_ONE);
+        glUseProgram(layers_program_.get());
+        set_light_uniforms(layers_program_.get(), light, options);
+        detail::placement_glsl<P>::set_uniforms(layers_program_.get(), placement_);
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, range_.get());
+        glUniform1i(glGetUniformLocation(layers_program_.get(), "hs_range_map"), 0);
+        for (int base = 0; base < array_layers; base += targets_per_pass_) {
+            std::vector<GLenum> buffers;
+            for (int t = 0; t < 8; ++t) {
+                const bool used = t < targets_per_pass_ && base + t < array_layers;
+                if (used) glFramebufferTextureLayer(GL_FRAMEBUFFER, GLenum(GL_COLOR_ATTACHMENT0 + t), layers_.get(), 0, base + t);
+                else glFramebufferTexture(GL_FRAMEBUFFER, GLenum(GL_COLOR_ATTACHMENT0 + t), 0, 0);
+                if (used) buffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + t));
+            }
+            glDrawBuffers(GLsizei(buffers.size()), buffers.data());
+            if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) throw gl_error("interpolated maps: incomplete framebuffer");
+            const float zero[4] = {0, 0, 0, 0};
+            for (std::size_t t = 0; t < buffers.size(); ++t) glClearBufferfv(GL_COLOR, GLint(t), zero);
+            glUniform1i(glGetUniformLocation(layers_program_.get(), "hs_first_layer"), 4 * base);
+            mesh.draw();
+        }
+        glDisable(GL_BLEND);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        check("interpolated maps build");
+    }
+
+    const P& placement() const noexcept { return placement_; }
+
+    /// Reads the maps back in the CPU method's texel layout.
+    std::vector<typename Method::texel_maps> read_back() const {
+        const int res = light_.resolution();
+        const std::size_t n = std::size_t(res) * std::size_t(res);
+        std::vector<typename A::value_type> stored(4 * n * std::size_t(array_layers));
+        glBindTexture(GL_TEXTURE_2D_ARRAY, layers_.get());
+        glGetTexImage(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA, eight_bit ? GL_UNSIGNED_BYTE : GL_FLOAT, stored.data());
+        check("interpolated maps read-back");
+        std::vector<typename Method::texel_maps> out(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            const float* range = &range_values_[4 * i];
+            if (range[0] > range[3]) continue; // no fragment: the CPU leaves the texel zero
+            out[i].placement = detail::texel_state_from(placement_, range);
+            for (int k = 0; k < layers; ++k)
+                out[i].data.layers[std::size_t(k)] = stored[4 * n * std::size_t(k / 4) + 4 * i + std::size_t(k % 4)];
+        }
+        return out;
+    }
+
+    void bind_lookup(GLuint prog, int first_unit = 0) const {
+        glUniformMatrix4fv(glGetUniformLocation(prog, "hs_lookup_view_projection"), 1, GL_FALSE, &light_.view_projection()[0][0]);
+        glUniformMatrix4fv(glGetUniformLocation(prog, "hs_lookup_view"), 1, GL_FALSE, &light_.view()[0][0]);
+        glUniform1f(glGetUniformLocation(prog, "hs_lookup_near"), light_.near_plane());
+        glUniform1f(glGetUniformLocation(prog, "hs_lookup_far"), light_.far_plane());
+        glUniform1i(glGetUniformLocation(prog, "hs_lookup_resolution"), light_.resolution());
+        detail::placement_glsl<P>::set_uniforms(prog, placement_);
+        glActiveTexture(GLenum(GL_TEXTURE0 + first_unit));
+        glBindTexture(GL_TEXTURE_2D, range_.get());
+        glUniform1i(glGetUniformLocation(prog, "hs_range_texture"), first_unit);
+        glActiveTexture(GLenum(GL_TEXTURE0 + first_unit + 1));
+        glBindTexture(GL_TEXTURE_2D_ARRAY, layers_.get());
+        glUniform1i(glGetUniformLocation(prog, "hs_layers_texture"), first_unit + 1);
+        glActiveTexture(GL_TEXTURE0);
+    }
+
+private:
+    static constexpr std::string_view version = "#version 430 core\n";
+    static constexpr std::string_view accumulation_snippet() { return eight_bit ? shaders::accumulation_emulated_8bit : shaders::accumulation_float; }
+    static std::string defines(int targets) {
+        return "#define HS_ALPHA_MAX " + std::to_string(HAIRSHADOW_ALPHA_MAX) + "\n#define HS_LAYERS " + std::to_string(layers) +
+               "\n#define HS_LAYER_TARGETS " + std::to_string(targets) + "\n" + (P::cumulative ? "#define HS_CUMULATIVE\n" : "") +
+               detail::placement_glsl<P>::defines();
+    }
+    void allocate(int res) {
+        if (res == allocated_) return;
+        range_ = make_texture();
+        glBindTexture(GL_TEXTURE_2D, range_.get());
+        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, res, res);
+        layers_ = make_texture();
+        glBindTexture(GL_TEXTURE_2D_ARRAY, layers_.get());
+        glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, eight_bit ? GL_RGBA8 : GL_RGBA32F, res, res, array_layers);
+        allocated_ = res;
+    }
+
+    P placement_;
+    light_space light_;
+    int allocated_ = 0, targets_per_pass_ = 1;
+    program range_program_, layers_program_;
+    texture range_, layers_;
+    std::vector<float> range_values_;
+};
+
+} // namespace hairshadow::gl

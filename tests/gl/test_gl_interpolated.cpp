@@ -1,0 +1,76 @@
+// Opacity shadow maps, deep opacity maps (float and 8-bit) and range opacity maps on GL against the
+// CPU kernels, both built from the fragments GL rasterised.
+#include "gl_test_context.hpp"
+
+#include <hairshadow/gl.hpp>
+#include <hairshadow/gl/fragment_capture.hpp>
+#include <hairshadow/gl/interpolated_maps.hpp>
+
+#include "../test_support.hpp"
+
+#include <cstring>
+
+using namespace hairshadow;
+
+namespace {
+
+template <class Method>
+void check_interpolated(const light_space& light, const gl::hair_mesh& mesh, const fragment_buffer& fragments) {
+    constexpr bool eight_bit = std::is_same_v<typename Method::accumulation_type, emulated_8bit>;
+    Method cpu;
+    cpu.build(fragments, light);
+    gl::interpolated_maps_gl<Method> on_gl;
+    on_gl.build(mesh, light, raster_options{});
+    const auto texels = on_gl.read_back();
+    const int res = light.resolution();
+    long state_off = 0, layers_off = 0, occupied = 0;
+    float worst = 0;
+    for (int y = 0; y < res; ++y)
+        for (int x = 0; x < res; ++x) {
+            const auto& c = cpu.texel(x, y);
+            const auto& g = texels[std::size_t(y) * std::size_t(res) + std::size_t(x)];
+            occupied += !fragments.texel(x, y).empty();
+            if constexpr (!std::is_empty_v<decltype(c.placement)>) state_off += std::memcmp(&c.placement, &g.placement, sizeof(c.placement)) != 0;
+            for (int k = 0; k < Method::layer_count; ++k) {
+                const float a = float(c.data.layers[std::size_t(k)]), b = float(g.data.layers[std::size_t(k)]);
+                const float error = eight_bit ? std::abs(a - b) : std::abs(a - b) / std::max(std::abs(a), 1e-3f);
+                worst = std::max(worst, error);
+                layers_off += eight_bit ? error > 1.0f : error > 1e-5f;
+            }
+        }
+    CAPTURE(worst);
+    CHECK(occupied > 1000);
+    CHECK(state_off == 0);  // z0 / depth range: MIN and MAX blending, bit-exact
+    CHECK(layers_off == 0); // float sums within 1e-5 relative; 8-bit within one step
+    const auto queries = test::texel_centre_queries(fragments, light, 5);
+    const auto on_gpu = test::gl_lookup(on_gl.lookup_source(), [&](GLuint p) { on_gl.bind_lookup(p); }, queries);
+    std::vector<float> on_cpu(queries.size());
+    cpu.transmittance(queries, on_cpu);
+    float worst_t = 0;
+    for (std::size_t i = 0; i < queries.size(); ++i) worst_t = std::max(worst_t, std::abs(on_gpu[i] - on_cpu[i]));
+    CAPTURE(worst_t, queries.size());
+    CHECK(queries.size() >= 1000);
+    // Layer sums may differ by 1e-5 relative (summed in another order), which moves T by up to
+    // 1e-5 x max(omega e^-omega), a few 1e-6; the bound leaves room for the exponential's rounding.
+    CHECK(worst_t < 5e-5f);
+}
+
+} // namespace
+
+TEST_CASE("GL interpolated maps equal the CPU maps, and the GLSL look-up the CPU query", "[gl][interpolation]") {
+    test::gl_context();
+    const auto model = read_tfx(test::sintel_hair());
+    const auto light = light_space::fit(light_spec::directional({0, -1, -1}), model.bounds(), 256);
+    const gl::hair_mesh mesh(model);
+    const auto fragments = gl::capture_fragments(mesh, light, raster_options{});
+    SECTION("opacity shadow maps 16") { check_interpolated<opacity_shadow_maps<16>>(light, mesh, fragments); }
+    SECTION("opacity shadow maps 64, gamma: two passes of 32") { check_interpolated<opacity_shadow_maps<64, gamma_spacing>>(light, mesh, fragments); }
+    SECTION("opacity shadow maps 16, 8-bit") { check_interpolated<opacity_shadow_maps<16, uniform_spacing, emulated_8bit>>(light, mesh, fragments); }
+    SECTION("deep opacity maps 3") { check_interpolated<deep_opacity_maps<3>>(light, mesh, fragments); }
+    SECTION("deep opacity maps 3, 8-bit (hybrid)") { check_interpolated<deep_opacity_maps_8bit<3>>(light, mesh, fragments); }
+    SECTION("range opacity maps 16 (hybrid)") { check_interpolated<range_opacity_maps<16>>(light, mesh, fragments); }
+    SECTION("deep opacity maps 4, uniform, extended") {
+        check_interpolated<shadow_method<per_pixel_depth<4, layer_sizes::uniform, beyond_last_layer::extend>, float_accumulation, interpolation>>(
+            light, mesh, fragments);
+    }
+}
