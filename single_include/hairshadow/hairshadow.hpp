@@ -2265,6 +2265,7 @@ public:
     };
 
     void prepare(const fragment_buffer&) const noexcept {}
+    void prepare(const depth_extent&) const noexcept {}
     void prepare_texel(std::span<const fragment> fragments, texel_state& s) const noexcept {
         if (fragments.empty()) return;
         s.nearest = s.furthest = fragments[0].depth;
@@ -2358,8 +2359,9 @@ public:
         if (!(extent > 0.0f && extent <= 1.0f)) throw argument_error("per_pixel_depth: the layer extent must be in (0, 1]");
     }
 
-    void prepare(const fragment_buffer& fragments) noexcept {
-        const auto e = extent_of(fragments);
+    void prepare(const fragment_buffer& fragments) noexcept { prepare(extent_of(fragments)); }
+    /// The same from the map's depth extent (the GL back end reduces it from its depth-range map).
+    void prepare(const depth_extent& e) noexcept {
         extent_ = requested_extent_ ? *requested_extent_ : std::max(0.5f * (e.furthest - e.nearest), 1e-6f);
     }
     /// The depth pass: z0 is the nearest fragment (and, to extend, the furthest sets the stretch).
@@ -2457,8 +2459,9 @@ public:
     struct texel_state {};
 
     /// Global pre-pass: D_0 is the nearest fragment, D_N just beyond the furthest.
-    void prepare(const fragment_buffer& fragments) noexcept {
-        const auto e = extent_of(fragments);
+    void prepare(const fragment_buffer& fragments) noexcept { prepare(extent_of(fragments)); }
+    /// The same from the map's depth extent (the GL back end reduces it from its depth-range map).
+    void prepare(const depth_extent& e) noexcept {
         near_ = e.nearest;
         far_ = detail::just_above(e.furthest);
     }
