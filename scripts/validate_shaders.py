@@ -67,10 +67,11 @@ COMPOSITIONS["depth_range_pass"] = ("frag", "", ["raster/coverage", "passes/dept
 for layers, slabs in ((128, 4), (32, 1), (256, 8)):
     targets = f"#define HS_LAYERS {layers}\n#define HS_SLABS {slabs}\n#define HS_BIT_TARGETS {(layers + 127) // 128}\n" \
               f"#define HS_SLAB_TARGETS {(slabs + 3) // 4}\n"
-    occupancy = ["raster/coverage", "accumulation/float", "placement/common", "placement/depth_range"]
+    occupancy = ["raster/coverage", "accumulation/float", "placement/common", "placement/depth_range", "texel_state/depth_range"]
     COMPOSITIONS[f"occupancy_bits_{layers}"] = ("frag", targets, occupancy + ["passes/occupancy_bits"], "")
     COMPOSITIONS[f"occupancy_slabs_{layers}_{slabs}"] = ("frag", targets, occupancy + ["passes/occupancy_slabs"], "")
-    COMPOSITIONS[f"lookup_occupancy_{layers}_{slabs}"] = ("vert", targets, ["accumulation/float", "placement/common", "placement/depth_range",
+    COMPOSITIONS[f"lookup_occupancy_{layers}_{slabs}"] = ("vert", targets, ["accumulation/emulated_8bit", "placement/common",
+                                                                          "placement/per_pixel_depth", "texel_state/per_pixel_depth",
                                                                           "reconstruction/occupancy_bitcount", "lookup/occupancy"], LOOKUP_MAIN)
 
 

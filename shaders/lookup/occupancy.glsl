@@ -17,9 +17,10 @@ float hs_transmittance(vec3 world_pos) {
     ivec2 texel = ivec2(window);
     float depth = (-(hs_lookup_view * vec4(world_pos, 1.0)).z - hs_lookup_near) / (hs_lookup_far - hs_lookup_near);
     vec4 range = texelFetch(hs_range_texture, texel, 0);
+    if (range.x > range.w) return 1.0; // no fragment in this texel
     uint bits[HS_WORDS];
     for (int w = 0; w < HS_WORDS; ++w) bits[w] = texelFetch(hs_bits_texture[w / 4], texel, 0)[w % 4];
     float slabs[HS_SLABS];
     for (int s = 0; s < HS_SLABS; ++s) slabs[s] = texelFetch(hs_slabs_texture[s / 4], texel, 0)[s % 4];
-    return exp(-hs_occupancy_optical_depth(hs_locate(vec2(range.x, range.w), depth), bits, slabs));
+    return exp(-hs_occupancy_optical_depth(hs_locate_from(range, depth), bits, slabs));
 }

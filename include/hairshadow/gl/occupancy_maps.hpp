@@ -1,12 +1,14 @@
 #pragma once
 /// @file
 /// Occupancy maps on GL (Sintorn & Assarsson 2009, section 3.1): a depth-range pass (MIN / MAX
-/// blending), an occupancy pass (RGBA32UI targets, glLogicOp(GL_OR)) and a slab pass (additive RGBA32F),
-/// the programs composed from the same policy snippets as the CPU kernels' GLSL twins; and the GLSL
-/// look-up hs_transmittance(vec3) for user shaders.
+/// blending), an occupancy pass (RGBA32UI targets, glLogicOp(GL_OR)) and a slab pass (additive RGBA32F,
+/// or RGBA8 for emulated 8 bits), the programs composed from the same policy snippets as the CPU
+/// kernels' GLSL twins; and the GLSL look-up hs_transmittance(vec3) for user shaders. Any contiguous
+/// placement works (the published depth range, or the per-pixel-depth hybrid).
 
 #include <hairshadow/gl/context.hpp>
 #include <hairshadow/gl/hair_mesh.hpp>
+#include <hairshadow/gl/interpolated_maps.hpp>
 #include <hairshadow/gl/shaders.generated.hpp>
 #include <hairshadow/methods/published.hpp>
 
@@ -15,18 +17,22 @@
 
 namespace hairshadow::gl {
 
-/// GL twin of occupancy_maps<S, B> (float accumulation).
-template <int S, int B>
+/// GL twin of a shadow_method whose reconstruction is occupancy_bitcount<B>.
+template <class Method>
 class occupancy_maps_gl {
-    static_assert(S % 32 == 0 && S % B == 0, "occupancy maps need S a multiple of 32 and of B");
+    using P = typename Method::placement_type;
+    using A = typename Method::accumulation_type;
+    static constexpr int S = P::layer_count;
+    static constexpr int B = Method::reconstruction_type::slab_count;
+    static constexpr bool eight_bit = std::is_same_v<A, emulated_8bit>;
 
 public:
     static constexpr int bit_targets = (S + 127) / 128;
     static constexpr int slab_targets = (B + 3) / 4;
-    using cpu_method = occupancy_maps<S, B>;
+    using cpu_method = Method;
 
     /// Compiles the passes; throws feature_error if the context lacks GL 4.3 or enough draw buffers.
-    occupancy_maps_gl() {
+    explicit occupancy_maps_gl(P placement = P()) : placement_(std::move(placement)) {
         require_version(4, 3, "occupancy maps on GL");
         GLint draw_buffers = 0;
         glGetIntegerv(GL_MAX_DRAW_BUFFERS, &draw_buffers);
@@ -37,8 +43,9 @@ public:
         const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::raster_vertex}, "raster/vertex");
         const std::string defs = defines();
         auto fragment = [&](std::string_view pass, const char* name) {
-            return compile_shader(GL_FRAGMENT_SHADER, {version, defs, shaders::raster_coverage, shaders::accumulation_float,
-                                                       shaders::placement_common, shaders::placement_depth_range, pass}, name);
+            return compile_shader(GL_FRAGMENT_SHADER, {version, defs, shaders::raster_coverage, accumulation_snippet(), shaders::placement_common,
+                                                       detail::placement_glsl<P>::snippet, detail::placement_glsl<P>::state, pass},
+                                  name);
         };
         const auto range_fs = fragment(shaders::passes_depth_range, "passes/depth_range");
         const auto bits_fs = fragment(shaders::passes_occupancy_bits, "passes/occupancy_bits");
@@ -52,7 +59,7 @@ public:
     /// line to it and bind the maps with bind_lookup().
     static std::string lookup_source() {
         std::string s = defines();
-        for (auto piece : {shaders::accumulation_float, shaders::placement_common, shaders::placement_depth_range,
+        for (auto piece : {accumulation_snippet(), shaders::placement_common, detail::placement_glsl<P>::snippet, detail::placement_glsl<P>::state,
                            shaders::reconstruction_occupancy_bitcount, shaders::lookup_occupancy})
             s += piece;
         return s;
@@ -76,6 +83,15 @@ public:
         glBlendEquationSeparate(GL_MIN, GL_MAX);
         glBlendFunc(GL_ONE, GL_ONE);
         draw(range_program_, mesh, light, options);
+        range_values_.resize(4 * std::size_t(res) * std::size_t(res));
+        glBindTexture(GL_TEXTURE_2D, range_.get());
+        glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, range_values_.data());
+        depth_extent extent{3.0e38f, -3.0e38f};
+        for (std::size_t i = 0; i < range_values_.size(); i += 4)
+            if (range_values_[i] <= range_values_[i + 3])
+                extent.nearest = std::min(extent.nearest, range_values_[i]), extent.furthest = std::max(extent.furthest, range_values_[i + 3]);
+        if (extent.nearest > extent.furthest) extent = {};
+        placement_.prepare(extent);
 
         // 2. Occupancy bits: OR of each fragment's slice bit.
         glDisable(GL_BLEND);
@@ -108,25 +124,23 @@ public:
     std::vector<typename cpu_method::texel_maps> read_back() const {
         const int res = light_.resolution();
         const std::size_t n = std::size_t(res) * std::size_t(res);
-        std::vector<float> range(4 * n), slabs(4 * n * std::size_t(slab_targets));
+        const std::vector<float>& range = range_values_;
+        std::vector<typename A::value_type> slabs(4 * n * std::size_t(slab_targets));
         std::vector<std::uint32_t> bits(4 * n * std::size_t(bit_targets));
-        glBindTexture(GL_TEXTURE_2D, range_.get());
-        glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, range.data());
         for (int t = 0; t < bit_targets; ++t) {
             glBindTexture(GL_TEXTURE_2D, bits_[std::size_t(t)].get());
             glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, bits.data() + 4 * n * std::size_t(t));
         }
         for (int t = 0; t < slab_targets; ++t) {
             glBindTexture(GL_TEXTURE_2D, slabs_[std::size_t(t)].get());
-            glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, slabs.data() + 4 * n * std::size_t(t));
+            glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, eight_bit ? GL_UNSIGNED_BYTE : GL_FLOAT, slabs.data() + 4 * n * std::size_t(t));
         }
         check("occupancy maps read-back");
         std::vector<typename cpu_method::texel_maps> out(n);
         for (std::size_t i = 0; i < n; ++i) {
             auto& t = out[i];
             if (range[4 * i] > range[4 * i + 3]) continue; // no fragment: the CPU leaves the texel zero
-            t.placement.nearest = range[4 * i];
-            t.placement.furthest = range[4 * i + 3];
+            t.placement = detail::texel_state_from(placement_, &range[4 * i]);
             for (int w = 0; w < S / 32; ++w) t.data.bits[std::size_t(w)] = bits[4 * n * std::size_t(w / 4) + 4 * i + std::size_t(w % 4)];
             for (int s = 0; s < B; ++s) t.data.slabs[std::size_t(s)] = slabs[4 * n * std::size_t(s / 4) + 4 * i + std::size_t(s % 4)];
         }
@@ -140,6 +154,7 @@ public:
         glUniform1f(glGetUniformLocation(prog, "hs_lookup_near"), light_.near_plane());
         glUniform1f(glGetUniformLocation(prog, "hs_lookup_far"), light_.far_plane());
         glUniform1i(glGetUniformLocation(prog, "hs_lookup_resolution"), light_.resolution());
+        detail::placement_glsl<P>::set_uniforms(prog, placement_);
         int unit = first_unit;
         auto bind = [&](const texture& t, const std::string& name) {
             glActiveTexture(GLenum(GL_TEXTURE0 + unit));
@@ -152,12 +167,15 @@ public:
         glActiveTexture(GL_TEXTURE0);
     }
 
+    const P& placement() const noexcept { return placement_; }
+
 private:
     static constexpr std::string_view version = "#version 430 core\n";
+    static constexpr std::string_view accumulation_snippet() { return eight_bit ? shaders::accumulation_emulated_8bit : shaders::accumulation_float; }
     static std::string defines() {
         return "#define HS_ALPHA_MAX " + std::to_string(HAIRSHADOW_ALPHA_MAX) + "\n#define HS_LAYERS " + std::to_string(S) +
                "\n#define HS_SLABS " + std::to_string(B) + "\n#define HS_BIT_TARGETS " + std::to_string(bit_targets) +
-               "\n#define HS_SLAB_TARGETS " + std::to_string(slab_targets) + "\n";
+               "\n#define HS_SLAB_TARGETS " + std::to_string(slab_targets) + "\n" + detail::placement_glsl<P>::defines();
     }
 
     void allocate(int res) {
@@ -174,7 +192,7 @@ private:
         bits_.clear();
         slabs_.clear();
         for (int t = 0; t < bit_targets; ++t) bits_.push_back(make(GL_RGBA32UI));
-        for (int t = 0; t < slab_targets; ++t) slabs_.push_back(make(GL_RGBA32F));
+        for (int t = 0; t < slab_targets; ++t) slabs_.push_back(make(eight_bit ? GL_RGBA8 : GL_RGBA32F));
         allocated_ = res;
     }
 
@@ -190,6 +208,7 @@ private:
         glUseProgram(p.get());
         set_light_uniforms(p.get(), light, options);
         if (p.get() != range_program_.get()) {
+            detail::placement_glsl<P>::set_uniforms(p.get(), placement_);
             glActiveTexture(GL_TEXTURE0);
             glBindTexture(GL_TEXTURE_2D, range_.get());
             glUniform1i(glGetUniformLocation(p.get(), "hs_range_map"), 0);
@@ -197,8 +216,10 @@ private:
         mesh.draw();
     }
 
+    P placement_;
     light_space light_;
     int allocated_ = 0;
+    std::vector<float> range_values_;
     program range_program_, bits_program_, slabs_program_;
     texture range_;
     std::vector<texture> bits_, slabs_;

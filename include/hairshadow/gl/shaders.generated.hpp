@@ -87,11 +87,12 @@ float hs_transmittance(vec3 world_pos) {
     ivec2 texel = ivec2(window);
     float depth = (-(hs_lookup_view * vec4(world_pos, 1.0)).z - hs_lookup_near) / (hs_lookup_far - hs_lookup_near);
     vec4 range = texelFetch(hs_range_texture, texel, 0);
+    if (range.x > range.w) return 1.0; // no fragment in this texel
     uint bits[HS_WORDS];
     for (int w = 0; w < HS_WORDS; ++w) bits[w] = texelFetch(hs_bits_texture[w / 4], texel, 0)[w % 4];
     float slabs[HS_SLABS];
     for (int s = 0; s < HS_SLABS; ++s) slabs[s] = texelFetch(hs_slabs_texture[s / 4], texel, 0)[s % 4];
-    return exp(-hs_occupancy_optical_depth(hs_locate(vec2(range.x, range.w), depth), bits, slabs));
+    return exp(-hs_occupancy_optical_depth(hs_locate_from(range, depth), bits, slabs));
 }
 )hs_glsl";
 
@@ -157,7 +158,8 @@ layout(location = 0) out uvec4 hs_bits_out[HS_BIT_TARGETS];
 
 void main() {
     vec4 range = texelFetch(hs_range_map, ivec2(gl_FragCoord.xy), 0);
-    int k = hs_assign(vec2(range.x, range.w), hs_v_depth);
+    int k = hs_assign_from(range, hs_v_depth);
+    if (k < 0) discard;
     uvec4 word = uvec4(0u);
     word[(k % 128) / 32] = 1u << uint(k % 32);
     for (int t = 0; t < HS_BIT_TARGETS; ++t) hs_bits_out[t] = (k / 128 == t) ? word : uvec4(0u);
@@ -166,13 +168,15 @@ void main() {
 
 /// shaders/passes/occupancy_slabs.glsl
 inline constexpr std::string_view passes_occupancy_slabs = R"hs_glsl(// Slab pass (Sintorn & Assarsson 2009, section 3.1): the fragment's optical depth added to its slab's
-// channel of RGBA targets (4 slabs each) by additive blending.
+// channel of RGBA targets (4 slabs each; RGBA32F, or RGBA8 for emulated 8 bits) by additive blending.
 uniform sampler2D hs_range_map;
 layout(location = 0) out vec4 hs_slabs_out[HS_SLAB_TARGETS];
 
 void main() {
     vec4 range = texelFetch(hs_range_map, ivec2(gl_FragCoord.xy), 0);
-    int slab = hs_assign(vec2(range.x, range.w), hs_v_depth) / (HS_LAYERS / HS_SLABS);
+    int k = hs_assign_from(range, hs_v_depth);
+    if (k < 0) discard;
+    int slab = k / (HS_LAYERS / HS_SLABS);
     vec4 value = vec4(0.0);
     value[slab % 4] = hs_encode(hs_fragment_optical_depth());
     for (int t = 0; t < HS_SLAB_TARGETS; ++t) hs_slabs_out[t] = (slab / 4 == t) ? value : vec4(0.0);
