@@ -8,6 +8,7 @@
 /// composed from the same policy snippets whose CPU twins build the CPU maps.
 
 #include <hairshadow/gl/context.hpp>
+#include <hairshadow/gl/depth_range_pass.hpp>
 #include <hairshadow/gl/hair_mesh.hpp>
 #include <hairshadow/gl/shaders.generated.hpp>
 #include <hairshadow/methods/published.hpp>
@@ -82,14 +83,11 @@ public:
         targets_per_pass_ = std::min(std::min(draw_buffers, 8), array_layers);
         if (targets_per_pass_ < 1) throw feature_error("interpolated shadow maps need at least one draw buffer");
         const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::raster_vertex}, "raster/vertex");
-        const auto range_fs = compile_shader(GL_FRAGMENT_SHADER, {version, defines(1), shaders::raster_coverage, shaders::passes_depth_range},
-                                             "passes/depth_range");
         const auto layers_fs = compile_shader(GL_FRAGMENT_SHADER,
                                               {version, defines(targets_per_pass_), shaders::raster_coverage, accumulation_snippet(),
                                                shaders::placement_common, detail::placement_glsl<P>::snippet, detail::placement_glsl<P>::state,
                                                shaders::passes_layers},
                                               "passes/layers");
-        range_program_ = link_program({&vs, &range_fs}, "depth-range pass");
         layers_program_ = link_program({&vs, &layers_fs}, "layers pass");
     }
 
@@ -107,32 +105,14 @@ public:
         light_ = light;
         const int res = light.resolution();
         allocate(res);
+        // 1. Depth range: per-texel states, and the global extent.
+        range_.run(mesh, light, options);
+        placement_.prepare(range_.extent());
         auto fbo = make_framebuffer();
         glBindFramebuffer(GL_FRAMEBUFFER, fbo.get());
         glViewport(0, 0, res, res);
         glDisable(GL_DEPTH_TEST);
-
-        // 1. Depth range (red MIN, alpha MAX): per-texel state, and the global extent.
-        glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, range_.get(), 0);
-        const GLenum first = GL_COLOR_ATTACHMENT0;
-        glDrawBuffers(1, &first);
-        const float clear_range[4] = {3.0e38f, 0.0f, 0.0f, -3.0e38f};
-        glClearBufferfv(GL_COLOR, 0, clear_range);
         glEnable(GL_BLEND);
-        glBlendEquationSeparate(GL_MIN, GL_MAX);
-        glBlendFunc(GL_ONE, GL_ONE);
-        glUseProgram(range_program_.get());
-        set_light_uniforms(range_program_.get(), light, options);
-        mesh.draw();
-        range_values_.resize(4 * std::size_t(res) * std::size_t(res));
-        glBindTexture(GL_TEXTURE_2D, range_.get());
-        glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, range_values_.data());
-        depth_extent extent{3.0e38f, -3.0e38f};
-        for (std::size_t i = 0; i < range_values_.size(); i += 4)
-            if (range_values_[i] <= range_values_[i + 3])
-                extent.nearest = std::min(extent.nearest, range_values_[i]), extent.furthest = std::max(extent.furthest, range_values_[i + 3]);
-        if (extent.nearest > extent.furthest) extent = {};
-        placement_.prepare(extent);
 
         // 2. Layers, 4 per target, up to 8 targets a pass.
         glBlendEquation(GL_FUNC_ADD);
@@ -141,7 +121,7 @@ public:
         set_light_uniforms(layers_program_.get(), light, options);
         detail::placement_glsl<P>::set_uniforms(layers_program_.get(), placement_);
         glActiveTexture(GL_TEXTURE0);
-        glBindTexture(GL_TEXTURE_2D, range_.get());
+        glBindTexture(GL_TEXTURE_2D, range_.map().get());
         glUniform1i(glGetUniformLocation(layers_program_.get(), "hs_range_map"), 0);
         for (int base = 0; base < array_layers; base += targets_per_pass_) {
             std::vector<GLenum> buffers;
@@ -175,25 +155,18 @@ public:
         check("interpolated maps read-back");
         std::vector<typename Method::texel_maps> out(n);
         for (std::size_t i = 0; i < n; ++i) {
-            const float* range = &range_values_[4 * i];
-            if (range[0] > range[3]) continue; // no fragment: the CPU leaves the texel zero
-            out[i].placement = detail::texel_state_from(placement_, range);
+            if (range_.empty(i)) continue; // no fragment: the CPU leaves the texel zero
+            out[i].placement = detail::texel_state_from(placement_, range_.texel(i));
             for (int k = 0; k < layers; ++k)
                 out[i].data.layers[std::size_t(k)] = stored[4 * n * std::size_t(k / 4) + 4 * i + std::size_t(k % 4)];
         }
         return out;
     }
 
+    /// Binds the maps and the light for the look-up in program `prog`, on texture units from `first_unit`.
     void bind_lookup(GLuint prog, int first_unit = 0) const {
-        glUniformMatrix4fv(glGetUniformLocation(prog, "hs_lookup_view_projection"), 1, GL_FALSE, &light_.view_projection()[0][0]);
-        glUniformMatrix4fv(glGetUniformLocation(prog, "hs_lookup_view"), 1, GL_FALSE, &light_.view()[0][0]);
-        glUniform1f(glGetUniformLocation(prog, "hs_lookup_near"), light_.near_plane());
-        glUniform1f(glGetUniformLocation(prog, "hs_lookup_far"), light_.far_plane());
-        glUniform1i(glGetUniformLocation(prog, "hs_lookup_resolution"), light_.resolution());
+        set_lookup_uniforms(prog, light_, range_, first_unit);
         detail::placement_glsl<P>::set_uniforms(prog, placement_);
-        glActiveTexture(GLenum(GL_TEXTURE0 + first_unit));
-        glBindTexture(GL_TEXTURE_2D, range_.get());
-        glUniform1i(glGetUniformLocation(prog, "hs_range_texture"), first_unit);
         glActiveTexture(GLenum(GL_TEXTURE0 + first_unit + 1));
         glBindTexture(GL_TEXTURE_2D_ARRAY, layers_.get());
         glUniform1i(glGetUniformLocation(prog, "hs_layers_texture"), first_unit + 1);
@@ -210,9 +183,6 @@ private:
     }
     void allocate(int res) {
         if (res == allocated_) return;
-        range_ = make_texture();
-        glBindTexture(GL_TEXTURE_2D, range_.get());
-        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, res, res);
         layers_ = make_texture();
         glBindTexture(GL_TEXTURE_2D_ARRAY, layers_.get());
         glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, eight_bit ? GL_RGBA8 : GL_RGBA32F, res, res, array_layers);
@@ -222,9 +192,9 @@ private:
     P placement_;
     light_space light_;
     int allocated_ = 0, targets_per_pass_ = 1;
-    program range_program_, layers_program_;
-    texture range_, layers_;
-    std::vector<float> range_values_;
+    depth_range_pass range_;
+    program layers_program_;
+    texture layers_;
 };
 
 } // namespace hairshadow::gl

@@ -7,6 +7,7 @@
 /// placement works (the published depth range, or the per-pixel-depth hybrid).
 
 #include <hairshadow/gl/context.hpp>
+#include <hairshadow/gl/depth_range_pass.hpp>
 #include <hairshadow/gl/hair_mesh.hpp>
 #include <hairshadow/gl/interpolated_maps.hpp>
 #include <hairshadow/gl/shaders.generated.hpp>
@@ -47,10 +48,8 @@ public:
                                                        detail::placement_glsl<P>::snippet, detail::placement_glsl<P>::state, pass},
                                   name);
         };
-        const auto range_fs = fragment(shaders::passes_depth_range, "passes/depth_range");
         const auto bits_fs = fragment(shaders::passes_occupancy_bits, "passes/occupancy_bits");
         const auto slabs_fs = fragment(shaders::passes_occupancy_slabs, "passes/occupancy_slabs");
-        range_program_ = link_program({&vs, &range_fs}, "depth-range pass");
         bits_program_ = link_program({&vs, &bits_fs}, "occupancy pass");
         slabs_program_ = link_program({&vs, &slabs_fs}, "slab pass");
     }
@@ -70,28 +69,13 @@ public:
         light_ = light;
         const int res = light.resolution();
         allocate(res);
+        // 1. Depth range: per-texel states, and the global extent.
+        range_.run(mesh, light, options);
+        placement_.prepare(range_.extent());
         auto fbo = make_framebuffer();
         glBindFramebuffer(GL_FRAMEBUFFER, fbo.get());
         glViewport(0, 0, res, res);
         glDisable(GL_DEPTH_TEST);
-
-        // 1. Depth range: red = MIN, alpha = MAX.
-        attach({range_.get()});
-        const float clear_range[4] = {3.0e38f, 0.0f, 0.0f, -3.0e38f};
-        glClearBufferfv(GL_COLOR, 0, clear_range);
-        glEnable(GL_BLEND);
-        glBlendEquationSeparate(GL_MIN, GL_MAX);
-        glBlendFunc(GL_ONE, GL_ONE);
-        draw(range_program_, mesh, light, options);
-        range_values_.resize(4 * std::size_t(res) * std::size_t(res));
-        glBindTexture(GL_TEXTURE_2D, range_.get());
-        glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, range_values_.data());
-        depth_extent extent{3.0e38f, -3.0e38f};
-        for (std::size_t i = 0; i < range_values_.size(); i += 4)
-            if (range_values_[i] <= range_values_[i + 3])
-                extent.nearest = std::min(extent.nearest, range_values_[i]), extent.furthest = std::max(extent.furthest, range_values_[i + 3]);
-        if (extent.nearest > extent.furthest) extent = {};
-        placement_.prepare(extent);
 
         // 2. Occupancy bits: OR of each fragment's slice bit.
         glDisable(GL_BLEND);
@@ -124,7 +108,6 @@ public:
     std::vector<typename cpu_method::texel_maps> read_back() const {
         const int res = light_.resolution();
         const std::size_t n = std::size_t(res) * std::size_t(res);
-        const std::vector<float>& range = range_values_;
         std::vector<typename A::value_type> slabs(4 * n * std::size_t(slab_targets));
         std::vector<std::uint32_t> bits(4 * n * std::size_t(bit_targets));
         for (int t = 0; t < bit_targets; ++t) {
@@ -139,8 +122,8 @@ public:
         std::vector<typename cpu_method::texel_maps> out(n);
         for (std::size_t i = 0; i < n; ++i) {
             auto& t = out[i];
-            if (range[4 * i] > range[4 * i + 3]) continue; // no fragment: the CPU leaves the texel zero
-            t.placement = detail::texel_state_from(placement_, &range[4 * i]);
+            if (range_.empty(i)) continue; // no fragment: the CPU leaves the texel zero
+            t.placement = detail::texel_state_from(placement_, range_.texel(i));
             for (int w = 0; w < S / 32; ++w) t.data.bits[std::size_t(w)] = bits[4 * n * std::size_t(w / 4) + 4 * i + std::size_t(w % 4)];
             for (int s = 0; s < B; ++s) t.data.slabs[std::size_t(s)] = slabs[4 * n * std::size_t(s / 4) + 4 * i + std::size_t(s % 4)];
         }
@@ -149,19 +132,14 @@ public:
 
     /// Binds the maps and the light for the look-up in program `prog`, on texture units from `first_unit`.
     void bind_lookup(GLuint prog, int first_unit = 0) const {
-        glUniformMatrix4fv(glGetUniformLocation(prog, "hs_lookup_view_projection"), 1, GL_FALSE, &light_.view_projection()[0][0]);
-        glUniformMatrix4fv(glGetUniformLocation(prog, "hs_lookup_view"), 1, GL_FALSE, &light_.view()[0][0]);
-        glUniform1f(glGetUniformLocation(prog, "hs_lookup_near"), light_.near_plane());
-        glUniform1f(glGetUniformLocation(prog, "hs_lookup_far"), light_.far_plane());
-        glUniform1i(glGetUniformLocation(prog, "hs_lookup_resolution"), light_.resolution());
+        set_lookup_uniforms(prog, light_, range_, first_unit);
         detail::placement_glsl<P>::set_uniforms(prog, placement_);
-        int unit = first_unit;
+        int unit = first_unit + 1;
         auto bind = [&](const texture& t, const std::string& name) {
             glActiveTexture(GLenum(GL_TEXTURE0 + unit));
             glBindTexture(GL_TEXTURE_2D, t.get());
             glUniform1i(glGetUniformLocation(prog, name.c_str()), unit++);
         };
-        bind(range_, "hs_range_texture");
         for (int t = 0; t < bit_targets; ++t) bind(bits_[std::size_t(t)], "hs_bits_texture[" + std::to_string(t) + "]");
         for (int t = 0; t < slab_targets; ++t) bind(slabs_[std::size_t(t)], "hs_slabs_texture[" + std::to_string(t) + "]");
         glActiveTexture(GL_TEXTURE0);
@@ -188,7 +166,6 @@ private:
             glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
             return t;
         };
-        range_ = make(GL_RGBA32F);
         bits_.clear();
         slabs_.clear();
         for (int t = 0; t < bit_targets; ++t) bits_.push_back(make(GL_RGBA32UI));
@@ -207,21 +184,18 @@ private:
     void draw(const program& p, const hair_mesh& mesh, const light_space& light, const raster_options& options) const {
         glUseProgram(p.get());
         set_light_uniforms(p.get(), light, options);
-        if (p.get() != range_program_.get()) {
-            detail::placement_glsl<P>::set_uniforms(p.get(), placement_);
-            glActiveTexture(GL_TEXTURE0);
-            glBindTexture(GL_TEXTURE_2D, range_.get());
-            glUniform1i(glGetUniformLocation(p.get(), "hs_range_map"), 0);
-        }
+        detail::placement_glsl<P>::set_uniforms(p.get(), placement_);
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, range_.map().get());
+        glUniform1i(glGetUniformLocation(p.get(), "hs_range_map"), 0);
         mesh.draw();
     }
 
     P placement_;
     light_space light_;
     int allocated_ = 0;
-    std::vector<float> range_values_;
-    program range_program_, bits_program_, slabs_program_;
-    texture range_;
+    depth_range_pass range_;
+    program bits_program_, slabs_program_;
     std::vector<texture> bits_, slabs_;
 };
 
