@@ -77,13 +77,25 @@ for layers, slabs in ((128, 4), (32, 1), (256, 8)):
 
 for placement, defines in (("planar_slices", "#define HS_LAYERS 64\n#define HS_GAMMA_SPACING\n#define HS_CUMULATIVE\n"),
                           ("per_pixel_depth", "#define HS_LAYERS 3\n#define HS_BEYOND_EXTEND\n#define HS_CUMULATIVE\n"),
-                          ("depth_range", "#define HS_LAYERS 16\n")):
+                          ("depth_range", "#define HS_LAYERS 16\n"),
+                          ("clustered", "#define HS_LAYERS 4\n#define HS_STATE_TARGETS 1\n"),
+                          ("clustered", "#define HS_LAYERS 6\n#define HS_STATE_TARGETS 2\n")):
     for accumulation in ("float", "emulated_8bit"):
         base = ["accumulation/" + accumulation, "placement/common", "placement/" + placement, "texel_state/" + placement]
-        COMPOSITIONS[f"layers_{placement}_{accumulation}"] = ("frag", defines + "#define HS_LAYER_TARGETS 8\n",
+        tag = placement + defines.split()[2]
+        COMPOSITIONS[f"layers_{tag}_{accumulation}"] = ("frag", defines + "#define HS_LAYER_TARGETS 8\n",
                                                               ["raster/coverage"] + base + ["passes/layers"], "")
-        COMPOSITIONS[f"lookup_layers_{placement}_{accumulation}"] = ("vert", defines, base + ["lookup/layers", "reconstruction/interpolation",
+        COMPOSITIONS[f"lookup_layers_{tag}_{accumulation}"] = ("vert", defines, base + ["lookup/layers", "reconstruction/interpolation",
                                                                                              "lookup/interpolation"], LOOKUP_MAIN)
+
+# Density clustering's state passes (cluster_state_pass.hpp).
+COMPOSITIONS["fullscreen_vertex"] = ("vert", "", ["passes/fullscreen_vertex"], "")
+for clusters in (4, 6):
+    defines = f"#define HS_LAYERS {clusters}\n#define HS_STATE_TARGETS {(clusters + 3) // 4}\n"
+    clustering = ["placement/common", "placement/clustered", "passes/cluster_common"]
+    for name in ("means", "variance"):
+        COMPOSITIONS[f"cluster_{name}_{clusters}"] = ("frag", defines, ["raster/coverage"] + clustering + [f"passes/cluster_{name}"], "")
+    COMPOSITIONS[f"cluster_resolve_{clusters}"] = ("frag", defines, clustering + ["passes/cluster_resolve"], "")
 
 
 def expand(text: str) -> str:

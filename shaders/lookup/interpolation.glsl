@@ -16,5 +16,5 @@ float hs_transmittance(vec3 world_pos) {
     float depth = (-(hs_lookup_view * vec4(world_pos, 1.0)).z - hs_lookup_near) / (hs_lookup_far - hs_lookup_near);
     vec4 range = texelFetch(hs_range_texture, hs_lookup_texel, 0);
     if (range.x > range.w) return 1.0; // no fragment in this texel
-    return exp(-hs_interpolate(hs_locate_from(range, depth)));
+    return exp(-hs_interpolate(hs_locate_from(hs_lookup_texel, range, depth)));
 }

@@ -22,5 +22,5 @@ float hs_transmittance(vec3 world_pos) {
     for (int w = 0; w < HS_WORDS; ++w) bits[w] = texelFetch(hs_bits_texture[w / 4], texel, 0)[w % 4];
     float slabs[HS_SLABS];
     for (int s = 0; s < HS_SLABS; ++s) slabs[s] = texelFetch(hs_slabs_texture[s / 4], texel, 0)[s % 4];
-    return exp(-hs_occupancy_optical_depth(hs_locate_from(range, depth), bits, slabs));
+    return exp(-hs_occupancy_optical_depth(hs_locate_from(texel, range, depth), bits, slabs));
 }

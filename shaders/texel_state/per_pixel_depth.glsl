@@ -8,5 +8,5 @@ float hs_scale_from(vec4 range) {
     return 1.0;
 #endif
 }
-int hs_assign_from(vec4 range, float depth) { return hs_assign(range.x, hs_scale_from(range), depth); }
-hs_layer_position hs_locate_from(vec4 range, float depth) { return hs_locate(range.x, hs_scale_from(range), depth); }
+int hs_assign_from(ivec2 texel, vec4 range, float depth) { return hs_assign(range.x, hs_scale_from(range), depth); }
+hs_layer_position hs_locate_from(ivec2 texel, vec4 range, float depth) { return hs_locate(range.x, hs_scale_from(range), depth); }

@@ -1,12 +1,14 @@
 #pragma once
 /// @file
 /// Interpolated methods on GL: opacity shadow maps (planar slices), deep opacity maps (per-pixel
-/// depth) and range opacity maps (depth range), float or emulated 8-bit. A depth-range pass (MIN /
-/// MAX blending) gives every placement its per-texel state (z0; nearest and furthest) and, reduced
-/// on the CPU, the global depth extent; then additive passes write up to 8 RGBA targets (32 layers)
-/// at a time into the layers of a 2D array texture (RGBA32F, or RGBA8 for 8 bits). Programs are
-/// composed from the same policy snippets whose CPU twins build the CPU maps.
+/// depth), density clustering (clustered bins) and range opacity maps (depth range), float or
+/// emulated 8-bit. A depth-range pass (MIN / MAX blending) gives every placement its per-texel state
+/// (z0; nearest and furthest) and, reduced on the CPU, the global depth extent; density clustering
+/// adds its k-means passes (cluster_state_pass.hpp). Then additive passes write up to 8 RGBA targets
+/// (32 layers) at a time into the layers of a 2D array texture (RGBA32F, or RGBA8 for 8 bits).
+/// Programs are composed from the same policy snippets whose CPU twins build the CPU maps.
 
+#include <hairshadow/gl/cluster_state_pass.hpp>
 #include <hairshadow/gl/context.hpp>
 #include <hairshadow/gl/depth_range_pass.hpp>
 #include <hairshadow/gl/hair_mesh.hpp>
@@ -20,11 +22,28 @@
 namespace hairshadow::gl {
 
 namespace detail {
+/// The per-texel state of placements whose state is the depth range's: nothing more to draw.
+struct range_state {
+    static std::string defines() { return ""; }
+    void run(const hair_mesh&, const light_space&, const raster_options&, const depth_range_pass&) {}
+    void bind(GLuint, int) const {}
+    void read_back() {}
+    /// The CPU texel state, from a depth-range texel (nearest in [0], furthest in [3]).
+    template <class P>
+    typename P::texel_state texel_state(const P& placement, const depth_range_pass& range, std::size_t i) const {
+        typename P::texel_state s{};
+        const fragment pair[2] = {{range.texel(i)[0], 0.0f}, {range.texel(i)[3], 0.0f}};
+        placement.prepare_texel(std::span<const fragment>(pair, 2), s); // the state's own pre-pass, on the two extremes
+        return s;
+    }
+};
+
 template <class P>
 struct placement_glsl; // what a placement needs on GL
 
 template <int N, class Spacing>
 struct placement_glsl<planar_slices<N, Spacing>> {
+    using state_pass = range_state;
     static std::string defines() { return std::is_same_v<Spacing, gamma_spacing> ? "#define HS_GAMMA_SPACING\n" : ""; }
     static constexpr std::string_view snippet = shaders::placement_planar_slices, state = shaders::texel_state_planar_slices;
     static void set_uniforms(GLuint prog, const planar_slices<N, Spacing>& p) {
@@ -36,6 +55,7 @@ struct placement_glsl<planar_slices<N, Spacing>> {
 template <int K, layer_sizes Sizes, beyond_last_layer Beyond>
 struct placement_glsl<per_pixel_depth<K, Sizes, Beyond>> {
     using P = per_pixel_depth<K, Sizes, Beyond>;
+    using state_pass = range_state;
     static std::string defines() {
         return std::string(Sizes == layer_sizes::uniform ? "#define HS_UNIFORM_SIZES\n" : "") +
                (Beyond == beyond_last_layer::ignore ? "#define HS_BEYOND_IGNORE\n" : "") +
@@ -47,23 +67,22 @@ struct placement_glsl<per_pixel_depth<K, Sizes, Beyond>> {
 
 template <int S>
 struct placement_glsl<depth_range<S>> {
+    using state_pass = range_state;
     static std::string defines() { return ""; }
     static constexpr std::string_view snippet = shaders::placement_depth_range, state = shaders::texel_state_depth_range;
     static void set_uniforms(GLuint, const depth_range<S>&) {}
 };
 
-/// The CPU texel state of a placement, from a depth-range texel (nearest in [0], furthest in [3]).
-template <class P>
-typename P::texel_state texel_state_from(const P& placement, const float* range) {
-    typename P::texel_state s{};
-    const fragment pair[2] = {{range[0], 0.0f}, {range[3], 0.0f}};
-    placement.prepare_texel(std::span<const fragment>(pair, 2), s); // the state's own pre-pass, on the two extremes
-    return s;
-}
+template <int K>
+struct placement_glsl<clustered<K>> {
+    using state_pass = cluster_state_pass<K>;
+    static std::string defines() { return state_pass::defines(); }
+    static constexpr std::string_view snippet = shaders::placement_clustered, state = shaders::texel_state_clustered;
+    static void set_uniforms(GLuint, const clustered<K>&) {}
+};
 } // namespace detail
 
-/// GL twin of a shadow_method whose reconstruction is `interpolation` and whose placement is planar,
-/// per-pixel-depth or depth-range.
+/// GL twin of a shadow_method whose reconstruction is `interpolation` (any placement).
 template <class Method>
 class interpolated_maps_gl {
     using P = typename Method::placement_type;
@@ -108,6 +127,7 @@ public:
         // 1. Depth range: per-texel states, and the global extent.
         range_.run(mesh, light, options);
         placement_.prepare(range_.extent());
+        state_.run(mesh, light, options, range_); // density clustering's passes; nothing for the others
         auto fbo = make_framebuffer();
         glBindFramebuffer(GL_FRAMEBUFFER, fbo.get());
         glViewport(0, 0, res, res);
@@ -123,6 +143,7 @@ public:
         glActiveTexture(GL_TEXTURE0);
         glBindTexture(GL_TEXTURE_2D, range_.map().get());
         glUniform1i(glGetUniformLocation(layers_program_.get(), "hs_range_map"), 0);
+        state_.bind(layers_program_.get(), 1);
         for (int base = 0; base < array_layers; base += targets_per_pass_) {
             std::vector<GLenum> buffers;
             for (int t = 0; t < 8; ++t) {
@@ -146,24 +167,26 @@ public:
     const P& placement() const noexcept { return placement_; }
 
     /// Reads the maps back in the CPU method's texel layout.
-    std::vector<typename Method::texel_maps> read_back() const {
+    std::vector<typename Method::texel_maps> read_back() {
         const int res = light_.resolution();
         const std::size_t n = std::size_t(res) * std::size_t(res);
         std::vector<typename A::value_type> stored(4 * n * std::size_t(array_layers));
         glBindTexture(GL_TEXTURE_2D_ARRAY, layers_.get());
         glGetTexImage(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA, eight_bit ? GL_UNSIGNED_BYTE : GL_FLOAT, stored.data());
         check("interpolated maps read-back");
+        state_.read_back();
         std::vector<typename Method::texel_maps> out(n);
         for (std::size_t i = 0; i < n; ++i) {
             if (range_.empty(i)) continue; // no fragment: the CPU leaves the texel zero
-            out[i].placement = detail::texel_state_from(placement_, range_.texel(i));
+            out[i].placement = state_.texel_state(placement_, range_, i);
             for (int k = 0; k < layers; ++k)
                 out[i].data.layers[std::size_t(k)] = stored[4 * n * std::size_t(k / 4) + 4 * i + std::size_t(k % 4)];
         }
         return out;
     }
 
-    /// Binds the maps and the light for the look-up in program `prog`, on texture units from `first_unit`.
+    /// Binds the maps and the light for the look-up in program `prog`, on texture units
+    /// [first_unit, first_unit + 3).
     void bind_lookup(GLuint prog, int first_unit = 0) const {
         set_lookup_uniforms(prog, light_, range_, first_unit);
         detail::placement_glsl<P>::set_uniforms(prog, placement_);
@@ -171,6 +194,7 @@ public:
         glBindTexture(GL_TEXTURE_2D_ARRAY, layers_.get());
         glUniform1i(glGetUniformLocation(prog, "hs_layers_texture"), first_unit + 1);
         glActiveTexture(GL_TEXTURE0);
+        state_.bind(prog, first_unit + 2);
     }
 
 private:
@@ -193,6 +217,7 @@ private:
     light_space light_;
     int allocated_ = 0, targets_per_pass_ = 1;
     depth_range_pass range_;
+    typename detail::placement_glsl<P>::state_pass state_;
     program layers_program_;
     texture layers_;
 };

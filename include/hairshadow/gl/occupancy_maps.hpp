@@ -123,7 +123,7 @@ public:
         for (std::size_t i = 0; i < n; ++i) {
             auto& t = out[i];
             if (range_.empty(i)) continue; // no fragment: the CPU leaves the texel zero
-            t.placement = detail::texel_state_from(placement_, range_.texel(i));
+            t.placement = detail::range_state{}.texel_state(placement_, range_, i);
             for (int w = 0; w < S / 32; ++w) t.data.bits[std::size_t(w)] = bits[4 * n * std::size_t(w / 4) + 4 * i + std::size_t(w % 4)];
             for (int s = 0; s < B; ++s) t.data.slabs[std::size_t(s)] = slabs[4 * n * std::size_t(s / 4) + 4 * i + std::size_t(s % 4)];
         }

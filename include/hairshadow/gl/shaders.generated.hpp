@@ -43,7 +43,7 @@ float hs_transmittance(vec3 world_pos) {
     float depth = (-(hs_lookup_view * vec4(world_pos, 1.0)).z - hs_lookup_near) / (hs_lookup_far - hs_lookup_near);
     vec4 range = texelFetch(hs_range_texture, hs_lookup_texel, 0);
     if (range.x > range.w) return 1.0; // no fragment in this texel
-    return exp(-hs_interpolate(hs_locate_from(range, depth)));
+    return exp(-hs_interpolate(hs_locate_from(hs_lookup_texel, range, depth)));
 }
 )hs_glsl";
 
@@ -92,7 +92,7 @@ float hs_transmittance(vec3 world_pos) {
     for (int w = 0; w < HS_WORDS; ++w) bits[w] = texelFetch(hs_bits_texture[w / 4], texel, 0)[w % 4];
     float slabs[HS_SLABS];
     for (int s = 0; s < HS_SLABS; ++s) slabs[s] = texelFetch(hs_slabs_texture[s / 4], texel, 0)[s % 4];
-    return exp(-hs_occupancy_optical_depth(hs_locate_from(range, depth), bits, slabs));
+    return exp(-hs_occupancy_optical_depth(hs_locate_from(texel, range, depth), bits, slabs));
 }
 )hs_glsl";
 
@@ -114,12 +114,110 @@ void main() {
 }
 )hs_glsl";
 
+/// shaders/passes/cluster_common.glsl
+inline constexpr std::string_view passes_cluster_common = R"hs_glsl(// Density clustering's means from pass 1's sums: sum / weight, or the initial centre (and an empty
+// cluster, sigma -1) where no fragment chose it; non-empty clusters start with sigma 0.
+uniform sampler2DArray hs_cluster_sums; // weights, then weighted depths
+
+void hs_cluster_means(ivec2 texel, vec4 range, out float mean[HS_LAYERS], out float sigma[HS_LAYERS]) {
+    for (int j = 0; j < HS_LAYERS; ++j) {
+        float weight = texelFetch(hs_cluster_sums, ivec3(texel, j / 4), 0)[j % 4];
+        float sum = texelFetch(hs_cluster_sums, ivec3(texel, HS_STATE_TARGETS + j / 4), 0)[j % 4];
+        mean[j] = weight > 0.0 ? sum / weight : hs_initial_centre(range, j);
+        sigma[j] = weight > 0.0 ? 0.0 : -1.0;
+    }
+}
+)hs_glsl";
+
+/// shaders/passes/cluster_means.glsl
+inline constexpr std::string_view passes_cluster_means = R"hs_glsl(// Density clustering, pass 1 (Mertens et al. 2004, section 3.3): one k-means iteration from K centres
+// spread over the texel's depth range. Each fragment adds its weight b = -ln(1 - alpha) (targets
+// [0, HS_STATE_TARGETS)) and b * depth (the next HS_STATE_TARGETS) to the cluster of its nearest
+// centre, by additive blending into RGBA32F.
+uniform sampler2D hs_range_map;
+layout(location = 0) out vec4 hs_cluster_out[2 * HS_STATE_TARGETS];
+
+void main() {
+    vec4 range = texelFetch(hs_range_map, ivec2(gl_FragCoord.xy), 0);
+    float centre[HS_LAYERS], unused[HS_LAYERS];
+    for (int j = 0; j < HS_LAYERS; ++j) {
+        centre[j] = hs_initial_centre(range, j);
+        unused[j] = 0.0;
+    }
+    int cluster = hs_nearest_cluster(centre, unused, true, hs_v_depth);
+    float b = hs_fragment_optical_depth();
+    for (int t = 0; t < HS_STATE_TARGETS; ++t) {
+        vec4 weight = vec4(0.0);
+        if (cluster / 4 == t) weight[cluster % 4] = b;
+        hs_cluster_out[t] = weight;
+        hs_cluster_out[HS_STATE_TARGETS + t] = weight * hs_v_depth;
+    }
+}
+)hs_glsl";
+
+/// shaders/passes/cluster_resolve.glsl
+inline constexpr std::string_view passes_cluster_resolve = R"hs_glsl(// Density clustering's state, one full-screen pass: the means (targets [0, HS_STATE_TARGETS)) and
+// standard deviations sqrt(sum b (depth - mean)^2 / sum b) (the next HS_STATE_TARGETS).
+uniform sampler2D hs_range_map;
+uniform sampler2DArray hs_cluster_variance; // weights, then weighted squared distances
+layout(location = 0) out vec4 hs_state_out[2 * HS_STATE_TARGETS];
+
+void main() {
+    ivec2 texel = ivec2(gl_FragCoord.xy);
+    float mean[HS_LAYERS], sigma[HS_LAYERS];
+    hs_cluster_means(texel, texelFetch(hs_range_map, texel, 0), mean, sigma);
+    for (int j = 0; j < HS_LAYERS; ++j) {
+        float weight = texelFetch(hs_cluster_variance, ivec3(texel, j / 4), 0)[j % 4];
+        float sum = texelFetch(hs_cluster_variance, ivec3(texel, HS_STATE_TARGETS + j / 4), 0)[j % 4];
+        if (sigma[j] >= 0.0 && weight > 0.0) sigma[j] = sqrt(sum / weight);
+    }
+    for (int t = 0; t < HS_STATE_TARGETS; ++t) {
+        vec4 m = vec4(0.0), s = vec4(-1.0);
+        for (int c = 0; c < 4 && 4 * t + c < HS_LAYERS; ++c) {
+            m[c] = mean[4 * t + c];
+            s[c] = sigma[4 * t + c];
+        }
+        hs_state_out[t] = m;
+        hs_state_out[HS_STATE_TARGETS + t] = s;
+    }
+}
+)hs_glsl";
+
+/// shaders/passes/cluster_variance.glsl
+inline constexpr std::string_view passes_cluster_variance = R"hs_glsl(// Density clustering, pass 2 (Mertens et al. 2004, section 3.3): each fragment adds b and
+// b (depth - mean)^2 to its nearest non-empty cluster, for the clusters' standard deviations.
+uniform sampler2D hs_range_map;
+layout(location = 0) out vec4 hs_cluster_out[2 * HS_STATE_TARGETS];
+
+void main() {
+    ivec2 texel = ivec2(gl_FragCoord.xy);
+    float mean[HS_LAYERS], sigma[HS_LAYERS];
+    hs_cluster_means(texel, texelFetch(hs_range_map, texel, 0), mean, sigma);
+    int cluster = hs_nearest_cluster(mean, sigma, false, hs_v_depth);
+    float b = hs_fragment_optical_depth(), d = hs_v_depth - mean[cluster];
+    for (int t = 0; t < HS_STATE_TARGETS; ++t) {
+        vec4 weight = vec4(0.0);
+        if (cluster / 4 == t) weight[cluster % 4] = b;
+        hs_cluster_out[t] = weight;
+        hs_cluster_out[HS_STATE_TARGETS + t] = weight * (d * d);
+    }
+}
+)hs_glsl";
+
 /// shaders/passes/depth_range.glsl
 inline constexpr std::string_view passes_depth_range = R"hs_glsl(// Depth-range pass (Sintorn & Assarsson 2009, section 3.1): red keeps the nearest fragment under MIN
 // blending, alpha the furthest under MAX blending (glBlendEquationSeparate(GL_MIN, GL_MAX)).
 out vec4 hs_range_out;
 
 void main() { hs_range_out = vec4(hs_v_depth, 0.0, 0.0, hs_v_depth); }
+)hs_glsl";
+
+/// shaders/passes/fullscreen_vertex.glsl
+inline constexpr std::string_view passes_fullscreen_vertex = R"hs_glsl(// One triangle covering the viewport, from gl_VertexID alone (draw 3 vertices, no attributes).
+void main() {
+    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+    gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0);
+}
 )hs_glsl";
 
 /// shaders/passes/layers.glsl
@@ -133,7 +231,7 @@ layout(location = 0) out vec4 hs_layers_out[HS_LAYER_TARGETS];
 
 void main() {
     vec4 range = texelFetch(hs_range_map, ivec2(gl_FragCoord.xy), 0);
-    int k = hs_assign_from(range, hs_v_depth);
+    int k = hs_assign_from(ivec2(gl_FragCoord.xy), range, hs_v_depth);
     float value = k < 0 ? 0.0 : hs_encode(hs_fragment_optical_depth());
     for (int t = 0; t < HS_LAYER_TARGETS; ++t) {
         vec4 v = vec4(0.0);
@@ -158,7 +256,7 @@ layout(location = 0) out uvec4 hs_bits_out[HS_BIT_TARGETS];
 
 void main() {
     vec4 range = texelFetch(hs_range_map, ivec2(gl_FragCoord.xy), 0);
-    int k = hs_assign_from(range, hs_v_depth);
+    int k = hs_assign_from(ivec2(gl_FragCoord.xy), range, hs_v_depth);
     if (k < 0) discard;
     uvec4 word = uvec4(0u);
     word[(k % 128) / 32] = 1u << uint(k % 32);
@@ -174,12 +272,95 @@ layout(location = 0) out vec4 hs_slabs_out[HS_SLAB_TARGETS];
 
 void main() {
     vec4 range = texelFetch(hs_range_map, ivec2(gl_FragCoord.xy), 0);
-    int k = hs_assign_from(range, hs_v_depth);
+    int k = hs_assign_from(ivec2(gl_FragCoord.xy), range, hs_v_depth);
     if (k < 0) discard;
     int slab = k / (HS_LAYERS / HS_SLABS);
     vec4 value = vec4(0.0);
     value[slab % 4] = hs_encode(hs_fragment_optical_depth());
     for (int t = 0; t < HS_SLAB_TARGETS; ++t) hs_slabs_out[t] = (slab / 4 == t) ? value : vec4(0.0);
+}
+)hs_glsl";
+
+/// shaders/placement/clustered.glsl
+inline constexpr std::string_view placement_clustered = R"hs_glsl(// Density clustering's bins (Mertens et al. 2004, sections 3.2-3.3). A texel's state is K cluster
+// means and standard deviations (sigma < 0: an empty cluster); bin j spans mean_j +- sqrt(3) sigma_j
+// and overlapping neighbours meet at the midpoint of their overlap. Mirrors hairshadow::clustered,
+// operation for operation (`precise` keeps the compiler from fusing them).
+const float HS_BIN_HALF_WIDTH = 1.7320508;
+
+struct hs_bin {
+    float lo;
+    float hi;
+    bool empty;
+};
+
+// Initial k-means centre j: the middle of the j-th of K equal parts of [nearest, furthest].
+float hs_initial_centre(vec4 range, int j) {
+    precise float centre = range.x + (range.w - range.x) * (float(j) + 0.5) / float(HS_LAYERS);
+    return centre;
+}
+
+// The nearest centre (the first on ties) among non-empty clusters, or among all when `all` is set.
+int hs_nearest_cluster(float centre[HS_LAYERS], float sigma[HS_LAYERS], bool all, float depth) {
+    int best = -1;
+    float best_distance = 0.0;
+    for (int j = 0; j < HS_LAYERS; ++j) {
+        if (!all && sigma[j] < 0.0) continue;
+        float d = abs(depth - centre[j]);
+        if (best < 0 || d < best_distance) {
+            best = j;
+            best_distance = d;
+        }
+    }
+    return max(best, 0);
+}
+
+void hs_cluster_bins(float mean[HS_LAYERS], float sigma[HS_LAYERS], out hs_bin bins[HS_LAYERS]) {
+    int previous = -1;
+    for (int j = 0; j < HS_LAYERS; ++j) {
+        precise float half_width = HS_BIN_HALF_WIDTH * max(sigma[j], 0.0);
+        precise float lo = mean[j] - half_width;
+        precise float hi = mean[j] + half_width;
+        bins[j] = hs_bin(lo, hi, sigma[j] < 0.0);
+        if (bins[j].empty) continue;
+        if (previous >= 0 && bins[previous].hi > bins[j].lo) {
+            precise float mid = 0.5 * (bins[previous].hi + bins[j].lo);
+            mid = clamp(mid, bins[previous].lo, max(bins[previous].lo, bins[j].hi));
+            bins[previous].hi = mid;
+            bins[j].lo = mid;
+            bins[j].hi = max(bins[j].hi, mid);
+        }
+        previous = j;
+    }
+}
+
+// The bin holding `depth`, or else the non-empty cluster with the nearest mean.
+int hs_assign(float mean[HS_LAYERS], float sigma[HS_LAYERS], float depth) {
+    hs_bin bins[HS_LAYERS];
+    hs_cluster_bins(mean, sigma, bins);
+    for (int j = 0; j < HS_LAYERS; ++j) {
+        hs_bin b = bins[j];
+        if (!b.empty && depth >= b.lo && (depth < b.hi || (b.lo == b.hi && depth == b.lo))) return j;
+    }
+    return hs_nearest_cluster(mean, sigma, false, depth);
+}
+
+// Inside bin j: (j, fraction); between bins: the end of the bin before; in front of all: -1.
+hs_layer_position hs_locate(float mean[HS_LAYERS], float sigma[HS_LAYERS], float depth) {
+    hs_bin bins[HS_LAYERS];
+    hs_cluster_bins(mean, sigma, bins);
+    hs_layer_position p = hs_layer_position(-1, 0.0);
+    for (int j = 0; j < HS_LAYERS; ++j) {
+        hs_bin b = bins[j];
+        if (b.empty) continue;
+        if (!(depth > b.lo)) break;
+        if (depth >= b.hi) {
+            p = hs_layer_position(j, 1.0);
+            continue;
+        }
+        return hs_layer_position(j, (depth - b.lo) / (b.hi - b.lo));
+    }
+    return p;
 }
 )hs_glsl";
 
@@ -410,10 +591,33 @@ float hs_occupancy_optical_depth(hs_layer_position p, uint bits[HS_WORDS], float
 }
 )hs_glsl";
 
+/// shaders/texel_state/clustered.glsl
+inline constexpr std::string_view texel_state_clustered = R"hs_glsl(// Density clustering's per-texel state: the means (array layers [0, HS_STATE_TARGETS)) and standard
+// deviations (the next HS_STATE_TARGETS layers) written by passes/cluster_resolve.
+uniform sampler2DArray hs_cluster_state;
+
+void hs_load_clusters(ivec2 texel, out float mean[HS_LAYERS], out float sigma[HS_LAYERS]) {
+    for (int j = 0; j < HS_LAYERS; ++j) {
+        mean[j] = texelFetch(hs_cluster_state, ivec3(texel, j / 4), 0)[j % 4];
+        sigma[j] = texelFetch(hs_cluster_state, ivec3(texel, HS_STATE_TARGETS + j / 4), 0)[j % 4];
+    }
+}
+int hs_assign_from(ivec2 texel, vec4 range, float depth) {
+    float mean[HS_LAYERS], sigma[HS_LAYERS];
+    hs_load_clusters(texel, mean, sigma);
+    return hs_assign(mean, sigma, depth);
+}
+hs_layer_position hs_locate_from(ivec2 texel, vec4 range, float depth) {
+    float mean[HS_LAYERS], sigma[HS_LAYERS];
+    hs_load_clusters(texel, mean, sigma);
+    return hs_locate(mean, sigma, depth);
+}
+)hs_glsl";
+
 /// shaders/texel_state/depth_range.glsl
 inline constexpr std::string_view texel_state_depth_range = R"hs_glsl(// Occupancy maps' per-texel state: the depth-range map itself (nearest in red, furthest in alpha).
-int hs_assign_from(vec4 range, float depth) { return hs_assign(vec2(range.x, range.w), depth); }
-hs_layer_position hs_locate_from(vec4 range, float depth) { return hs_locate(vec2(range.x, range.w), depth); }
+int hs_assign_from(ivec2 texel, vec4 range, float depth) { return hs_assign(vec2(range.x, range.w), depth); }
+hs_layer_position hs_locate_from(ivec2 texel, vec4 range, float depth) { return hs_locate(vec2(range.x, range.w), depth); }
 )hs_glsl";
 
 /// shaders/texel_state/per_pixel_depth.glsl
@@ -427,14 +631,14 @@ float hs_scale_from(vec4 range) {
     return 1.0;
 #endif
 }
-int hs_assign_from(vec4 range, float depth) { return hs_assign(range.x, hs_scale_from(range), depth); }
-hs_layer_position hs_locate_from(vec4 range, float depth) { return hs_locate(range.x, hs_scale_from(range), depth); }
+int hs_assign_from(ivec2 texel, vec4 range, float depth) { return hs_assign(range.x, hs_scale_from(range), depth); }
+hs_layer_position hs_locate_from(ivec2 texel, vec4 range, float depth) { return hs_locate(range.x, hs_scale_from(range), depth); }
 )hs_glsl";
 
 /// shaders/texel_state/planar_slices.glsl
 inline constexpr std::string_view texel_state_planar_slices = R"hs_glsl(// Planar slices keep no per-texel state: the slices are global (uniforms of placement/planar_slices).
-int hs_assign_from(vec4 range, float depth) { return hs_assign(depth); }
-hs_layer_position hs_locate_from(vec4 range, float depth) { return hs_locate(depth); }
+int hs_assign_from(ivec2 texel, vec4 range, float depth) { return hs_assign(depth); }
+hs_layer_position hs_locate_from(ivec2 texel, vec4 range, float depth) { return hs_locate(depth); }
 )hs_glsl";
 
 /// A shader snippet and its name (its path under shaders/ without .glsl).
@@ -444,17 +648,23 @@ struct entry {
 };
 
 /// Every snippet, sorted by name.
-inline constexpr std::array<entry, 21> all{{
+inline constexpr std::array<entry, 28> all{{
     {"accumulation/emulated_8bit", accumulation_emulated_8bit},
     {"accumulation/float", accumulation_float},
     {"lookup/interpolation", lookup_interpolation},
     {"lookup/layers", lookup_layers},
     {"lookup/occupancy", lookup_occupancy},
     {"passes/capture", passes_capture},
+    {"passes/cluster_common", passes_cluster_common},
+    {"passes/cluster_means", passes_cluster_means},
+    {"passes/cluster_resolve", passes_cluster_resolve},
+    {"passes/cluster_variance", passes_cluster_variance},
     {"passes/depth_range", passes_depth_range},
+    {"passes/fullscreen_vertex", passes_fullscreen_vertex},
     {"passes/layers", passes_layers},
     {"passes/occupancy_bits", passes_occupancy_bits},
     {"passes/occupancy_slabs", passes_occupancy_slabs},
+    {"placement/clustered", placement_clustered},
     {"placement/common", placement_common},
     {"placement/depth_range", placement_depth_range},
     {"placement/per_pixel_depth", placement_per_pixel_depth},
@@ -463,6 +673,7 @@ inline constexpr std::array<entry, 21> all{{
     {"raster/vertex", raster_vertex},
     {"reconstruction/interpolation", reconstruction_interpolation},
     {"reconstruction/occupancy_bitcount", reconstruction_occupancy_bitcount},
+    {"texel_state/clustered", texel_state_clustered},
     {"texel_state/depth_range", texel_state_depth_range},
     {"texel_state/per_pixel_depth", texel_state_per_pixel_depth},
     {"texel_state/planar_slices", texel_state_planar_slices},

@@ -45,6 +45,7 @@ public:
     };
 
     void prepare(const fragment_buffer&) const noexcept {}
+    void prepare(const depth_extent&) const noexcept {}
 
     void prepare_texel(std::span<const fragment> fragments, texel_state& s) const noexcept {
         s.sigma.fill(-1.0f);

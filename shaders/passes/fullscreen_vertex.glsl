@@ -1,0 +1,5 @@
+// One triangle covering the viewport, from gl_VertexID alone (draw 3 vertices, no attributes).
+void main() {
+    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+    gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0);
+}
