@@ -9,6 +9,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "gl_backend.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -37,6 +39,10 @@ struct map_options {
     bool box_filter = false;
     bool jitter = false;
     unsigned threads = 0;
+    std::string backend = "cpu";
+    std::string context = "egl";
+
+    bool on_gl() const { return backend == "gl"; }
 
     execution exec() const { return {threads}; }
     query_options query() const { return {box_filter, jitter, bias}; }
@@ -76,29 +82,43 @@ double milliseconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// A model rasterised from one light, ready for any number of methods.
+/// A model seen from one light (rasterised on the CPU unless only GL draws it), ready for any number
+/// of methods.
 struct scene {
     hair_model model;
     light_space light;
+    raster_options raster;
     fragment_buffer fragments;
     double raster_ms = 0.0;
+    std::unique_ptr<cli::gl_backend> gl; ///< with --backend gl
 };
 
-scene rasterise(const map_options& o) {
+/// Loads the model and fits the light; rasterises on the CPU where `cpu_fragments` (the CPU methods,
+/// and the exact reference of `compare`); opens the GL context with --backend gl.
+scene prepare_scene(const map_options& o, bool cpu_fragments) {
     const auto light = parse_light(o.light);
     check_resolution(o.resolution);
-    scene s{load(o.model), {}, {}, 0.0};
+    if (o.on_gl() && o.wide > 0.0f) throw usage_error("--wide needs --backend cpu: core GL draws lines one pixel wide");
+    if (o.on_gl() && (o.box_filter || o.jitter || o.bias != 0.0f))
+        throw usage_error("--filter, --jitter and --bias are CPU queries; the GLSL look-up has none: use --backend cpu");
+    scene s{load(o.model), {}, {}, {}, 0.0, nullptr};
     s.light = light_space::fit(light, s.model.bounds(), o.resolution);
-    raster_options ro;
-    ro.exec = o.exec();
-    ro.fixed_alpha = o.alpha;
-    ro.wide_line_width = o.wide;
-    const auto start = std::chrono::steady_clock::now();
-    s.fragments = rasterize(s.model, s.light, ro);
-    s.raster_ms = milliseconds_since(start);
+    s.raster.exec = o.exec();
+    s.raster.fixed_alpha = o.alpha;
+    s.raster.wide_line_width = o.wide;
+    if (cpu_fragments) {
+        const auto start = std::chrono::steady_clock::now();
+        s.fragments = rasterize(s.model, s.light, s.raster);
+        s.raster_ms = milliseconds_since(start);
+    }
+    if (o.on_gl()) {
+        s.gl = cli::gl_backend::open(o.context);
+        s.gl->set_model(s.model);
+    }
     return s;
 }
 
+/// Builds a method's maps on the CPU, for CPU queries.
 std::unique_ptr<any_shadow_map> build_map(const method_spec& spec, const scene& s, const execution& exec, double* build_ms = nullptr) {
     auto map = make_shadow_map(spec);
     const auto start = std::chrono::steady_clock::now();
@@ -162,13 +182,44 @@ int run_info(const map_options& o) {
     return 0;
 }
 
+/// What a method's maps gave at a set of points.
+struct method_result {
+    std::vector<float> transmittance;
+    double build_ms = 0.0;
+    std::size_t bytes = 0;
+    int layers = 0;
+};
+
+/// Builds a method on the scene's back end and queries it at `points` (by the GLSL look-up on GL).
+method_result evaluate(const method_spec& spec, scene& s, const map_options& o, std::span<const glm::vec3> points) {
+    method_result r;
+    r.transmittance.resize(points.size());
+    if (s.gl) {
+        r.build_ms = s.gl->build(spec, s.light, s.raster);
+        r.transmittance = s.gl->transmittance(points);
+        r.bytes = s.gl->memory_bytes();
+        r.layers = spec.layers;
+    } else {
+        const auto map = build_map(spec, s, o.exec(), &r.build_ms);
+        map->transmittance(points, r.transmittance, o.query(), o.exec());
+        r.bytes = map->memory_bytes();
+        r.layers = map->layer_count();
+    }
+    return r;
+}
+
+/// A method spec for the chosen back end: the exact reference has no GL twin.
+method_spec parse_method_for(const std::string& text, const map_options& o) {
+    auto spec = parse_method(text);
+    if (o.on_gl() && spec.family == method_family::dsm) throw usage_error("the exact reference (dsm) is CPU-only; use --backend cpu");
+    return spec;
+}
+
 int run_query(const map_options& o, const std::string& points_file) {
-    const auto spec = parse_method(o.method);
+    const auto spec = parse_method_for(o.method, o);
     const auto points = read_points(points_file);
-    const auto s = rasterise(o);
-    const auto map = build_map(spec, s, o.exec());
-    std::vector<float> t(points.size());
-    map->transmittance(points, t, o.query(), o.exec());
+    auto s = prepare_scene(o, !o.on_gl());
+    const auto t = evaluate(spec, s, o, points).transmittance;
     std::string out;
     char buf[32];
     for (float v : t) {
@@ -180,9 +231,15 @@ int run_query(const map_options& o, const std::string& points_file) {
 }
 
 int run_render(const map_options& o, const std::string& out_path, const std::string& maps_dir) {
-    const auto spec = parse_method(o.method);
-    const auto s = rasterise(o);
-    const auto map = build_map(spec, s, o.exec());
+    const auto spec = parse_method_for(o.method, o);
+    auto s = prepare_scene(o, !o.on_gl());
+    std::unique_ptr<any_shadow_map> map;
+    if (s.gl) {
+        s.gl->build(spec, s.light, s.raster);
+        map = s.gl->to_cpu(); // the maps GL built, read back
+    } else {
+        map = build_map(spec, s, o.exec());
+    }
     const int res = o.resolution;
     // The light's view: the transmittance behind the whole model (depth 1).
     write_grey(out_path, res, o.exec(), [&](int x, int y) { return map->transmittance(x, y, 1.0f); });
@@ -209,7 +266,7 @@ int run_memory(const map_options& o) {
         std::printf("%s at %dx%d: %zu bytes (%.2f MiB)\n", spec.text.c_str(), o.resolution, o.resolution, *bytes, double(*bytes) / 1048576.0);
         return 0;
     }
-    const auto s = rasterise(o);
+    const auto s = prepare_scene(o, true);
     const auto map = build_map(spec, s, o.exec());
     std::printf("%s at %dx%d for %s: %zu bytes (%.2f MiB)\n", spec.text.c_str(), o.resolution, o.resolution, o.model.c_str(), map->memory_bytes(),
                 double(map->memory_bytes()) / 1048576.0);
@@ -225,30 +282,31 @@ struct compare_row {
 
 int run_compare(const map_options& o, const std::string& methods, const std::string& out_dir) {
     std::vector<method_spec> specs;
-    for (auto part : detail::split(methods, ',')) specs.push_back(parse_method(std::string(part)));
-    const auto s = rasterise(o);
+    for (auto part : detail::split(methods, ',')) specs.push_back(parse_method_for(std::string(part), o));
+    auto s = prepare_scene(o, true); // the exact reference is built on the CPU for either back end
     const auto exec = o.exec();
     const auto query = o.query();
     const auto exact = build_map(parse_method("dsm"), s, exec);
-    std::vector<float> reference(s.model.point_count()), t(s.model.point_count());
+    std::vector<float> reference(s.model.point_count());
     exact->transmittance(s.model.points, reference, query, exec);
     std::vector<compare_row> rows;
     for (const auto& spec : specs) {
-        double build_ms = 0;
-        const auto map = build_map(spec, s, exec, &build_ms);
-        map->transmittance(s.model.points, t, query, exec);
+        const auto result = evaluate(spec, s, o, s.model.points);
+        const auto& t = result.transmittance;
         std::vector<float> error(t.size());
         double sum = 0;
         for (std::size_t i = 0; i < t.size(); ++i) sum += error[i] = std::abs(t[i] - reference[i]);
         std::sort(error.begin(), error.end());
         const float p95 = error.empty() ? 0.0f : error[std::min(error.size() - 1, std::size_t(0.95 * double(error.size())))];
-        rows.push_back({spec.text, map->layer_count(), map->memory_bytes(), build_ms, error.empty() ? 0.0 : sum / double(error.size()), p95,
+        rows.push_back({spec.text, result.layers, result.bytes, result.build_ms, error.empty() ? 0.0 : sum / double(error.size()), p95,
                         error.empty() ? 0.0 : error.back()});
     }
     std::ostringstream md, csv;
     md << "Model `" << o.model << "`, light `" << o.light << "`, " << o.resolution << "x" << o.resolution << ", " << s.model.point_count()
        << " points, " << s.fragments.size() << " fragments (rasterised in " << std::lround(s.raster_ms) << " ms), " << exec.resolved()
-       << " threads. Errors are |T - T_exact| at the model's points.\n\n";
+       << " threads. ";
+    if (s.gl) md << "Methods built on " << s.gl->description() << " and queried by their GLSL look-up; the reference on the CPU. ";
+    md << "Errors are |T - T_exact| at the model's points.\n\n";
     md << "| method | layers | memory (MiB) | build (ms) | mean error | 95th percentile | max error |\n|---|---|---|---|---|---|---|\n";
     csv << "method,layers,memory_bytes,build_ms,mean_error,p95_error,max_error\n";
     char line[256];
@@ -284,6 +342,12 @@ void add_map_options(CLI::App* cmd, map_options& o, bool with_method = true) {
         ->check(CLI::Range(0.0f, 64.0f));
 }
 
+void add_backend_options(CLI::App* cmd, map_options& o) {
+    cmd->add_option("--backend", o.backend, "build the maps on the CPU or on GL (queried by the GLSL look-up)")->check(CLI::IsMember({"cpu", "gl"}));
+    cmd->add_option("--context", o.context, "headless GL context for --backend gl: egl (a GPU, else Mesa) or osmesa")
+        ->check(CLI::IsMember({"osmesa", "egl"}));
+}
+
 void add_query_options(CLI::App* cmd, map_options& o) {
     cmd->add_option("--bias", o.bias, "depth bias towards the light, in linear depth units");
     cmd->add_flag("--filter", o.box_filter, "3x3 box filter of the optical depth (Kim & Neumann)");
@@ -306,12 +370,14 @@ int main(int argc, char** argv) {
     add_model(query, o);
     add_map_options(query, o);
     add_query_options(query, o);
+    add_backend_options(query, o);
     query->add_option("--points", points_file, "file of 'x y z' lines")->required();
 
     std::string out_path = "transmittance.png", maps_dir;
     auto* render = app.add_subcommand("render", "write the light's view of the transmittance behind the model as a PNG");
     add_model(render, o);
     add_map_options(render, o);
+    add_backend_options(render, o);
     render->add_option("--out", out_path, "output PNG");
     render->add_option("--maps", maps_dir, "also write each stored map (layer, bin or slab) as a PNG into this folder");
 
@@ -325,6 +391,7 @@ int main(int argc, char** argv) {
     add_model(compare, o);
     add_map_options(compare, o, false);
     add_query_options(compare, o);
+    add_backend_options(compare, o);
     compare->add_option("--methods", methods, "comma-separated method specs");
     compare->add_option("--out", out_dir, "also write compare.md and compare.csv into this folder");
 

@@ -2058,6 +2058,16 @@ public:
         }, 512);
     }
 
+    /// Takes maps built elsewhere (on GL: interpolated_maps_gl::to_cpu()) for CPU queries: one texel per
+    /// texel of `light`'s map, row by row, and the placement they were built with.
+    void adopt(const light_space& light, Placement placement, std::vector<texel_maps> texels) {
+        const std::size_t res = std::size_t(light.resolution());
+        if (texels.size() != res * res) throw argument_error("adopted maps need one texel per texel of the light's map");
+        light_ = light;
+        placement_ = std::move(placement);
+        texels_ = std::move(texels);
+    }
+
     /// Optical depth at linear `depth` in texel (x, y).
     float optical_depth(int x, int y, float depth) const noexcept {
         const auto& t = texel(x, y);

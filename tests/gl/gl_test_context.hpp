@@ -17,6 +17,7 @@ inline hairshadow::gl::osmesa_context& gl_context() {
 } // namespace test
 
 #include <hairshadow/gl/objects.hpp>
+#include <hairshadow/gl/point_queries.hpp>
 #include <hairshadow/hairshadow.hpp>
 
 #include <glm/matrix.hpp>
@@ -51,35 +52,7 @@ inline std::vector<glm::vec3> texel_centre_queries(const hairshadow::fragment_bu
 
 /// Runs hs_transmittance(point) in a vertex shader over `points`; `bind` sets the maps' uniforms.
 inline std::vector<float> gl_lookup(const std::string& lookup_source, const std::function<void(GLuint)>& bind, const std::vector<glm::vec3>& points) {
-    namespace gl = hairshadow::gl;
-    const std::string main_text = R"(
-layout(location = 0) in vec3 hs_point;
-layout(std430, binding = 1) buffer hs_results_buffer { float hs_results[]; };
-void main() { hs_results[gl_VertexID] = hs_transmittance(hs_point); gl_Position = vec4(0.0); }
-)";
-    const auto vs = gl::compile_shader(GL_VERTEX_SHADER, {"#version 430 core\n", lookup_source, main_text}, "look-up test");
-    const auto program = gl::link_program({&vs}, "look-up test");
-    auto buffer = gl::make_buffer(), results = gl::make_buffer();
-    auto vao = gl::make_vertex_array();
-    glBindVertexArray(vao.get());
-    glBindBuffer(GL_ARRAY_BUFFER, buffer.get());
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(points.size() * sizeof(glm::vec3)), points.data(), GL_STATIC_DRAW);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, results.get());
-    glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(points.size() * sizeof(float)), nullptr, GL_DYNAMIC_READ);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, results.get());
-    glUseProgram(program.get());
-    bind(program.get());
-    glEnable(GL_RASTERIZER_DISCARD);
-    glDrawArrays(GL_POINTS, 0, GLsizei(points.size()));
-    glDisable(GL_RASTERIZER_DISCARD);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::vector<float> out(points.size());
-    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(out.size() * sizeof(float)), out.data());
-    glBindVertexArray(0);
-    gl::check("look-up");
-    return out;
+    return hairshadow::gl::point_queries(lookup_source).run(points, bind);
 }
 
 } // namespace test

@@ -93,6 +93,8 @@ class interpolated_maps_gl {
 public:
     static constexpr int layers = P::layer_count;
     static constexpr int array_layers = (layers + 3) / 4;
+    /// RGBA layers of per-texel state beyond the depth range: density clustering's means and deviations, four each.
+    static constexpr int state_targets = std::is_same_v<typename detail::placement_glsl<P>::state_pass, detail::range_state> ? 0 : (layers + 3) / 4;
 
     /// Compiles the passes; throws feature_error if the context lacks GL 4.3 or 8 draw buffers.
     explicit interpolated_maps_gl(P placement = P()) : placement_(std::move(placement)) {
@@ -165,6 +167,20 @@ public:
     }
 
     const P& placement() const noexcept { return placement_; }
+    const light_space& light() const noexcept { return light_; }
+    /// Bytes of the textures the look-up reads: depth range (RGBA32F), layers (RGBA32F or RGBA8) and
+    /// density clustering's means and deviations (RGBA32F), at the last build's resolution.
+    std::size_t memory_bytes() const noexcept {
+        const std::size_t texels = std::size_t(allocated_) * std::size_t(allocated_);
+        return texels * (16 + (eight_bit ? 4 : 16) * std::size_t(array_layers) + 16 * std::size_t(2 * state_targets));
+    }
+
+    /// The maps read back as the CPU method, for CPU queries of maps built on GL.
+    Method to_cpu() {
+        Method cpu;
+        cpu.adopt(light_, placement_, read_back());
+        return cpu;
+    }
 
     /// Reads the maps back in the CPU method's texel layout.
     std::vector<typename Method::texel_maps> read_back() {

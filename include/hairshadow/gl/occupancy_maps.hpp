@@ -146,6 +146,20 @@ public:
     }
 
     const P& placement() const noexcept { return placement_; }
+    const light_space& light() const noexcept { return light_; }
+    /// Bytes of the textures the look-up reads: depth range (RGBA32F), occupancy bits (RGBA32UI) and
+    /// slabs (RGBA32F or RGBA8), at the last build's resolution.
+    std::size_t memory_bytes() const noexcept {
+        const std::size_t texels = std::size_t(allocated_) * std::size_t(allocated_);
+        return texels * (16 + 16 * std::size_t(bit_targets) + (eight_bit ? 4 : 16) * std::size_t(slab_targets));
+    }
+
+    /// The maps read back as the CPU method, for CPU queries of maps built on GL.
+    Method to_cpu() {
+        Method cpu;
+        cpu.adopt(light_, placement_, read_back());
+        return cpu;
+    }
 
 private:
     static constexpr std::string_view version = "#version 430 core\n";

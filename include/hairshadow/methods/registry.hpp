@@ -48,7 +48,7 @@ namespace detail {
 template <class Method>
 class method_map final : public any_shadow_map {
 public:
-    explicit method_map(method_spec spec) : any_shadow_map(std::move(spec)) {}
+    explicit method_map(method_spec spec, Method method = Method()) : any_shadow_map(std::move(spec)), method_(std::move(method)) {}
     void build(const fragment_buffer& fragments, const light_space& light, const execution& exec) override { method_.build(fragments, light, exec); }
     float optical_depth(int x, int y, float depth) const override { return method_.optical_depth(x, y, depth); }
     const light_space& light() const override { return method_.light(); }
@@ -95,37 +95,50 @@ private:
     std::optional<compressed_deep_shadow_map> compressed_;
 };
 
-/// Calls make(std::integral_constant<int, n>) for the n in Allowed equal to `value`.
-template <auto Allowed, std::size_t I = 0, class Make>
-std::unique_ptr<any_shadow_map> with_size(int value, Make&& make) {
+/// Calls visit(std::integral_constant<int, n>) for the n in Allowed equal to `value`; false if none is.
+template <auto Allowed, std::size_t I = 0, class Visit>
+bool with_size(int value, Visit&& visit) {
     if constexpr (I == Allowed.size()) {
-        return nullptr;
+        return false;
     } else {
-        if (value == Allowed[I]) return make(std::integral_constant<int, Allowed[I]>{});
-        return with_size<Allowed, I + 1>(value, make);
+        if (value == Allowed[I]) return visit(std::integral_constant<int, Allowed[I]>{}), true;
+        return with_size<Allowed, I + 1>(value, visit);
     }
 }
 
-template <class Method>
-std::unique_ptr<any_shadow_map> make_map(const method_spec& spec) {
-    return std::make_unique<method_map<Method>>(spec);
-}
-
-template <class Accumulation>
-std::unique_ptr<any_shadow_map> make_with(const method_spec& s) {
+template <class Accumulation, class Visit>
+bool visit_with(const method_spec& s, Visit& visit) {
     switch (s.family) {
     case method_family::osm:
         return with_size<osm_sizes>(s.layers, [&](auto n) {
-            return s.gamma ? make_map<opacity_shadow_maps<n(), gamma_spacing, Accumulation>>(s)
-                           : make_map<opacity_shadow_maps<n(), uniform_spacing, Accumulation>>(s);
+            if (s.gamma) visit.template operator()<opacity_shadow_maps<n(), gamma_spacing, Accumulation>>();
+            else visit.template operator()<opacity_shadow_maps<n(), uniform_spacing, Accumulation>>();
         });
-    case method_family::dom: return with_size<small_sizes>(s.layers, [&](auto k) { return make_map<deep_opacity_maps<k(), Accumulation>>(s); });
-    case method_family::dc: return with_size<small_sizes>(s.layers, [&](auto k) { return make_map<density_clustering<k(), Accumulation>>(s); });
+    case method_family::dom:
+        return with_size<small_sizes>(s.layers, [&](auto k) { visit.template operator()<deep_opacity_maps<k(), Accumulation>>(); });
+    case method_family::dc:
+        return with_size<small_sizes>(s.layers, [&](auto k) { visit.template operator()<density_clustering<k(), Accumulation>>(); });
     case method_family::occ:
         return with_size<slice_sizes>(s.layers, [&](auto n) {
-            return with_size<slab_sizes>(s.slabs, [&](auto b) { return make_map<occupancy_maps<n(), b(), Accumulation>>(s); });
-        });
-    default: return nullptr;
+            with_size<slab_sizes>(s.slabs, [&](auto b) { visit.template operator()<occupancy_maps<n(), b(), Accumulation>>(); });
+        }) && one_of(s.slabs, slab_sizes);
+    default: return false;
+    }
+}
+
+/// Calls visit.template operator()<Method>() with the shadow_method of a spec (not the exact map's);
+/// false if the spec names none.
+template <class Visit>
+bool visit_method(const method_spec& spec, Visit&& visit) {
+    switch (spec.family) {
+    case method_family::dsm: return false;
+    case method_family::docc:
+        return with_size<slice_sizes>(spec.layers, [&](auto n) {
+            with_size<slab_sizes>(spec.slabs, [&](auto b) { visit.template operator()<deep_occupancy_maps<n(), b()>>(); });
+        }) && one_of(spec.slabs, slab_sizes);
+    case method_family::rosm:
+        return with_size<rosm_sizes>(spec.layers, [&](auto n) { visit.template operator()<range_opacity_maps<n()>>(); });
+    default: return spec.eight_bit ? visit_with<emulated_8bit>(spec, visit) : visit_with<float_accumulation>(spec, visit);
     }
 }
 
@@ -133,19 +146,9 @@ std::unique_ptr<any_shadow_map> make_with(const method_spec& s) {
 
 /// Makes the (not yet built) shadow map of a spec; throws spec_error for an unsupported one.
 inline std::unique_ptr<any_shadow_map> make_shadow_map(const method_spec& spec) {
+    if (spec.family == method_family::dsm) return std::make_unique<detail::reference_map>(spec);
     std::unique_ptr<any_shadow_map> map;
-    switch (spec.family) {
-    case method_family::dsm: map = std::make_unique<detail::reference_map>(spec); break;
-    case method_family::docc:
-        map = detail::with_size<detail::slice_sizes>(spec.layers, [&](auto n) {
-            return detail::with_size<detail::slab_sizes>(spec.slabs, [&](auto b) { return detail::make_map<deep_occupancy_maps<n(), b()>>(spec); });
-        });
-        break;
-    case method_family::rosm:
-        map = detail::with_size<detail::rosm_sizes>(spec.layers, [&](auto n) { return detail::make_map<range_opacity_maps<n()>>(spec); });
-        break;
-    default: map = spec.eight_bit ? detail::make_with<emulated_8bit>(spec) : detail::make_with<float_accumulation>(spec);
-    }
+    detail::visit_method(spec, [&]<class Method>() { map = std::make_unique<detail::method_map<Method>>(spec); });
     if (!map) throw spec_error("unsupported method spec '" + spec.text + "'; valid: " + std::string(method_grammar));
     return map;
 }

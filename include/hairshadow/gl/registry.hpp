@@ -1,0 +1,78 @@
+#pragma once
+/// @file
+/// Methods chosen at run time on GL: any method spec with a GL twin becomes maps built on the GPU,
+/// queried through the GLSL look-up or read back for CPU queries. Like methods/registry.hpp this
+/// instantiates every supported size; include it only where specs are parsed.
+
+#include <hairshadow/gl/maps.hpp>
+#include <hairshadow/gl/point_queries.hpp>
+#include <hairshadow/methods/registry.hpp>
+
+#include <memory>
+#include <optional>
+
+namespace hairshadow::gl {
+
+/// Any method's maps on GL.
+class any_gl_shadow_map {
+public:
+    virtual ~any_gl_shadow_map() = default;
+    /// Draws the maps of `mesh` seen from `light`; returns when the GPU has finished.
+    virtual void build(const hair_mesh& mesh, const light_space& light, const raster_options& options = {}) = 0;
+    /// Transmittance at each point by the GLSL look-up hs_transmittance.
+    virtual std::vector<float> transmittance(std::span<const glm::vec3> points) = 0;
+    /// The maps read back for CPU queries (filters, jitter, stored maps).
+    virtual std::unique_ptr<any_shadow_map> to_cpu() = 0;
+    /// Bytes of the textures the look-up reads.
+    virtual std::size_t memory_bytes() const = 0;
+    const method_spec& spec() const noexcept { return spec_; }
+
+protected:
+    explicit any_gl_shadow_map(method_spec spec) : spec_(std::move(spec)) {}
+
+private:
+    method_spec spec_;
+};
+
+namespace detail {
+
+template <class Method>
+class gl_method_map final : public any_gl_shadow_map {
+public:
+    explicit gl_method_map(method_spec spec) : any_gl_shadow_map(std::move(spec)) {}
+    void build(const hair_mesh& mesh, const light_space& light, const raster_options& options) override {
+        maps_.build(mesh, light, options);
+        glFinish();
+    }
+    std::vector<float> transmittance(std::span<const glm::vec3> points) override {
+        if (!queries_) queries_.emplace(maps_.lookup_source());
+        return queries_->run(points, [&](GLuint program) { maps_.bind_lookup(program); });
+    }
+    std::size_t memory_bytes() const override { return maps_.memory_bytes(); }
+    std::unique_ptr<any_shadow_map> to_cpu() override {
+        return std::make_unique<hairshadow::detail::method_map<Method>>(spec(), maps_.to_cpu());
+    }
+
+private:
+    maps<Method> maps_;
+    std::optional<point_queries> queries_;
+};
+
+template <class Method>
+std::unique_ptr<any_gl_shadow_map> make_gl_map(const method_spec& spec) {
+    return std::make_unique<gl_method_map<Method>>(spec);
+}
+
+} // namespace detail
+
+/// Makes the (not yet built) GL maps of a spec; throws spec_error for a spec without a GL twin (the
+/// exact reference is CPU-only) and feature_error where the current context lacks what it needs.
+inline std::unique_ptr<any_gl_shadow_map> make_gl_shadow_map(const method_spec& spec) {
+    if (spec.family == method_family::dsm) throw spec_error("the exact reference (dsm) has no GL back end; use --backend cpu");
+    std::unique_ptr<any_gl_shadow_map> map;
+    hairshadow::detail::visit_method(spec, [&]<class Method>() { map = detail::make_gl_map<Method>(spec); });
+    if (!map) throw spec_error("unsupported method spec '" + spec.text + "'; valid: " + std::string(method_grammar));
+    return map;
+}
+
+} // namespace hairshadow::gl

@@ -1,0 +1,79 @@
+// The command's --backend gl: every method family built on GL (OSMesa and EGL's Mesa fallback here)
+// answers queries as the CPU back end does; the exact reference and CPU-only options are refused.
+#include "../sheets.hpp"
+#include "../test_support.hpp"
+
+#include <hairshadow/hairshadow.hpp>
+#include <hairshadow/io/data_format.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <sstream>
+
+using namespace hairshadow;
+
+namespace {
+std::vector<float> numbers(const std::string& text) {
+    std::istringstream in(text);
+    std::vector<float> out;
+    for (float v; in >> v;) out.push_back(v);
+    return out;
+}
+} // namespace
+
+TEST_CASE("query --backend gl gives the CPU back end's transmittance", "[gl][cli]") {
+    test::temp_dir dir("gl_cli_query");
+    const auto scene = test::make_sheets(3, 64);
+    write_data(scene.model, dir.file("sheets.data"));
+    // Points in front of, between and behind the sheets, at several places across them.
+    std::string points;
+    for (float x : {-0.6f, -0.1f, 0.3f, 0.7f})
+        for (float z : {0.9f, scene.sheet_z[0] - 0.05f, scene.sheet_z[1] - 0.05f, scene.sheet_z[2] - 0.05f, -0.9f})
+            points += std::to_string(x) + " " + std::to_string(scene.row_y[scene.row_y.size() / 2 + 1]) + " " + std::to_string(z) + "\n";
+    test::write_text(dir.file("points.txt"), points);
+    const std::string common = "query " + dir.file("sheets.data") + " --light dir:0,0,-1 --res 64 --alpha 0.4 --points " + dir.file("points.txt");
+    for (const char* method : {"osm:16", "osm:64:gamma", "dom:3", "dc:4", "occ:128:4", "docc:128:4", "rosm:16", "dom:3:8bit", "occ:128:4:8bit"}) {
+        for (const char* context : {"osmesa", "egl"}) {
+            CAPTURE(method, context);
+            const auto cpu = test::run_cli(common + " --method " + method);
+            const auto gl = test::run_cli(common + " --method " + method + " --backend gl --context " + context);
+            REQUIRE(cpu.status == 0);
+            REQUIRE(gl.status == 0);
+            const auto a = numbers(cpu.out), b = numbers(gl.out);
+            REQUIRE(a.size() == 20);
+            REQUIRE(b.size() == a.size());
+            for (std::size_t i = 0; i < a.size(); ++i) CHECK(b[i] == Approx(a[i]).margin(1e-4));
+        }
+    }
+}
+
+TEST_CASE("compare and render --backend gl", "[gl][cli]") {
+    test::temp_dir dir("gl_cli_compare");
+    const auto compare = test::run_cli("compare procedural:wavy:strands=300:segments=12 --res 128 --backend gl --context osmesa --methods "
+                                       "osm:16,dc:4,occ:128:4 --out " + dir.file("out"));
+    REQUIRE(compare.status == 0);
+    CHECK_THAT(compare.out, Catch::Contains("Methods built on OpenGL"));
+    for (const char* row : {"| osm:16 | 16 |", "| dc:4 | 4 |", "| occ:128:4 | 128 |"}) CHECK_THAT(compare.out, Catch::Contains(row));
+    CHECK(std::filesystem::exists(dir.file("out/compare.csv")));
+    const auto render = test::run_cli("render procedural:wavy:strands=300:segments=12 --res 64 --backend gl --method dc:4 --out " +
+                                      dir.file("t.png") + " --maps " + dir.file("maps"));
+    REQUIRE(render.status == 0);
+    CHECK(std::filesystem::file_size(dir.file("t.png")) > 0);
+    CHECK(std::filesystem::exists(dir.file("maps/map_003.png")));
+}
+
+TEST_CASE("the GL back end refuses what only the CPU does, with a usage error", "[gl][cli]") {
+    const std::string model = "procedural:straight:strands=10:segments=4";
+    struct refusal {
+        const char* args;
+        const char* message;
+    };
+    for (const auto& [args, message] : {refusal{" --method dsm", "CPU-only"}, refusal{" --method osm:16 --filter", "--filter"},
+                                        refusal{" --method osm:16 --bias 0.01", "--bias"}, refusal{" --method osm:16 --wide 4", "--wide"},
+                                        refusal{" --method osm:16 --context glx", "--context"}}) {
+        CAPTURE(args);
+        const auto r = test::run_cli("render " + model + " --backend gl" + args);
+        CHECK(r.status == 2);
+        CHECK_THAT(r.err, Catch::Contains(message));
+    }
+}

@@ -1,0 +1,56 @@
+// The command's GL back end over the library's GL registry.
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <glad/gl.h>
+
+#include <hairshadow/gl/egl_context.hpp>
+#include <hairshadow/gl/osmesa_context.hpp>
+#include <hairshadow/gl/registry.hpp>
+
+#include "gl_backend.hpp"
+
+#include <chrono>
+#include <optional>
+
+namespace cli {
+namespace {
+
+using namespace hairshadow;
+
+class gl_backend_impl final : public gl_backend {
+public:
+    explicit gl_backend_impl(const std::string& kind) {
+        if (kind == "osmesa") context_ = std::make_unique<gl::osmesa_context>(4, 5);
+        else if (kind == "egl") context_ = std::make_unique<gl::egl_context>(4, 5);
+        else throw argument_error("unknown GL context '" + kind + "'; valid: osmesa, egl");
+        if (!gladLoadGL(context_->loader())) throw gl::gl_error("cannot load the GL functions of the " + kind + " context");
+    }
+    std::string description() const override { return context_->description(); }
+    void set_model(const hair_model& model) override { mesh_.emplace(model); }
+    double build(const method_spec& spec, const light_space& light, const raster_options& options) override {
+        if (!mesh_) throw argument_error("no model to draw");
+        maps_ = gl::make_gl_shadow_map(spec);
+        maps_->build(*mesh_, light, options); // drivers compile shader variants at the first draw: time the second build
+        const auto start = std::chrono::steady_clock::now();
+        maps_->build(*mesh_, light, options);
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
+    std::vector<float> transmittance(std::span<const glm::vec3> points) override { return built().transmittance(points); }
+    std::unique_ptr<any_shadow_map> to_cpu() override { return built().to_cpu(); }
+    std::size_t memory_bytes() override { return built().memory_bytes(); }
+
+private:
+    gl::any_gl_shadow_map& built() {
+        if (!maps_) throw argument_error("no maps built on GL");
+        return *maps_;
+    }
+    std::unique_ptr<gl::headless_context> context_;
+    std::optional<gl::hair_mesh> mesh_;
+    std::unique_ptr<gl::any_gl_shadow_map> maps_;
+};
+
+} // namespace
+
+std::unique_ptr<gl_backend> gl_backend::open(const std::string& kind) { return std::make_unique<gl_backend_impl>(kind); }
+
+} // namespace cli

@@ -1,0 +1,36 @@
+#pragma once
+// The command's GL back end, behind an interface so that the command builds without GL: a headless
+// context (OSMesa or EGL) and any method's maps built on it. gl_backend.cpp implements it;
+// gl_backend_missing.cpp stands in where the build found no GL loader or context library.
+
+#include <hairshadow/hairshadow.hpp>
+#include <hairshadow/methods/registry.hpp>
+
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace cli {
+
+class gl_backend {
+public:
+    /// Opens a context of `kind` ("osmesa" or "egl") and loads GL; throws hairshadow::error when it cannot.
+    static std::unique_ptr<gl_backend> open(const std::string& kind);
+    virtual ~gl_backend() = default;
+    /// "OpenGL <version> on <renderer>".
+    virtual std::string description() const = 0;
+    /// Uploads the model that build() draws.
+    virtual void set_model(const hairshadow::hair_model& model) = 0;
+    /// Builds a method's maps on the GPU; returns the wall time in milliseconds of a second build (the
+    /// first compiles the driver's shader variants), until the GPU finished.
+    virtual double build(const hairshadow::method_spec& spec, const hairshadow::light_space& light, const hairshadow::raster_options& options) = 0;
+    /// Transmittance at each point through the last built maps' GLSL look-up.
+    virtual std::vector<float> transmittance(std::span<const glm::vec3> points) = 0;
+    /// Bytes of the last built maps' textures.
+    virtual std::size_t memory_bytes() = 0;
+    /// The last built maps read back for CPU queries.
+    virtual std::unique_ptr<hairshadow::any_shadow_map> to_cpu() = 0;
+};
+
+} // namespace cli
