@@ -4,8 +4,6 @@
 #include <glad/gl.h>
 
 #include <hairshadow/gl.hpp>
-#include <hairshadow/gl/interpolated_maps.hpp>
-#include <hairshadow/gl/occupancy_maps.hpp>
 #include <hairshadow/gl/osmesa_context.hpp>
 #include <hairshadow/hairshadow.hpp>
 
@@ -66,6 +64,7 @@ using osm16 = opacity_shadow_maps<16>;
 using osm64 = opacity_shadow_maps<64>;
 using dom3 = deep_opacity_maps<3>;
 using dom3_8bit = deep_opacity_maps_8bit<3>;
+using dc4 = density_clustering<4>;
 using occ = occupancy_maps<128, 4>;
 using docc = deep_occupancy_maps<128, 4>;
 using rosm16 = range_opacity_maps<16>;
@@ -73,6 +72,7 @@ HAIRSHADOW_BENCH_PAIR("osm:16", osm16, gl::interpolated_maps_gl<osm16>)
 HAIRSHADOW_BENCH_PAIR("osm:64", osm64, gl::interpolated_maps_gl<osm64>)
 HAIRSHADOW_BENCH_PAIR("dom:3", dom3, gl::interpolated_maps_gl<dom3>)
 HAIRSHADOW_BENCH_PAIR("dom:3:8bit", dom3_8bit, gl::interpolated_maps_gl<dom3_8bit>)
+HAIRSHADOW_BENCH_PAIR("dc:4", dc4, gl::interpolated_maps_gl<dc4>)
 HAIRSHADOW_BENCH_PAIR("occ:128:4", occ, gl::occupancy_maps_gl<occ>)
 HAIRSHADOW_BENCH_PAIR("docc:128:4", docc, gl::occupancy_maps_gl<docc>)
 HAIRSHADOW_BENCH_PAIR("rosm:16", rosm16, gl::interpolated_maps_gl<rosm16>)

@@ -20,8 +20,10 @@ using namespace hairshadow;
 class gl_backend_impl final : public gl_backend {
 public:
     explicit gl_backend_impl(const std::string& kind) {
-        if (kind == "osmesa") context_ = std::make_unique<gl::osmesa_context>(4, 5);
-        else if (kind == "egl") context_ = std::make_unique<gl::egl_context>(4, 5);
+        // Asks for core 3.3, which drivers answer with their newest core version; each method then
+        // checks the version and limits it needs and names what is missing.
+        if (kind == "osmesa") context_ = std::make_unique<gl::osmesa_context>(3, 3);
+        else if (kind == "egl") context_ = std::make_unique<gl::egl_context>(3, 3);
         else throw argument_error("unknown GL context '" + kind + "'; valid: osmesa, egl");
         if (!gladLoadGL(context_->loader())) throw gl::gl_error("cannot load the GL functions of the " + kind + " context");
     }

@@ -90,3 +90,17 @@ TEST_CASE("GL occupancy maps equal the CPU maps, and the GLSL look-up the CPU qu
     SECTION("occupancy maps 32/1, 8-bit") { check_occupancy<occupancy_maps<32, 1, emulated_8bit>>(model, light); }
     SECTION("deep occupancy maps 128/4 (hybrid)") { check_occupancy<deep_occupancy_maps<128, 4>>(model, light); }
 }
+
+TEST_CASE("a method needing more draw buffers than the context has names them", "[gl][errors]") {
+    test::gl_context();
+    GLint draw_buffers = 0;
+    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &draw_buffers);
+    REQUIRE(draw_buffers < 16);
+    // 2048 slices are 16 RGBA32UI occupancy targets; 40 clusters need 10 + 10 state targets.
+    using many_slices = gl::occupancy_maps_gl<occupancy_maps<2048, 4>>;
+    using many_clusters = gl::interpolated_maps_gl<density_clustering<40>>;
+    CHECK_THROWS_AS(many_slices(), gl::feature_error);
+    CHECK_THROWS_WITH(many_slices(), Catch::Contains("need 16 draw buffers"));
+    CHECK_THROWS_AS(many_clusters(), gl::feature_error);
+    CHECK_THROWS_WITH(many_clusters(), Catch::Contains("needs 20 draw buffers"));
+}
