@@ -183,3 +183,21 @@ TEST_CASE("queries can be box-filtered and jittered", "[methods][query]") {
     CHECK(moved > 0);
     CHECK(occ.transmittance(p, {.depth_bias = 1.0f}) == 1.0f); // moved in front of everything
 }
+
+TEST_CASE("adopted maps answer like the maps they came from, and must fit the light", "[methods]") {
+    const auto model = test::grid_model(40, 8);
+    const auto light = light_space::fit(light_spec::directional({0, 0, -1}), model.bounds(), 32);
+    const auto fragments = rasterize(model, light);
+    deep_opacity_maps<3> built;
+    built.build(fragments, light);
+    std::vector<deep_opacity_maps<3>::texel_maps> texels;
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) texels.push_back(built.texel(x, y));
+    deep_opacity_maps<3> adopted;
+    adopted.adopt(light, built.placement(), texels);
+    for (int y = 0; y < 32; y += 3)
+        for (int x = 0; x < 32; x += 3)
+            for (float depth : {0.0f, 0.3f, 0.6f, 1.0f}) CHECK(adopted.transmittance(x, y, depth) == built.transmittance(x, y, depth));
+    texels.pop_back();
+    CHECK_THROWS_AS(adopted.adopt(light, built.placement(), texels), argument_error);
+}

@@ -14,6 +14,22 @@ using namespace hairshadow;
 
 namespace {
 
+/// The GLSL look-up of `on_gl` against the CPU query of `cpu_maps` at texel-centre points.
+template <class GLMaps, class CpuMaps>
+void check_lookup(GLMaps& on_gl, const CpuMaps& cpu_maps, const light_space& light, const fragment_buffer& fragments) {
+    const auto queries = test::texel_centre_queries(fragments, light, 5);
+    const auto on_gpu = test::gl_lookup(on_gl.lookup_source(), [&](GLuint p) { on_gl.bind_lookup(p); }, queries);
+    std::vector<float> on_cpu(queries.size());
+    cpu_maps.transmittance(queries, on_cpu);
+    float worst_t = 0;
+    for (std::size_t i = 0; i < queries.size(); ++i) worst_t = std::max(worst_t, std::abs(on_gpu[i] - on_cpu[i]));
+    CAPTURE(worst_t, queries.size());
+    CHECK(queries.size() >= 1000);
+    // Layer sums may differ by 1e-5 relative (summed in another order), which moves T by up to
+    // 1e-5 x max(omega e^-omega), a few 1e-6; GLSL's division (2.5 ULP) and exponential add theirs.
+    CHECK(worst_t < 5e-5f);
+}
+
 template <class Method>
 void check_interpolated(const light_space& light, const gl::hair_mesh& mesh, const fragment_buffer& fragments) {
     constexpr bool eight_bit = std::is_same_v<typename Method::accumulation_type, emulated_8bit>;
@@ -42,37 +58,8 @@ void check_interpolated(const light_space& light, const gl::hair_mesh& mesh, con
     CHECK(occupied > 1000);
     CHECK(state_off == 0);  // z0 / depth range: MIN and MAX blending, bit-exact
     CHECK(layers_off == 0); // float sums within 1e-5 relative; 8-bit within one step
-    const auto queries = test::texel_centre_queries(fragments, light, 5);
-    const auto on_gpu = test::gl_lookup(on_gl.lookup_source(), [&](GLuint p) { on_gl.bind_lookup(p); }, queries);
-    std::vector<float> on_cpu(queries.size());
-    cpu.transmittance(queries, on_cpu);
-    float worst_t = 0;
-    for (std::size_t i = 0; i < queries.size(); ++i) worst_t = std::max(worst_t, std::abs(on_gpu[i] - on_cpu[i]));
-    CAPTURE(worst_t, queries.size());
-    CHECK(queries.size() >= 1000);
-    // Layer sums may differ by 1e-5 relative (summed in another order), which moves T by up to
-    // 1e-5 x max(omega e^-omega), a few 1e-6; GLSL's division (2.5 ULP) and exponential add theirs.
-    CHECK(worst_t < 5e-5f);
+    check_lookup(on_gl, cpu, light, fragments);
 }
-
-/// GL's read-back maps queried by the CPU's reconstruction, to hold the GLSL look-up against.
-template <class Method>
-class read_back_maps : public map_queries<read_back_maps<Method>> {
-public:
-    read_back_maps(const light_space& light, typename Method::placement_type placement, std::vector<typename Method::texel_maps> texels)
-        : light_(light), placement_(std::move(placement)), texels_(std::move(texels)) {}
-    float optical_depth(int x, int y, float depth) const noexcept {
-        const auto& t = texels_[std::size_t(y) * std::size_t(light_.resolution()) + std::size_t(x)];
-        using R = typename Method::reconstruction_type;
-        return R::template optical_depth<typename Method::placement_type, typename Method::accumulation_type>(placement_, t.placement, t.data, depth);
-    }
-    const light_space& light() const noexcept { return light_; }
-
-private:
-    light_space light_;
-    typename Method::placement_type placement_;
-    std::vector<typename Method::texel_maps> texels_;
-};
 
 /// Density clustering: its state (means, standard deviations) is summed in float on GL and in double
 /// on the CPU, so it is compared within a tolerance; the histograms GL sums from its own state are
@@ -120,16 +107,7 @@ void check_clustered(const light_space& light, const gl::hair_mesh& mesh, const 
     // across a boundary between clusters; on this model such texels are below 0.5%.
     CHECK(state_off * 200 < occupied);
     CHECK(layers_off == 0);
-    const auto queries = test::texel_centre_queries(fragments, light, 5);
-    const auto on_gpu = test::gl_lookup(on_gl.lookup_source(), [&](GLuint p) { on_gl.bind_lookup(p); }, queries);
-    const read_back_maps<Method> gl_maps(light, cpu.placement(), texels);
-    std::vector<float> on_cpu(queries.size());
-    gl_maps.transmittance(queries, on_cpu);
-    float worst_t = 0;
-    for (std::size_t i = 0; i < queries.size(); ++i) worst_t = std::max(worst_t, std::abs(on_gpu[i] - on_cpu[i]));
-    CAPTURE(worst_t, queries.size());
-    CHECK(queries.size() >= 1000);
-    CHECK(worst_t < 5e-5f);
+    check_lookup(on_gl, on_gl.to_cpu(), light, fragments); // GL's maps read back: its own state
 }
 
 } // namespace
