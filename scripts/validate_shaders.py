@@ -72,7 +72,7 @@ for layers, slabs in ((128, 4), (32, 1), (256, 8)):
     COMPOSITIONS[f"occupancy_slabs_{layers}_{slabs}"] = ("frag", targets, occupancy + ["passes/occupancy_slabs"], "")
     COMPOSITIONS[f"lookup_occupancy_{layers}_{slabs}"] = ("vert", targets, ["accumulation/emulated_8bit", "placement/common",
                                                                           "placement/per_pixel_depth", "texel_state/per_pixel_depth",
-                                                                          "reconstruction/occupancy_bitcount", "lookup/occupancy"], LOOKUP_MAIN)
+                                                                          "reconstruction/occupancy_bitcount", "lookup/light", "lookup/occupancy"], LOOKUP_MAIN)
 
 
 for placement, defines in (("planar_slices", "#define HS_LAYERS 64\n#define HS_GAMMA_SPACING\n#define HS_CUMULATIVE\n"),
@@ -85,7 +85,7 @@ for placement, defines in (("planar_slices", "#define HS_LAYERS 64\n#define HS_G
         tag = placement + defines.split()[2]
         COMPOSITIONS[f"layers_{tag}_{accumulation}"] = ("frag", defines + "#define HS_LAYER_TARGETS 8\n",
                                                               ["raster/coverage"] + base + ["passes/layers"], "")
-        COMPOSITIONS[f"lookup_layers_{tag}_{accumulation}"] = ("vert", defines, base + ["lookup/layers", "reconstruction/interpolation",
+        COMPOSITIONS[f"lookup_layers_{tag}_{accumulation}"] = ("vert", defines, base + ["lookup/layers", "reconstruction/interpolation", "lookup/light",
                                                                                              "lookup/interpolation"], LOOKUP_MAIN)
 
 # Density clustering's state passes (cluster_state_pass.hpp).

@@ -116,7 +116,7 @@ public:
     std::string lookup_source() const {
         std::string s = defines(1);
         for (auto piece : {accumulation_snippet(), shaders::placement_common, detail::placement_glsl<P>::snippet,
-                           detail::placement_glsl<P>::state, shaders::lookup_layers, shaders::reconstruction_interpolation,
+                           detail::placement_glsl<P>::state, shaders::lookup_layers, shaders::reconstruction_interpolation, shaders::lookup_light,
                            shaders::lookup_interpolation})
             s += piece;
         return s;

@@ -26,23 +26,11 @@ float hs_decode(float stored) { return stored; }
 
 /// shaders/lookup/interpolation.glsl
 inline constexpr std::string_view lookup_interpolation = R"hs_glsl(// float hs_transmittance(vec3 world_pos) for interpolated methods (opacity shadow maps, deep opacity
-// maps, range opacity maps): any user shader can call it. Outside the map the light is unshadowed.
-uniform mat4 hs_lookup_view_projection;
-uniform mat4 hs_lookup_view;
-uniform float hs_lookup_near;
-uniform float hs_lookup_far;
-uniform int hs_lookup_resolution;
-uniform sampler2D hs_range_texture;
-
+// maps, density clustering, range opacity maps): any user shader can call it.
 float hs_transmittance(vec3 world_pos) {
-    vec4 clip = hs_lookup_view_projection * vec4(world_pos, 1.0);
-    vec2 window = (clip.xy / clip.w + 1.0) * (0.5 * float(hs_lookup_resolution));
-    if (!(clip.w > 0.0) || any(lessThan(window, vec2(0.0))) || any(greaterThanEqual(window, vec2(float(hs_lookup_resolution)))))
-        return 1.0;
-    hs_lookup_texel = ivec2(window);
-    float depth = (-(hs_lookup_view * vec4(world_pos, 1.0)).z - hs_lookup_near) / (hs_lookup_far - hs_lookup_near);
-    vec4 range = texelFetch(hs_range_texture, hs_lookup_texel, 0);
-    if (range.x > range.w) return 1.0; // no fragment in this texel
+    float depth;
+    vec4 range;
+    if (!hs_lookup_locate(world_pos, hs_lookup_texel, depth, range)) return 1.0;
     return exp(-hs_interpolate(hs_locate_from(hs_lookup_texel, range, depth)));
 }
 )hs_glsl";
@@ -67,27 +55,43 @@ float hs_through_layer(int k) {
 }
 )hs_glsl";
 
-/// shaders/lookup/occupancy.glsl
-inline constexpr std::string_view lookup_occupancy = R"hs_glsl(// float hs_transmittance(vec3 world_pos) for occupancy maps: any user shader can call it after the
-// placement, accumulation and reconstruction snippets. Outside the map the light is unshadowed.
+/// shaders/lookup/light.glsl
+inline constexpr std::string_view lookup_light = R"hs_glsl(// Where a world point falls in the light's maps, shared by every method's hs_transmittance: its
+// texel, its linear depth and the texel's depth range. False outside the map or where the texel
+// holds no fragment: there the light is unshadowed.
 uniform mat4 hs_lookup_view_projection;
 uniform mat4 hs_lookup_view;
 uniform float hs_lookup_near;
 uniform float hs_lookup_far;
 uniform int hs_lookup_resolution;
 uniform sampler2D hs_range_texture;
+
+bool hs_lookup_locate(vec3 world_pos, out ivec2 texel, out float depth, out vec4 range) {
+    vec4 clip = hs_lookup_view_projection * vec4(world_pos, 1.0);
+    vec2 window = (clip.xy / clip.w + 1.0) * (0.5 * float(hs_lookup_resolution));
+    texel = ivec2(0);
+    depth = 0.0;
+    range = vec4(0.0);
+    if (!(clip.w > 0.0) || any(lessThan(window, vec2(0.0))) || any(greaterThanEqual(window, vec2(float(hs_lookup_resolution)))))
+        return false;
+    texel = ivec2(window);
+    depth = (-(hs_lookup_view * vec4(world_pos, 1.0)).z - hs_lookup_near) / (hs_lookup_far - hs_lookup_near);
+    range = texelFetch(hs_range_texture, texel, 0);
+    return range.x <= range.w;
+}
+)hs_glsl";
+
+/// shaders/lookup/occupancy.glsl
+inline constexpr std::string_view lookup_occupancy = R"hs_glsl(// float hs_transmittance(vec3 world_pos) for occupancy maps: any user shader can call it after the
+// placement, accumulation and reconstruction snippets.
 uniform usampler2D hs_bits_texture[HS_BIT_TARGETS];
 uniform sampler2D hs_slabs_texture[HS_SLAB_TARGETS];
 
 float hs_transmittance(vec3 world_pos) {
-    vec4 clip = hs_lookup_view_projection * vec4(world_pos, 1.0);
-    vec2 window = (clip.xy / clip.w + 1.0) * (0.5 * float(hs_lookup_resolution));
-    if (!(clip.w > 0.0) || any(lessThan(window, vec2(0.0))) || any(greaterThanEqual(window, vec2(float(hs_lookup_resolution)))))
-        return 1.0;
-    ivec2 texel = ivec2(window);
-    float depth = (-(hs_lookup_view * vec4(world_pos, 1.0)).z - hs_lookup_near) / (hs_lookup_far - hs_lookup_near);
-    vec4 range = texelFetch(hs_range_texture, texel, 0);
-    if (range.x > range.w) return 1.0; // no fragment in this texel
+    ivec2 texel;
+    float depth;
+    vec4 range;
+    if (!hs_lookup_locate(world_pos, texel, depth, range)) return 1.0;
     uint bits[HS_WORDS];
     for (int w = 0; w < HS_WORDS; ++w) bits[w] = texelFetch(hs_bits_texture[w / 4], texel, 0)[w % 4];
     float slabs[HS_SLABS];
@@ -648,11 +652,12 @@ struct entry {
 };
 
 /// Every snippet, sorted by name.
-inline constexpr std::array<entry, 28> all{{
+inline constexpr std::array<entry, 29> all{{
     {"accumulation/emulated_8bit", accumulation_emulated_8bit},
     {"accumulation/float", accumulation_float},
     {"lookup/interpolation", lookup_interpolation},
     {"lookup/layers", lookup_layers},
+    {"lookup/light", lookup_light},
     {"lookup/occupancy", lookup_occupancy},
     {"passes/capture", passes_capture},
     {"passes/cluster_common", passes_cluster_common},
