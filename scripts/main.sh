@@ -1,12 +1,10 @@
 #!/usr/bin/env bash
-# The main job: set up, build in Release, and render the exact reference's transmittance of the
-# built-in procedural model, as seen from the light, to out/reference.png, and compare every
-# published method with it (out/compare/compare.md and .csv).
+# The main job: set up, build in Release, and write the comparison figure (figure.png, crops.png,
+# heatmaps.png, rays.svg, compare.md/csv) of the built-in procedural model on its sphere to out/figure.
+# Any argument goes to `hairshadow figure`, e.g. the Sintel hair on its head:
+#   bash scripts/main.sh --model ../shared/data/sintel/sintel_hair.16points.tfx --mesh ../shared/data/sintel/sintel_head.obj
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh
-mkdir -p out
-./build/tools/hairshadow info procedural:curly
-./build/tools/hairshadow render procedural:curly --method dsm --light dir:0,-1,-1 --res 512 --out out/reference.png
-./build/tools/hairshadow compare procedural:curly --light dir:0,-1,-1 --res 512 --out out/compare
+./build/tools/hairshadow figure --out out/figure "$@"

@@ -170,3 +170,31 @@ TEST_CASE("usage errors exit 2 with the valid grammar", "[cli][errors]") {
     expect("frobnicate", "");
     expect("info", "MODEL is required");
 }
+
+TEST_CASE("figure writes the panels, crops, heat maps, ray plots and table", "[cli][figure]") {
+    test::temp_dir dir("cli_figure");
+    const auto r = test::run_cli("figure --model procedural:wavy:strands=300:segments=12 --res 128 --size 96 --methods osm:16,occ:128:4 --out " +
+                                 dir.file("fig"));
+    REQUIRE(r.status == 0);
+    for (const char* name : {"figure.png", "crops.png", "heatmaps.png", "rays.svg", "compare.md", "compare.csv"}) {
+        CAPTURE(name);
+        CHECK(std::filesystem::file_size(dir.file(std::string("fig/") + name)) > 100);
+    }
+    const auto csv = test::read_text(dir.file("fig/compare.csv"));
+    CHECK_THAT(csv, Catch::StartsWith("method,layers,memory_bytes,build_ms,mean_error"));
+    for (const char* row : {"\nosm:16,16,", "\nocc:128:4,128,", "\ndsm,0,"}) CHECK_THAT(csv, Catch::Contains(row));
+    CHECK_THAT(csv, Catch::Contains("\ndsm,0,") && Catch::Contains(",0.000000,0.000000,0.000000"));
+    const auto svg = test::read_text(dir.file("fig/rays.svg"));
+    CHECK(std::count(svg.begin(), svg.end(), '\n') > 20);
+    CHECK_THAT(svg, Catch::Contains("<polyline") && Catch::Contains("exact (deep shadow map)"));
+    CHECK_THAT(r.err, Catch::Contains("building osm:16")); // progress
+}
+
+TEST_CASE("figure refuses bad specs and sizes with a usage error", "[cli][figure][errors]") {
+    for (const char* args : {"--methods osm:17", "--light dir:1,2", "--size 0", "--res 0", "--model procedural:hairy"}) {
+        CAPTURE(args);
+        const auto r = test::run_cli(std::string("figure --out /tmp/hairshadow_bad_figure ") + args);
+        CHECK(r.status == 2);
+        CHECK_THAT(r.err, Catch::Contains("error") || Catch::Contains("--size"));
+    }
+}

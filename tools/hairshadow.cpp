@@ -9,6 +9,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "compare_table.hpp"
+#include "figure.hpp"
 #include "gl_backend.hpp"
 
 #include <algorithm>
@@ -273,13 +275,6 @@ int run_memory(const map_options& o) {
     return 0;
 }
 
-struct compare_row {
-    std::string method;
-    int layers;
-    std::size_t bytes;
-    double build_ms, mean, p95, max;
-};
-
 int run_compare(const map_options& o, const std::string& methods, const std::string& out_dir) {
     std::vector<method_spec> specs;
     for (auto part : detail::split(methods, ',')) specs.push_back(parse_method_for(std::string(part), o));
@@ -289,42 +284,22 @@ int run_compare(const map_options& o, const std::string& methods, const std::str
     const auto exact = build_map(parse_method("dsm"), s, exec);
     std::vector<float> reference(s.model.point_count());
     exact->transmittance(s.model.points, reference, query, exec);
-    std::vector<compare_row> rows;
+    std::vector<cli::compare_row> rows;
     for (const auto& spec : specs) {
         const auto result = evaluate(spec, s, o, s.model.points);
-        const auto& t = result.transmittance;
-        std::vector<float> error(t.size());
-        double sum = 0;
-        for (std::size_t i = 0; i < t.size(); ++i) sum += error[i] = std::abs(t[i] - reference[i]);
-        std::sort(error.begin(), error.end());
-        const float p95 = error.empty() ? 0.0f : error[std::min(error.size() - 1, std::size_t(0.95 * double(error.size())))];
-        rows.push_back({spec.text, result.layers, result.bytes, result.build_ms, error.empty() ? 0.0 : sum / double(error.size()), p95,
-                        error.empty() ? 0.0 : error.back()});
+        cli::compare_row row{spec.text, result.layers, result.bytes, result.build_ms};
+        cli::set_errors(row, result.transmittance, reference);
+        rows.push_back(row);
     }
-    std::ostringstream md, csv;
-    md << "Model `" << o.model << "`, light `" << o.light << "`, " << o.resolution << "x" << o.resolution << ", " << s.model.point_count()
-       << " points, " << s.fragments.size() << " fragments (rasterised in " << std::lround(s.raster_ms) << " ms), " << exec.resolved()
-       << " threads. ";
-    if (s.gl) md << "Methods built on " << s.gl->description() << " and queried by their GLSL look-up; the reference on the CPU. ";
-    md << "Errors are |T - T_exact| at the model's points.\n\n";
-    md << "| method | layers | memory (MiB) | build (ms) | mean error | 95th percentile | max error |\n|---|---|---|---|---|---|---|\n";
-    csv << "method,layers,memory_bytes,build_ms,mean_error,p95_error,max_error\n";
-    char line[256];
-    for (const auto& r : rows) {
-        std::snprintf(line, sizeof line, "| %s | %d | %.2f | %.1f | %.4f | %.4f | %.4f |\n", r.method.c_str(), r.layers, double(r.bytes) / 1048576.0,
-                      r.build_ms, r.mean, r.p95, r.max);
-        md << line;
-        std::snprintf(line, sizeof line, "%s,%d,%zu,%.3f,%.6f,%.6f,%.6f\n", r.method.c_str(), r.layers, r.bytes, r.build_ms, r.mean, r.p95, r.max);
-        csv << line;
-    }
-    std::fputs(md.str().c_str(), stdout);
-    if (!out_dir.empty()) {
-        std::filesystem::create_directories(out_dir);
-        const auto md_path = (std::filesystem::path(out_dir) / "compare.md").string(), csv_path = (std::filesystem::path(out_dir) / "compare.csv").string();
-        std::ofstream(md_path) << md.str();
-        std::ofstream(csv_path) << csv.str();
-        if (!std::ifstream(md_path) || !std::ifstream(csv_path)) throw io_error(out_dir, "cannot write the comparison files");
-    }
+    std::ostringstream preamble;
+    preamble << "Model `" << o.model << "`, light `" << o.light << "`, " << o.resolution << "x" << o.resolution << ", " << s.model.point_count()
+             << " points, " << s.fragments.size() << " fragments (rasterised in " << std::lround(s.raster_ms) << " ms), " << exec.resolved()
+             << " threads. ";
+    if (s.gl) preamble << "Methods built on " << s.gl->description() << " and queried by their GLSL look-up; the reference on the CPU. ";
+    preamble << "Errors are |T - T_exact| at the model's points.";
+    const auto [md, csv] = cli::format_table(rows, preamble.str());
+    std::fputs(md.c_str(), stdout);
+    if (!out_dir.empty()) cli::write_table(out_dir, md, csv);
     return 0;
 }
 
@@ -395,6 +370,18 @@ int main(int argc, char** argv) {
     compare->add_option("--methods", methods, "comma-separated method specs");
     compare->add_option("--out", out_dir, "also write compare.md and compare.csv into this folder");
 
+    cli::figure_options fig;
+    auto* figure = app.add_subcommand("figure", "the comparison figure: shaded hair with each method, crops, error heat maps, ray plots, table");
+    figure->add_option("--model", fig.model, "a model file or " + std::string(procedural_grammar) + " (procedural models stand on their sphere)");
+    figure->add_option("--mesh", fig.mesh, "an OBJ whose faces are the opaque mesh (e.g. the Sintel head)");
+    figure->add_option("--light", fig.light, "light spec: " + std::string(light_grammar));
+    figure->add_option("--methods", fig.methods, "comma-separated method specs between 'no shadows' and the exact reference");
+    figure->add_option("--res", fig.resolution, "shadow map resolution");
+    figure->add_option("--size", fig.size, "panel size in pixels")->check(CLI::Range(16, 4096));
+    figure->add_option("--azimuth", fig.azimuth, "camera azimuth in degrees about +y");
+    figure->add_option("--elevation", fig.elevation, "camera elevation in degrees")->check(CLI::Range(-89.0f, 89.0f));
+    figure->add_option("--out", fig.out, "output folder");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -406,6 +393,18 @@ int main(int argc, char** argv) {
         if (*render) return run_render(o, out_path, maps_dir);
         if (*memory) return run_memory(o);
         if (*compare) return run_compare(o, methods, out_dir);
+        if (*figure) {
+            try { // everything a usage error can be, before any work
+                check_resolution(fig.resolution);
+                if (is_procedural_spec(fig.model)) parse_procedural_spec(fig.model);
+            } catch (const argument_error& e) {
+                throw usage_error(e.what());
+            }
+            for (auto part : detail::split(fig.methods, ',')) parse_method(std::string(part));
+            parse_light(fig.light);
+            fig.exec = o.exec();
+            return cli::run_figure(fig);
+        }
     } catch (const usage_error& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 2;

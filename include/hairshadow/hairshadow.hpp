@@ -2,7 +2,8 @@
 /// @file
 /// hairshadow: self-shadowing and transparency of hair and other thin semi-transparent geometry.
 /// The CPU umbrella header: models and their readers, lights, the rasteriser, the exact reference and
-/// every method's policies and compositions (the run-time registry is <hairshadow/methods/registry.hpp>).
+/// every method's policies and compositions (the run-time registry is <hairshadow/methods/registry.hpp>),
+/// and the CPU renderer: Kajiya-Kay hair, opaque meshes with depth shadow maps, cameras.
 /// It needs only GLM. The OBJ reader (`<hairshadow/io/obj_format.hpp>`, `<hairshadow/io/load.hpp>`)
 /// also needs tinyobjloader and is included separately.
 
@@ -35,3 +36,10 @@
 
 #include <hairshadow/reference/compressed_deep_shadow_map.hpp>
 #include <hairshadow/reference/deep_shadow_map.hpp>
+
+#include <hairshadow/shading/camera.hpp>
+#include <hairshadow/shading/cpu_renderer.hpp>
+#include <hairshadow/shading/depth_shadow_map.hpp>
+#include <hairshadow/shading/image.hpp>
+#include <hairshadow/shading/kajiya_kay.hpp>
+#include <hairshadow/shading/scene.hpp>

@@ -5,7 +5,8 @@
 /// @file
 /// hairshadow: self-shadowing and transparency of hair and other thin semi-transparent geometry.
 /// The CPU umbrella header: models and their readers, lights, the rasteriser, the exact reference and
-/// every method's policies and compositions (the run-time registry is <hairshadow/methods/registry.hpp>).
+/// every method's policies and compositions (the run-time registry is <hairshadow/methods/registry.hpp>),
+/// and the CPU renderer: Kajiya-Kay hair, opaque meshes with depth shadow maps, cameras.
 /// It needs only GLM. The OBJ reader (`<hairshadow/io/obj_format.hpp>`, `<hairshadow/io/load.hpp>`)
 /// also needs tinyobjloader and is included separately.
 
@@ -3055,4 +3056,539 @@ private:
 
 } // namespace hairshadow
 // ---- end hairshadow/reference/compressed_deep_shadow_map.hpp
+
+// ---- begin hairshadow/shading/camera.hpp
+/// @file
+/// A perspective camera looking at a scene, and the framing of a bounding box from an orbit angle.
+
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/mat4x4.hpp>
+
+#include <cmath>
+#include <numbers>
+
+namespace hairshadow {
+
+/// A pinhole camera producing a `width` x `height` image.
+struct camera {
+    glm::vec3 eye{0, 0, 1}, target{0, 0, 0}, up{0, 1, 0};
+    float fov_y_degrees = 30.0f;
+    int width = 512, height = 512;
+    float near_plane = 0.01f, far_plane = 100.0f;
+
+    glm::mat4 view() const { return glm::lookAt(eye, target, up); }
+    glm::mat4 projection() const { return glm::perspective(glm::radians(fov_y_degrees), float(width) / float(height), near_plane, far_plane); }
+    glm::mat4 view_projection() const { return projection() * view(); }
+
+    /// Orbits `box`: azimuth about +y from +z, elevation above the horizontal plane, at a distance that
+    /// fits the box's bounding sphere into the vertical field of view (times `zoom`).
+    static camera framing(const aabb& box, float azimuth_degrees, float elevation_degrees, int width, int height, float zoom = 1.0f) {
+        if (box.empty()) throw argument_error("camera: nothing to frame");
+        check_image_size(width, height);
+        if (!(zoom > 0.0f) || !std::isfinite(zoom)) throw argument_error("camera: zoom must be positive");
+        camera c;
+        c.width = width;
+        c.height = height;
+        c.target = box.center();
+        const float radius = 0.5f * glm::length(box.max - box.min);
+        const float distance = radius / std::sin(glm::radians(0.5f * c.fov_y_degrees)) / zoom;
+        const float az = glm::radians(azimuth_degrees), el = glm::radians(elevation_degrees);
+        c.eye = c.target + distance * glm::vec3(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));
+        c.near_plane = std::max(distance - 2.0f * radius, distance * 1e-3f);
+        c.far_plane = distance + 2.0f * radius;
+        return c;
+    }
+
+    /// Throws argument_error unless 1 <= width, height <= HAIRSHADOW_MAX_RESOLUTION.
+    static void check_image_size(int width, int height) {
+        if (width < 1 || height < 1 || width > HAIRSHADOW_MAX_RESOLUTION || height > HAIRSHADOW_MAX_RESOLUTION)
+            throw argument_error("image size must be 1.." + std::to_string(HAIRSHADOW_MAX_RESOLUTION) + " on each side");
+    }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/shading/camera.hpp
+// ---- begin hairshadow/shading/cpu_renderer.hpp
+/// @file
+/// The CPU renderer: the opaque mesh by a z-buffered triangle rasteriser with smooth normals and
+/// Lambert shading, the hair as anti-aliased lines (coverage of a one-pixel-wide line) with
+/// Kajiya-Kay shading computed at the strand points; every light's contribution scaled by the
+/// hair's transmittance (any method) and the mesh's depth shadow map, both ways.
+
+// ---- begin hairshadow/shading/depth_shadow_map.hpp
+/// @file
+/// A conventional depth shadow map of an opaque triangle mesh (Williams 1978), in the same light
+/// space as the hair's maps, so that the two combine both ways (Yuksel & Keyser 2008, Fig. 7;
+/// Sintorn & Assarsson 2009, section 3.5): the mesh receives the hair's transmittance, and hair behind
+/// the mesh from the light is fully shadowed.
+
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace hairshadow {
+
+/// Nearest opaque depth per texel of a light's map.
+class depth_shadow_map {
+public:
+    depth_shadow_map() = default;
+
+    /// Rasterises `mesh` from `light` (texel centres inside a triangle, as GL's rule for polygons).
+    /// `bias` is added to the stored depth before comparisons, in linear depth units.
+    depth_shadow_map(const triangle_mesh& mesh, const light_space& light, float bias = 2e-3f, const execution& exec = {})
+        : light_(light), bias_(bias) {
+        const int res = light.resolution();
+        depth_.assign(std::size_t(res) * std::size_t(res), std::numeric_limits<float>::infinity());
+        if (mesh.triangles.empty()) return;
+        struct projected {
+            glm::vec2 window;
+            float depth_over_w, one_over_w; // perspective-correct interpolation of linear depth
+            bool valid;
+        };
+        std::vector<projected> points(mesh.vertices.size());
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            const auto p = light.project(mesh.vertices[i]);
+            points[i] = {p.window, p.depth / p.w, 1.0f / p.w, p.w > 0.0f};
+        }
+        // Rows in parallel: each row owns its texels, so the result is the same for any thread count.
+        parallel_for(std::size_t(res), exec, [&](std::size_t row) {
+            const float y = float(row) + 0.5f;
+            for (const auto& t : mesh.triangles) {
+                if (t[0] >= points.size() || t[1] >= points.size() || t[2] >= points.size()) continue;
+                const auto &a = points[t[0]], &b = points[t[1]], &c = points[t[2]];
+                if (!a.valid || !b.valid || !c.valid) continue;
+                if (y < std::min({a.window.y, b.window.y, c.window.y}) || y > std::max({a.window.y, b.window.y, c.window.y})) continue;
+                const float area = edge(a.window, b.window, c.window);
+                if (!(std::abs(area) > 0.0f)) continue;
+                const int x0 = std::max(0, int(std::floor(std::min({a.window.x, b.window.x, c.window.x}))));
+                const int x1 = std::min(res - 1, int(std::ceil(std::max({a.window.x, b.window.x, c.window.x}))));
+                for (int x = x0; x <= x1; ++x) {
+                    const glm::vec2 p(float(x) + 0.5f, y);
+                    const float w0 = edge(b.window, c.window, p) / area, w1 = edge(c.window, a.window, p) / area, w2 = edge(a.window, b.window, p) / area;
+                    if (w0 < 0.0f || w1 < 0.0f || w2 < 0.0f) continue;
+                    float& stored = depth_[row * std::size_t(res) + std::size_t(x)];
+                    const float depth = (w0 * a.depth_over_w + w1 * b.depth_over_w + w2 * c.depth_over_w) /
+                                        (w0 * a.one_over_w + w1 * b.one_over_w + w2 * c.one_over_w);
+                    stored = std::min(stored, depth);
+                }
+            }
+        }, 8);
+    }
+
+    /// 1 where `world` is in front of the mesh from the light (or outside the map), else 0.
+    float visibility(const glm::vec3& world) const noexcept {
+        if (depth_.empty()) return 1.0f;
+        const auto t = light_.locate(world);
+        if (!t) return 1.0f;
+        return t->depth <= depth(t->x, t->y) + bias_ ? 1.0f : 0.0f;
+    }
+
+    /// Stored depth of texel (x, y); infinity where no triangle covers it.
+    float depth(int x, int y) const noexcept { return depth_[std::size_t(y) * std::size_t(light_.resolution()) + std::size_t(x)]; }
+    const light_space& light() const noexcept { return light_; }
+
+private:
+    static float edge(const glm::vec2& a, const glm::vec2& b, const glm::vec2& p) noexcept {
+        return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
+    }
+    light_space light_;
+    float bias_ = 0.0f;
+    std::vector<float> depth_;
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/shading/depth_shadow_map.hpp
+// ---- begin hairshadow/shading/image.hpp
+/// @file
+/// A linear-RGB float image, top row first, and its 8-bit sRGB encoding for PNG files.
+
+#include <glm/vec3.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace hairshadow {
+
+struct image {
+    int width = 0, height = 0;
+    std::vector<glm::vec3> pixels; ///< linear RGB, row by row from the top
+
+    image() = default;
+    image(int w, int h, const glm::vec3& fill) : width(w), height(h), pixels(std::size_t(w) * std::size_t(h), fill) {}
+    glm::vec3& at(int x, int y) noexcept { return pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
+    const glm::vec3& at(int x, int y) const noexcept { return pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
+
+    /// 8-bit sRGB, three channels per pixel.
+    std::vector<std::uint8_t> to_srgb8() const {
+        std::vector<std::uint8_t> out(pixels.size() * 3);
+        for (std::size_t i = 0; i < pixels.size(); ++i)
+            for (int c = 0; c < 3; ++c) out[3 * i + std::size_t(c)] = encode(pixels[i][c]);
+        return out;
+    }
+    static std::uint8_t encode(float linear) noexcept {
+        const float v = std::clamp(linear, 0.0f, 1.0f);
+        const float s = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+        return std::uint8_t(std::lround(255.0f * s));
+    }
+};
+
+/// Mean absolute difference of two images' sRGB values, in [0, 1]; the sizes must agree.
+inline double mean_absolute_difference(const image& a, const image& b) {
+    const auto x = a.to_srgb8(), y = b.to_srgb8();
+    if (x.size() != y.size() || x.empty()) return 1.0;
+    double sum = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) sum += std::abs(int(x[i]) - int(y[i]));
+    return sum / (255.0 * double(x.size()));
+}
+
+} // namespace hairshadow
+// ---- end hairshadow/shading/image.hpp
+// ---- begin hairshadow/shading/scene.hpp
+/// @file
+/// What the renderers draw: hair, an optional opaque mesh, their materials and the lights; and the
+/// built-in scenes (a procedural hair on its sphere, a sphere mesh for any model).
+
+// ---- begin hairshadow/shading/kajiya_kay.hpp
+/// @file
+/// Kajiya-Kay hair shading (Kajiya & Kay 1989): a strand is a thin cylinder along its tangent T;
+/// diffuse light goes as sin(T, L) and specular light peaks on the cone of directions that mirror
+/// L about the strand, as (sin(T, L) sin(T, E) - cos(T, L) cos(T, E))^p with L and E towards the
+/// light and the eye. The shadow methods scale each light's contribution by its transmittance.
+
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace hairshadow {
+
+/// How hair reflects light.
+struct hair_material {
+    glm::vec3 colour{0.50f, 0.33f, 0.20f}; ///< diffuse albedo
+    glm::vec3 specular_colour{0.35f, 0.32f, 0.28f};
+    float shininess = 40.0f;
+    float ambient = 0.12f; ///< unshadowed ambient term, as a fraction of the colour
+};
+
+/// Unit direction from `point` towards the light (directional lights: against their direction).
+inline glm::vec3 direction_to_light(const light_spec& light, const glm::vec3& point) noexcept {
+    const glm::vec3 d = light.type == light_type::directional ? -light.direction : light.position - point;
+    const float length = glm::length(d);
+    return length > 0.0f ? d / length : glm::vec3(0, 1, 0);
+}
+
+/// Light reflected towards `to_eye` by a strand with unit `tangent` lit from `to_light`, per unit
+/// of light colour (diffuse plus specular).
+inline glm::vec3 kajiya_kay(const glm::vec3& tangent, const glm::vec3& to_light, const glm::vec3& to_eye, const hair_material& m) noexcept {
+    const float tl = glm::dot(tangent, to_light), te = glm::dot(tangent, to_eye);
+    const float sin_tl = std::sqrt(std::max(0.0f, 1.0f - tl * tl)), sin_te = std::sqrt(std::max(0.0f, 1.0f - te * te));
+    const float cone = std::max(0.0f, sin_tl * sin_te - tl * te);
+    return m.colour * sin_tl + m.specular_colour * std::pow(cone, m.shininess);
+}
+
+/// Lambert shading of an opaque surface with unit `normal`, per unit of light colour.
+inline float lambert(const glm::vec3& normal, const glm::vec3& to_light) noexcept { return std::max(0.0f, glm::dot(normal, to_light)); }
+
+} // namespace hairshadow
+// ---- end hairshadow/shading/kajiya_kay.hpp
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace hairshadow {
+
+/// A light of the scene and its colour (intensity included).
+struct scene_light {
+    light_spec spec;
+    glm::vec3 colour{1.0f};
+};
+
+/// Hair, an opaque mesh (may be empty) and the lights on them.
+struct scene {
+    hair_model hair;
+    triangle_mesh mesh;
+    hair_material material;
+    glm::vec3 mesh_colour{0.80f, 0.64f, 0.55f};
+    float mesh_ambient = 0.15f;
+    glm::vec3 background{1.0f, 1.0f, 1.0f};
+    std::vector<scene_light> lights;
+
+    /// The box holding the hair and the mesh: what the lights' maps and the camera frame.
+    aabb bounds() const {
+        aabb box = hair.bounds();
+        for (const auto& v : mesh.vertices) box.add(v);
+        return box;
+    }
+};
+
+/// A UV sphere of `rings` latitude bands and 2 x `rings` longitude segments, outward winding.
+inline triangle_mesh make_sphere(const glm::vec3& centre, float radius, int rings = 48) {
+    if (rings < 2 || rings > 4096) throw argument_error("sphere: rings must be 2..4096");
+    if (!(radius > 0.0f) || !std::isfinite(radius)) throw argument_error("sphere: radius must be positive and finite");
+    triangle_mesh m;
+    const int segments = 2 * rings;
+    for (int i = 0; i <= rings; ++i) {
+        const float theta = std::numbers::pi_v<float> * float(i) / float(rings);
+        for (int j = 0; j <= segments; ++j) {
+            const float phi = 2.0f * std::numbers::pi_v<float> * float(j) / float(segments);
+            m.vertices.push_back(centre + radius * glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)));
+        }
+    }
+    const auto index = [&](int i, int j) { return std::uint32_t(i * (segments + 1) + j); };
+    for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            m.triangles.push_back({index(i, j), index(i, j + 1), index(i + 1, j)});
+            m.triangles.push_back({index(i, j + 1), index(i + 1, j + 1), index(i + 1, j)});
+        }
+    return m;
+}
+
+} // namespace hairshadow
+// ---- end hairshadow/shading/scene.hpp
+
+#include <functional>
+#include <limits>
+#include <span>
+#include <vector>
+
+namespace hairshadow {
+
+/// Transmittance of a light's hair maps at many world points: any method, on either back end.
+using transmittance_query = std::function<void(std::span<const glm::vec3> points, std::span<float> out)>;
+
+/// A scene light with its shadows.
+struct lit_light {
+    scene_light light;
+    transmittance_query hair; ///< empty: the hair casts no shadow
+    depth_shadow_map mesh;    ///< default: the mesh casts no shadow
+};
+
+/// The transmittance query of any map with a batch transmittance(points, out) (CPU methods, the
+/// exact map, any_shadow_map).
+template <class Map>
+transmittance_query query_of(const Map& map, const execution& exec = {}) {
+    return [&map, exec](std::span<const glm::vec3> points, std::span<float> out) { map.transmittance(points, out, {}, exec); };
+}
+
+struct render_options {
+    float line_width = 1.0f; ///< hair lines, in pixels
+    bool draw_hair = true;   ///< false: the hair is not drawn but still casts its shadows
+    execution exec;
+};
+
+/// A light's visibility at `points`: the hair's transmittance times the mesh's depth test.
+inline std::vector<float> light_visibility(const lit_light& light, std::span<const glm::vec3> points, const execution& exec = {}) {
+    std::vector<float> v(points.size(), 1.0f);
+    if (light.hair) light.hair(points, v);
+    parallel_for(points.size(), exec, [&](std::size_t i) { v[i] *= light.mesh.visibility(points[i]); }, 4096);
+    return v;
+}
+
+namespace detail {
+
+/// Camera-space projection to image coordinates (x right, y down, pixel centres at +0.5) and 1/w.
+struct screen_point {
+    glm::vec2 xy;
+    float inv_w; ///< larger is nearer; interpolates linearly in screen space
+    bool valid;
+};
+
+inline screen_point to_screen(const glm::mat4& view_projection, const glm::vec3& p, int width, int height) noexcept {
+    const glm::vec4 clip = view_projection * glm::vec4(p, 1.0f);
+    if (!(clip.w > 1e-6f)) return {{}, 0.0f, false};
+    const float inv_w = 1.0f / clip.w;
+    return {{(clip.x * inv_w + 1.0f) * 0.5f * float(width), (1.0f - clip.y * inv_w) * 0.5f * float(height)}, inv_w, true};
+}
+
+/// What the mesh leaves in each pixel: 1/w (0 where empty), world position and normal.
+struct surface_buffer {
+    std::vector<float> inv_w;
+    std::vector<glm::vec3> position, normal;
+};
+
+inline std::vector<glm::vec3> vertex_normals(const triangle_mesh& mesh) {
+    std::vector<glm::vec3> n(mesh.vertices.size(), glm::vec3(0.0f));
+    for (const auto& t : mesh.triangles) {
+        if (t[0] >= n.size() || t[1] >= n.size() || t[2] >= n.size()) continue;
+        const glm::vec3 face = glm::cross(mesh.vertices[t[1]] - mesh.vertices[t[0]], mesh.vertices[t[2]] - mesh.vertices[t[0]]);
+        for (auto i : t) n[i] += face; // area-weighted
+    }
+    for (auto& v : n) v = glm::length(v) > 0.0f ? glm::normalize(v) : glm::vec3(0, 1, 0);
+    return n;
+}
+
+inline float edge_function(const glm::vec2& a, const glm::vec2& b, const glm::vec2& p) noexcept {
+    return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
+}
+
+inline surface_buffer rasterise_mesh(const triangle_mesh& mesh, const camera& cam, const execution& exec) {
+    const int w = cam.width, h = cam.height;
+    surface_buffer s;
+    s.inv_w.assign(std::size_t(w) * std::size_t(h), 0.0f);
+    s.position.resize(s.inv_w.size());
+    s.normal.resize(s.inv_w.size());
+    if (mesh.triangles.empty()) return s;
+    const glm::mat4 vp = cam.view_projection();
+    std::vector<screen_point> screen(mesh.vertices.size());
+    for (std::size_t i = 0; i < screen.size(); ++i) screen[i] = to_screen(vp, mesh.vertices[i], w, h);
+    const auto normals = vertex_normals(mesh);
+    parallel_for(std::size_t(h), exec, [&](std::size_t row) { // each row owns its pixels
+        const float y = float(row) + 0.5f;
+        for (const auto& t : mesh.triangles) {
+            if (t[0] >= screen.size() || t[1] >= screen.size() || t[2] >= screen.size()) continue;
+            const auto &a = screen[t[0]], &b = screen[t[1]], &c = screen[t[2]];
+            if (!a.valid || !b.valid || !c.valid) continue;
+            if (y < std::min({a.xy.y, b.xy.y, c.xy.y}) || y > std::max({a.xy.y, b.xy.y, c.xy.y})) continue;
+            const float area = edge_function(a.xy, b.xy, c.xy);
+            if (!(std::abs(area) > 0.0f)) continue;
+            const int x0 = std::max(0, int(std::floor(std::min({a.xy.x, b.xy.x, c.xy.x}))));
+            const int x1 = std::min(w - 1, int(std::ceil(std::max({a.xy.x, b.xy.x, c.xy.x}))));
+            for (int x = x0; x <= x1; ++x) {
+                const glm::vec2 p(float(x) + 0.5f, y);
+                const float l0 = edge_function(b.xy, c.xy, p) / area, l1 = edge_function(c.xy, a.xy, p) / area, l2 = edge_function(a.xy, b.xy, p) / area;
+                if (l0 < 0.0f || l1 < 0.0f || l2 < 0.0f) continue;
+                const float inv_w = l0 * a.inv_w + l1 * b.inv_w + l2 * c.inv_w;
+                const std::size_t i = row * std::size_t(w) + std::size_t(x);
+                if (!(inv_w > s.inv_w[i])) continue;
+                // Perspective-correct weights for the world-space attributes.
+                const glm::vec3 q = glm::vec3(l0 * a.inv_w, l1 * b.inv_w, l2 * c.inv_w) / inv_w;
+                s.inv_w[i] = inv_w;
+                s.position[i] = q.x * mesh.vertices[t[0]] + q.y * mesh.vertices[t[1]] + q.z * mesh.vertices[t[2]];
+                s.normal[i] = glm::normalize(q.x * normals[t[0]] + q.y * normals[t[1]] + q.z * normals[t[2]]);
+            }
+        }
+    }, 4);
+    return s;
+}
+
+/// Unit tangent at each point of each strand (central differences; one-sided at the ends).
+inline std::vector<glm::vec3> strand_tangents(const hair_model& hair) {
+    std::vector<glm::vec3> t(hair.point_count(), glm::vec3(0, 1, 0));
+    for (std::size_t s = 0; s < hair.strand_count(); ++s) {
+        const std::size_t first = hair.strand_offsets[s], last = hair.strand_offsets[s + 1];
+        for (std::size_t i = first; i < last; ++i) {
+            const glm::vec3 d = hair.points[std::min(i + 1, last - 1)] - hair.points[i > first ? i - 1 : i];
+            if (glm::length(d) > 0.0f) t[i] = glm::normalize(d);
+        }
+    }
+    return t;
+}
+
+} // namespace detail
+
+/// Kajiya-Kay radiance towards the camera at every hair point, each light scaled by its visibility.
+inline std::vector<glm::vec3> shade_hair_points(const scene& sc, const camera& cam, std::span<const lit_light> lights, const execution& exec = {}) {
+    const auto tangents = detail::strand_tangents(sc.hair);
+    std::vector<glm::vec3> colour(sc.hair.point_count(), sc.material.ambient * sc.material.colour);
+    for (const auto& light : lights) {
+        const auto visible = light_visibility(light, sc.hair.points, exec);
+        parallel_for(colour.size(), exec, [&](std::size_t i) {
+            const glm::vec3 p = sc.hair.points[i];
+            const glm::vec3 to_eye = glm::normalize(cam.eye - p);
+            colour[i] += light.light.colour * visible[i] * kajiya_kay(tangents[i], direction_to_light(light.light.spec, p), to_eye, sc.material);
+        }, 4096);
+    }
+    return colour;
+}
+
+/// Draws the hair as anti-aliased lines coloured by `point_colours` (one per hair point, linearly
+/// interpolated) over `base`, hidden by the mesh's `surface` depths (empty: no mesh). Each pixel
+/// shows its nearest well-covered strand, blended by the largest coverage of any strand in front
+/// of the mesh: order independent, so identical for any thread count.
+inline void draw_hair_lines(image& base, const hair_model& hair, std::span<const glm::vec3> point_colours, const camera& cam,
+                            const std::vector<float>& surface_inv_w, const render_options& options = {}) {
+    const int w = cam.width, h = cam.height;
+    const glm::mat4 vp = cam.view_projection();
+    std::vector<detail::screen_point> screen(hair.point_count());
+    for (std::size_t i = 0; i < screen.size(); ++i) screen[i] = detail::to_screen(vp, hair.points[i], w, h);
+    struct segment {
+        std::uint32_t a, b;
+        float y0, y1;
+    };
+    std::vector<segment> segments;
+    segments.reserve(hair.segment_count());
+    for (std::size_t s = 0; s < hair.strand_count(); ++s)
+        for (std::uint32_t i = hair.strand_offsets[s]; i + 1 < hair.strand_offsets[s + 1]; ++i)
+            if (screen[i].valid && screen[i + 1].valid)
+                segments.push_back({i, i + 1, std::min(screen[i].xy.y, screen[i + 1].xy.y), std::max(screen[i].xy.y, screen[i + 1].xy.y)});
+    const float reach = 0.5f * options.line_width + 0.5f; // distance at which coverage reaches zero
+    constexpr int band_rows = 8;
+    const int bands = (h + band_rows - 1) / band_rows;
+    parallel_for(std::size_t(bands), options.exec, [&](std::size_t band) {
+        const int row0 = int(band) * band_rows, row1 = std::min(h, row0 + band_rows);
+        const std::size_t n = std::size_t(row1 - row0) * std::size_t(w);
+        std::vector<float> full_depth(n, 0.0f), best_coverage(n, 0.0f);
+        std::vector<glm::vec3> full_colour(n), best_colour(n);
+        std::vector<char> has_full(n, 0);
+        for (const auto& sg : segments) {
+            if (sg.y1 + reach < float(row0) || sg.y0 - reach > float(row1)) continue;
+            const auto &a = screen[sg.a], &b = screen[sg.b];
+            const glm::vec2 d = b.xy - a.xy;
+            const float length2 = glm::dot(d, d);
+            const int x0 = std::max(0, int(std::floor(std::min(a.xy.x, b.xy.x) - reach)));
+            const int x1 = std::min(w - 1, int(std::ceil(std::max(a.xy.x, b.xy.x) + reach)));
+            const int y0 = std::max(row0, int(std::floor(sg.y0 - reach))), y1 = std::min(row1 - 1, int(std::ceil(sg.y1 + reach)));
+            for (int y = y0; y <= y1; ++y)
+                for (int x = x0; x <= x1; ++x) {
+                    const glm::vec2 p(float(x) + 0.5f, float(y) + 0.5f);
+                    const float t = length2 > 0.0f ? std::clamp(glm::dot(p - a.xy, d) / length2, 0.0f, 1.0f) : 0.0f;
+                    const float coverage = std::clamp(reach - glm::length(p - (a.xy + t * d)), 0.0f, 1.0f);
+                    if (!(coverage > 0.0f)) continue;
+                    const float inv_w = a.inv_w + t * (b.inv_w - a.inv_w);
+                    if (!surface_inv_w.empty() && !(inv_w > surface_inv_w[std::size_t(y) * std::size_t(w) + std::size_t(x)])) continue;
+                    const std::size_t i = std::size_t(y - row0) * std::size_t(w) + std::size_t(x);
+                    const glm::vec3 c = point_colours[sg.a] + t * (point_colours[sg.b] - point_colours[sg.a]);
+                    if (coverage > best_coverage[i]) best_coverage[i] = coverage, best_colour[i] = c;
+                    if (coverage >= 0.5f && inv_w > full_depth[i]) full_depth[i] = inv_w, full_colour[i] = c, has_full[i] = 1;
+                }
+        }
+        for (int y = row0; y < row1; ++y)
+            for (int x = 0; x < w; ++x) {
+                const std::size_t i = std::size_t(y - row0) * std::size_t(w) + std::size_t(x);
+                if (best_coverage[i] > 0.0f) {
+                    auto& px = base.at(x, y);
+                    px += best_coverage[i] * ((has_full[i] ? full_colour[i] : best_colour[i]) - px);
+                }
+            }
+    });
+}
+
+/// Renders the scene from `cam` on the CPU.
+inline image render_cpu(const scene& sc, const camera& cam, std::span<const lit_light> lights, const render_options& options = {}) {
+    camera::check_image_size(cam.width, cam.height);
+    image out(cam.width, cam.height, sc.background);
+    // The mesh: Lambert shading, each light scaled by the hair's transmittance and the mesh's own shadow.
+    const auto surface = detail::rasterise_mesh(sc.mesh, cam, options.exec);
+    std::vector<std::size_t> covered;
+    for (std::size_t i = 0; i < surface.inv_w.size(); ++i)
+        if (surface.inv_w[i] > 0.0f) covered.push_back(i);
+    std::vector<glm::vec3> positions(covered.size());
+    for (std::size_t k = 0; k < covered.size(); ++k) positions[k] = surface.position[covered[k]];
+    std::vector<glm::vec3> radiance(covered.size(), sc.mesh_ambient * sc.mesh_colour);
+    for (const auto& light : lights) {
+        const auto visible = light_visibility(light, positions, options.exec);
+        for (std::size_t k = 0; k < covered.size(); ++k) {
+            glm::vec3 n = surface.normal[covered[k]];
+            if (glm::dot(n, cam.eye - positions[k]) < 0.0f) n = -n; // two-sided: whichever side faces the camera
+            radiance[k] += light.light.colour * sc.mesh_colour * (visible[k] * lambert(n, direction_to_light(light.light.spec, positions[k])));
+        }
+    }
+    for (std::size_t k = 0; k < covered.size(); ++k) out.pixels[covered[k]] = radiance[k];
+    // The hair over it.
+    if (!options.draw_hair) return out;
+    const auto colours = shade_hair_points(sc, cam, lights, options.exec);
+    draw_hair_lines(out, sc.hair, colours, cam, surface.inv_w, options);
+    return out;
+}
+
+} // namespace hairshadow
+// ---- end hairshadow/shading/cpu_renderer.hpp
 // ---- end hairshadow/hairshadow.hpp

@@ -1,0 +1,249 @@
+#pragma once
+/// @file
+/// The CPU renderer: the opaque mesh by a z-buffered triangle rasteriser with smooth normals and
+/// Lambert shading, the hair as anti-aliased lines (coverage of a one-pixel-wide line) with
+/// Kajiya-Kay shading computed at the strand points; every light's contribution scaled by the
+/// hair's transmittance (any method) and the mesh's depth shadow map, both ways.
+
+#include <hairshadow/core/parallel.hpp>
+#include <hairshadow/shading/camera.hpp>
+#include <hairshadow/shading/depth_shadow_map.hpp>
+#include <hairshadow/shading/image.hpp>
+#include <hairshadow/shading/scene.hpp>
+
+#include <functional>
+#include <limits>
+#include <span>
+#include <vector>
+
+namespace hairshadow {
+
+/// Transmittance of a light's hair maps at many world points: any method, on either back end.
+using transmittance_query = std::function<void(std::span<const glm::vec3> points, std::span<float> out)>;
+
+/// A scene light with its shadows.
+struct lit_light {
+    scene_light light;
+    transmittance_query hair; ///< empty: the hair casts no shadow
+    depth_shadow_map mesh;    ///< default: the mesh casts no shadow
+};
+
+/// The transmittance query of any map with a batch transmittance(points, out) (CPU methods, the
+/// exact map, any_shadow_map).
+template <class Map>
+transmittance_query query_of(const Map& map, const execution& exec = {}) {
+    return [&map, exec](std::span<const glm::vec3> points, std::span<float> out) { map.transmittance(points, out, {}, exec); };
+}
+
+struct render_options {
+    float line_width = 1.0f; ///< hair lines, in pixels
+    bool draw_hair = true;   ///< false: the hair is not drawn but still casts its shadows
+    execution exec;
+};
+
+/// A light's visibility at `points`: the hair's transmittance times the mesh's depth test.
+inline std::vector<float> light_visibility(const lit_light& light, std::span<const glm::vec3> points, const execution& exec = {}) {
+    std::vector<float> v(points.size(), 1.0f);
+    if (light.hair) light.hair(points, v);
+    parallel_for(points.size(), exec, [&](std::size_t i) { v[i] *= light.mesh.visibility(points[i]); }, 4096);
+    return v;
+}
+
+namespace detail {
+
+/// Camera-space projection to image coordinates (x right, y down, pixel centres at +0.5) and 1/w.
+struct screen_point {
+    glm::vec2 xy;
+    float inv_w; ///< larger is nearer; interpolates linearly in screen space
+    bool valid;
+};
+
+inline screen_point to_screen(const glm::mat4& view_projection, const glm::vec3& p, int width, int height) noexcept {
+    const glm::vec4 clip = view_projection * glm::vec4(p, 1.0f);
+    if (!(clip.w > 1e-6f)) return {{}, 0.0f, false};
+    const float inv_w = 1.0f / clip.w;
+    return {{(clip.x * inv_w + 1.0f) * 0.5f * float(width), (1.0f - clip.y * inv_w) * 0.5f * float(height)}, inv_w, true};
+}
+
+/// What the mesh leaves in each pixel: 1/w (0 where empty), world position and normal.
+struct surface_buffer {
+    std::vector<float> inv_w;
+    std::vector<glm::vec3> position, normal;
+};
+
+inline std::vector<glm::vec3> vertex_normals(const triangle_mesh& mesh) {
+    std::vector<glm::vec3> n(mesh.vertices.size(), glm::vec3(0.0f));
+    for (const auto& t : mesh.triangles) {
+        if (t[0] >= n.size() || t[1] >= n.size() || t[2] >= n.size()) continue;
+        const glm::vec3 face = glm::cross(mesh.vertices[t[1]] - mesh.vertices[t[0]], mesh.vertices[t[2]] - mesh.vertices[t[0]]);
+        for (auto i : t) n[i] += face; // area-weighted
+    }
+    for (auto& v : n) v = glm::length(v) > 0.0f ? glm::normalize(v) : glm::vec3(0, 1, 0);
+    return n;
+}
+
+inline float edge_function(const glm::vec2& a, const glm::vec2& b, const glm::vec2& p) noexcept {
+    return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
+}
+
+inline surface_buffer rasterise_mesh(const triangle_mesh& mesh, const camera& cam, const execution& exec) {
+    const int w = cam.width, h = cam.height;
+    surface_buffer s;
+    s.inv_w.assign(std::size_t(w) * std::size_t(h), 0.0f);
+    s.position.resize(s.inv_w.size());
+    s.normal.resize(s.inv_w.size());
+    if (mesh.triangles.empty()) return s;
+    const glm::mat4 vp = cam.view_projection();
+    std::vector<screen_point> screen(mesh.vertices.size());
+    for (std::size_t i = 0; i < screen.size(); ++i) screen[i] = to_screen(vp, mesh.vertices[i], w, h);
+    const auto normals = vertex_normals(mesh);
+    parallel_for(std::size_t(h), exec, [&](std::size_t row) { // each row owns its pixels
+        const float y = float(row) + 0.5f;
+        for (const auto& t : mesh.triangles) {
+            if (t[0] >= screen.size() || t[1] >= screen.size() || t[2] >= screen.size()) continue;
+            const auto &a = screen[t[0]], &b = screen[t[1]], &c = screen[t[2]];
+            if (!a.valid || !b.valid || !c.valid) continue;
+            if (y < std::min({a.xy.y, b.xy.y, c.xy.y}) || y > std::max({a.xy.y, b.xy.y, c.xy.y})) continue;
+            const float area = edge_function(a.xy, b.xy, c.xy);
+            if (!(std::abs(area) > 0.0f)) continue;
+            const int x0 = std::max(0, int(std::floor(std::min({a.xy.x, b.xy.x, c.xy.x}))));
+            const int x1 = std::min(w - 1, int(std::ceil(std::max({a.xy.x, b.xy.x, c.xy.x}))));
+            for (int x = x0; x <= x1; ++x) {
+                const glm::vec2 p(float(x) + 0.5f, y);
+                const float l0 = edge_function(b.xy, c.xy, p) / area, l1 = edge_function(c.xy, a.xy, p) / area, l2 = edge_function(a.xy, b.xy, p) / area;
+                if (l0 < 0.0f || l1 < 0.0f || l2 < 0.0f) continue;
+                const float inv_w = l0 * a.inv_w + l1 * b.inv_w + l2 * c.inv_w;
+                const std::size_t i = row * std::size_t(w) + std::size_t(x);
+                if (!(inv_w > s.inv_w[i])) continue;
+                // Perspective-correct weights for the world-space attributes.
+                const glm::vec3 q = glm::vec3(l0 * a.inv_w, l1 * b.inv_w, l2 * c.inv_w) / inv_w;
+                s.inv_w[i] = inv_w;
+                s.position[i] = q.x * mesh.vertices[t[0]] + q.y * mesh.vertices[t[1]] + q.z * mesh.vertices[t[2]];
+                s.normal[i] = glm::normalize(q.x * normals[t[0]] + q.y * normals[t[1]] + q.z * normals[t[2]]);
+            }
+        }
+    }, 4);
+    return s;
+}
+
+/// Unit tangent at each point of each strand (central differences; one-sided at the ends).
+inline std::vector<glm::vec3> strand_tangents(const hair_model& hair) {
+    std::vector<glm::vec3> t(hair.point_count(), glm::vec3(0, 1, 0));
+    for (std::size_t s = 0; s < hair.strand_count(); ++s) {
+        const std::size_t first = hair.strand_offsets[s], last = hair.strand_offsets[s + 1];
+        for (std::size_t i = first; i < last; ++i) {
+            const glm::vec3 d = hair.points[std::min(i + 1, last - 1)] - hair.points[i > first ? i - 1 : i];
+            if (glm::length(d) > 0.0f) t[i] = glm::normalize(d);
+        }
+    }
+    return t;
+}
+
+} // namespace detail
+
+/// Kajiya-Kay radiance towards the camera at every hair point, each light scaled by its visibility.
+inline std::vector<glm::vec3> shade_hair_points(const scene& sc, const camera& cam, std::span<const lit_light> lights, const execution& exec = {}) {
+    const auto tangents = detail::strand_tangents(sc.hair);
+    std::vector<glm::vec3> colour(sc.hair.point_count(), sc.material.ambient * sc.material.colour);
+    for (const auto& light : lights) {
+        const auto visible = light_visibility(light, sc.hair.points, exec);
+        parallel_for(colour.size(), exec, [&](std::size_t i) {
+            const glm::vec3 p = sc.hair.points[i];
+            const glm::vec3 to_eye = glm::normalize(cam.eye - p);
+            colour[i] += light.light.colour * visible[i] * kajiya_kay(tangents[i], direction_to_light(light.light.spec, p), to_eye, sc.material);
+        }, 4096);
+    }
+    return colour;
+}
+
+/// Draws the hair as anti-aliased lines coloured by `point_colours` (one per hair point, linearly
+/// interpolated) over `base`, hidden by the mesh's `surface` depths (empty: no mesh). Each pixel
+/// shows its nearest well-covered strand, blended by the largest coverage of any strand in front
+/// of the mesh: order independent, so identical for any thread count.
+inline void draw_hair_lines(image& base, const hair_model& hair, std::span<const glm::vec3> point_colours, const camera& cam,
+                            const std::vector<float>& surface_inv_w, const render_options& options = {}) {
+    const int w = cam.width, h = cam.height;
+    const glm::mat4 vp = cam.view_projection();
+    std::vector<detail::screen_point> screen(hair.point_count());
+    for (std::size_t i = 0; i < screen.size(); ++i) screen[i] = detail::to_screen(vp, hair.points[i], w, h);
+    struct segment {
+        std::uint32_t a, b;
+        float y0, y1;
+    };
+    std::vector<segment> segments;
+    segments.reserve(hair.segment_count());
+    for (std::size_t s = 0; s < hair.strand_count(); ++s)
+        for (std::uint32_t i = hair.strand_offsets[s]; i + 1 < hair.strand_offsets[s + 1]; ++i)
+            if (screen[i].valid && screen[i + 1].valid)
+                segments.push_back({i, i + 1, std::min(screen[i].xy.y, screen[i + 1].xy.y), std::max(screen[i].xy.y, screen[i + 1].xy.y)});
+    const float reach = 0.5f * options.line_width + 0.5f; // distance at which coverage reaches zero
+    constexpr int band_rows = 8;
+    const int bands = (h + band_rows - 1) / band_rows;
+    parallel_for(std::size_t(bands), options.exec, [&](std::size_t band) {
+        const int row0 = int(band) * band_rows, row1 = std::min(h, row0 + band_rows);
+        const std::size_t n = std::size_t(row1 - row0) * std::size_t(w);
+        std::vector<float> full_depth(n, 0.0f), best_coverage(n, 0.0f);
+        std::vector<glm::vec3> full_colour(n), best_colour(n);
+        std::vector<char> has_full(n, 0);
+        for (const auto& sg : segments) {
+            if (sg.y1 + reach < float(row0) || sg.y0 - reach > float(row1)) continue;
+            const auto &a = screen[sg.a], &b = screen[sg.b];
+            const glm::vec2 d = b.xy - a.xy;
+            const float length2 = glm::dot(d, d);
+            const int x0 = std::max(0, int(std::floor(std::min(a.xy.x, b.xy.x) - reach)));
+            const int x1 = std::min(w - 1, int(std::ceil(std::max(a.xy.x, b.xy.x) + reach)));
+            const int y0 = std::max(row0, int(std::floor(sg.y0 - reach))), y1 = std::min(row1 - 1, int(std::ceil(sg.y1 + reach)));
+            for (int y = y0; y <= y1; ++y)
+                for (int x = x0; x <= x1; ++x) {
+                    const glm::vec2 p(float(x) + 0.5f, float(y) + 0.5f);
+                    const float t = length2 > 0.0f ? std::clamp(glm::dot(p - a.xy, d) / length2, 0.0f, 1.0f) : 0.0f;
+                    const float coverage = std::clamp(reach - glm::length(p - (a.xy + t * d)), 0.0f, 1.0f);
+                    if (!(coverage > 0.0f)) continue;
+                    const float inv_w = a.inv_w + t * (b.inv_w - a.inv_w);
+                    if (!surface_inv_w.empty() && !(inv_w > surface_inv_w[std::size_t(y) * std::size_t(w) + std::size_t(x)])) continue;
+                    const std::size_t i = std::size_t(y - row0) * std::size_t(w) + std::size_t(x);
+                    const glm::vec3 c = point_colours[sg.a] + t * (point_colours[sg.b] - point_colours[sg.a]);
+                    if (coverage > best_coverage[i]) best_coverage[i] = coverage, best_colour[i] = c;
+                    if (coverage >= 0.5f && inv_w > full_depth[i]) full_depth[i] = inv_w, full_colour[i] = c, has_full[i] = 1;
+                }
+        }
+        for (int y = row0; y < row1; ++y)
+            for (int x = 0; x < w; ++x) {
+                const std::size_t i = std::size_t(y - row0) * std::size_t(w) + std::size_t(x);
+                if (best_coverage[i] > 0.0f) {
+                    auto& px = base.at(x, y);
+                    px += best_coverage[i] * ((has_full[i] ? full_colour[i] : best_colour[i]) - px);
+                }
+            }
+    });
+}
+
+/// Renders the scene from `cam` on the CPU.
+inline image render_cpu(const scene& sc, const camera& cam, std::span<const lit_light> lights, const render_options& options = {}) {
+    camera::check_image_size(cam.width, cam.height);
+    image out(cam.width, cam.height, sc.background);
+    // The mesh: Lambert shading, each light scaled by the hair's transmittance and the mesh's own shadow.
+    const auto surface = detail::rasterise_mesh(sc.mesh, cam, options.exec);
+    std::vector<std::size_t> covered;
+    for (std::size_t i = 0; i < surface.inv_w.size(); ++i)
+        if (surface.inv_w[i] > 0.0f) covered.push_back(i);
+    std::vector<glm::vec3> positions(covered.size());
+    for (std::size_t k = 0; k < covered.size(); ++k) positions[k] = surface.position[covered[k]];
+    std::vector<glm::vec3> radiance(covered.size(), sc.mesh_ambient * sc.mesh_colour);
+    for (const auto& light : lights) {
+        const auto visible = light_visibility(light, positions, options.exec);
+        for (std::size_t k = 0; k < covered.size(); ++k) {
+            glm::vec3 n = surface.normal[covered[k]];
+            if (glm::dot(n, cam.eye - positions[k]) < 0.0f) n = -n; // two-sided: whichever side faces the camera
+            radiance[k] += light.light.colour * sc.mesh_colour * (visible[k] * lambert(n, direction_to_light(light.light.spec, positions[k])));
+        }
+    }
+    for (std::size_t k = 0; k < covered.size(); ++k) out.pixels[covered[k]] = radiance[k];
+    // The hair over it.
+    if (!options.draw_hair) return out;
+    const auto colours = shade_hair_points(sc, cam, lights, options.exec);
+    draw_hair_lines(out, sc.hair, colours, cam, surface.inv_w, options);
+    return out;
+}
+
+} // namespace hairshadow

@@ -1,0 +1,87 @@
+#pragma once
+/// @file
+/// A conventional depth shadow map of an opaque triangle mesh (Williams 1978), in the same light
+/// space as the hair's maps, so that the two combine both ways (Yuksel & Keyser 2008, Fig. 7;
+/// Sintorn & Assarsson 2009, section 3.5): the mesh receives the hair's transmittance, and hair behind
+/// the mesh from the light is fully shadowed.
+
+#include <hairshadow/core/light.hpp>
+#include <hairshadow/core/parallel.hpp>
+#include <hairshadow/core/triangle_mesh.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace hairshadow {
+
+/// Nearest opaque depth per texel of a light's map.
+class depth_shadow_map {
+public:
+    depth_shadow_map() = default;
+
+    /// Rasterises `mesh` from `light` (texel centres inside a triangle, as GL's rule for polygons).
+    /// `bias` is added to the stored depth before comparisons, in linear depth units.
+    depth_shadow_map(const triangle_mesh& mesh, const light_space& light, float bias = 2e-3f, const execution& exec = {})
+        : light_(light), bias_(bias) {
+        const int res = light.resolution();
+        depth_.assign(std::size_t(res) * std::size_t(res), std::numeric_limits<float>::infinity());
+        if (mesh.triangles.empty()) return;
+        struct projected {
+            glm::vec2 window;
+            float depth_over_w, one_over_w; // perspective-correct interpolation of linear depth
+            bool valid;
+        };
+        std::vector<projected> points(mesh.vertices.size());
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            const auto p = light.project(mesh.vertices[i]);
+            points[i] = {p.window, p.depth / p.w, 1.0f / p.w, p.w > 0.0f};
+        }
+        // Rows in parallel: each row owns its texels, so the result is the same for any thread count.
+        parallel_for(std::size_t(res), exec, [&](std::size_t row) {
+            const float y = float(row) + 0.5f;
+            for (const auto& t : mesh.triangles) {
+                if (t[0] >= points.size() || t[1] >= points.size() || t[2] >= points.size()) continue;
+                const auto &a = points[t[0]], &b = points[t[1]], &c = points[t[2]];
+                if (!a.valid || !b.valid || !c.valid) continue;
+                if (y < std::min({a.window.y, b.window.y, c.window.y}) || y > std::max({a.window.y, b.window.y, c.window.y})) continue;
+                const float area = edge(a.window, b.window, c.window);
+                if (!(std::abs(area) > 0.0f)) continue;
+                const int x0 = std::max(0, int(std::floor(std::min({a.window.x, b.window.x, c.window.x}))));
+                const int x1 = std::min(res - 1, int(std::ceil(std::max({a.window.x, b.window.x, c.window.x}))));
+                for (int x = x0; x <= x1; ++x) {
+                    const glm::vec2 p(float(x) + 0.5f, y);
+                    const float w0 = edge(b.window, c.window, p) / area, w1 = edge(c.window, a.window, p) / area, w2 = edge(a.window, b.window, p) / area;
+                    if (w0 < 0.0f || w1 < 0.0f || w2 < 0.0f) continue;
+                    float& stored = depth_[row * std::size_t(res) + std::size_t(x)];
+                    const float depth = (w0 * a.depth_over_w + w1 * b.depth_over_w + w2 * c.depth_over_w) /
+                                        (w0 * a.one_over_w + w1 * b.one_over_w + w2 * c.one_over_w);
+                    stored = std::min(stored, depth);
+                }
+            }
+        }, 8);
+    }
+
+    /// 1 where `world` is in front of the mesh from the light (or outside the map), else 0.
+    float visibility(const glm::vec3& world) const noexcept {
+        if (depth_.empty()) return 1.0f;
+        const auto t = light_.locate(world);
+        if (!t) return 1.0f;
+        return t->depth <= depth(t->x, t->y) + bias_ ? 1.0f : 0.0f;
+    }
+
+    /// Stored depth of texel (x, y); infinity where no triangle covers it.
+    float depth(int x, int y) const noexcept { return depth_[std::size_t(y) * std::size_t(light_.resolution()) + std::size_t(x)]; }
+    const light_space& light() const noexcept { return light_; }
+
+private:
+    static float edge(const glm::vec2& a, const glm::vec2& b, const glm::vec2& p) noexcept {
+        return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
+    }
+    light_space light_;
+    float bias_ = 0.0f;
+    std::vector<float> depth_;
+};
+
+} // namespace hairshadow

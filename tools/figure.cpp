@@ -1,0 +1,310 @@
+// The comparison figure, in the manner of Kim & Neumann's Figure 1, Yuksel & Keyser's Figure 3 and
+// Sintorn & Assarsson's Figure 5: the same shaded hair with no shadows, with each method and with the
+// exact reference, each labelled with its build time; enlarged crops of one region; heat maps of
+// |T - T_exact| at the hair; the transmittance along a few light rays (SVG, as Sintorn & Assarsson's
+// Fig. 5 and Mertens et al.'s Fig. 5); and the comparison table.
+#include "figure.hpp"
+
+#include "compare_table.hpp"
+#include "text.hpp"
+
+#include <hairshadow/hairshadow.hpp>
+#include <hairshadow/io/load.hpp>
+#include <hairshadow/io/obj_format.hpp>
+#include <hairshadow/io/png.hpp>
+#include <hairshadow/methods/registry.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+
+namespace cli {
+namespace {
+
+using namespace hairshadow;
+namespace fs = std::filesystem;
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// Progress on stderr: long CPU work says what it is doing and how long it took.
+template <class Work>
+auto step(const std::string& what, Work&& work) {
+    std::fprintf(stderr, "  %-44s", (what + " ...").c_str());
+    std::fflush(stderr);
+    const auto start = std::chrono::steady_clock::now();
+    if constexpr (std::is_void_v<decltype(work())>) {
+        work();
+        std::fprintf(stderr, "%8.0f ms\n", ms_since(start));
+    } else {
+        auto result = work();
+        std::fprintf(stderr, "%8.0f ms\n", ms_since(start));
+        return result;
+    }
+}
+
+/// One column of the figure: a method (or none) with its maps and build time.
+struct panel {
+    std::string label, spec;
+    std::unique_ptr<any_shadow_map> map; ///< null: no shadows
+    double build_ms = 0;
+    image picture;
+};
+
+std::string pretty(const std::string& spec) {
+    if (spec == "none") return "no hair shadows";
+    if (spec == "dsm") return "exact (deep shadow map)";
+    std::string out = spec;
+    for (auto& c : out) c = c == ':' ? ' ' : char(std::toupper(static_cast<unsigned char>(c)));
+    const auto slash = out.find(' ', out.find(' ') + 1);
+    if (out.starts_with("OCC") && slash != std::string::npos) out[slash] = '/';
+    return out;
+}
+
+/// A colour ramp for errors in [0, 1]: black, blue, magenta, orange, yellow.
+glm::vec3 heat(float v) {
+    static const glm::vec3 stops[] = {{0.02f, 0.02f, 0.05f}, {0.10f, 0.15f, 0.75f}, {0.75f, 0.10f, 0.55f}, {1.0f, 0.45f, 0.05f}, {1.0f, 1.0f, 0.35f}};
+    const float x = std::clamp(v, 0.0f, 1.0f) * 4.0f;
+    const int i = std::min(3, int(x));
+    return stops[i] + (x - float(i)) * (stops[i + 1] - stops[i]);
+}
+
+void blit(image& dst, const image& src, int x0, int y0, int scale = 1) {
+    for (int y = 0; y < src.height * scale; ++y)
+        for (int x = 0; x < src.width * scale; ++x)
+            if (x0 + x < dst.width && y0 + y < dst.height) dst.at(x0 + x, y0 + y) = src.at(x / scale, y / scale);
+}
+
+void outline(image& img, int x0, int y0, int w, int h, const glm::vec3& colour) {
+    for (int x = x0; x < x0 + w; ++x)
+        for (int y : {y0, y0 + h - 1}) img.at(std::clamp(x, 0, img.width - 1), std::clamp(y, 0, img.height - 1)) = colour;
+    for (int y = y0; y < y0 + h; ++y)
+        for (int x : {x0, x0 + w - 1}) img.at(std::clamp(x, 0, img.width - 1), std::clamp(y, 0, img.height - 1)) = colour;
+}
+
+image crop(const image& src, int x0, int y0, int w, int h) {
+    image out(w, h, glm::vec3(0.0f));
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) out.at(x, y) = src.at(std::clamp(x0 + x, 0, src.width - 1), std::clamp(y0 + y, 0, src.height - 1));
+    return out;
+}
+
+void save(const fs::path& path, const image& img) {
+    write_png(path.string(), img.width, img.height, 3, img.to_srgb8());
+    std::fprintf(stderr, "wrote %s (%dx%d)\n", path.string().c_str(), img.width, img.height);
+}
+
+constexpr int label_height = 30;
+const glm::vec3 ink{0.05f, 0.05f, 0.05f}, paper{1.0f, 1.0f, 1.0f};
+
+/// A labelled grid of equally sized images.
+image grid(const std::vector<image>& cells, const std::vector<std::string>& labels, int columns) {
+    const int w = cells.front().width, h = cells.front().height, rows = (int(cells.size()) + columns - 1) / columns;
+    image out(columns * w, rows * (h + label_height), paper);
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+        const int x = int(i) % columns * w, y = int(i) / columns * (h + label_height);
+        draw_text(out, x + 6, y + 8, labels[i], ink);
+        blit(out, cells[i], x, y + label_height);
+    }
+    return out;
+}
+
+/// Texels whose rays cross many fragments: ranks 1%, 5%, 20% and 50% of the occupied texels by count.
+std::vector<std::pair<int, int>> interesting_rays(const fragment_buffer& fragments) {
+    std::vector<std::pair<std::size_t, std::size_t>> counts; // (count, texel)
+    for (std::size_t t = 0; t < fragments.texel_count(); ++t)
+        if (const auto n = fragments.texel(t).size(); n > 0) counts.push_back({n, t});
+    std::sort(counts.begin(), counts.end(), [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; });
+    std::vector<std::pair<int, int>> rays;
+    if (counts.empty()) return rays;
+    const int res = fragments.resolution();
+    for (double rank : {0.01, 0.05, 0.2, 0.5}) {
+        const auto t = counts[std::min(counts.size() - 1, std::size_t(rank * double(counts.size())))].second;
+        rays.push_back({int(t % std::size_t(res)), int(t / std::size_t(res))});
+    }
+    return rays;
+}
+
+/// The transmittance along each ray, the exact reference against each method, as SVG line plots.
+std::string ray_plots(const std::vector<panel>& panels, const fragment_buffer& fragments) {
+    static const char* colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f"};
+    const auto rays = interesting_rays(fragments);
+    const int pw = 330, ph = 240, margin = 40, legend = 150;
+    std::ostringstream svg;
+    svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << int(rays.size()) * pw + legend << "\" height=\"" << ph + 20
+        << "\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+    for (std::size_t r = 0; r < rays.size(); ++r) {
+        const auto [x, y] = rays[r];
+        const auto frags = fragments.texel(x, y);
+        float lo = frags[0].depth, hi = lo;
+        for (const auto& f : frags) lo = std::min(lo, f.depth), hi = std::max(hi, f.depth);
+        const float pad = 0.08f * std::max(hi - lo, 1e-4f), d0 = lo - pad, d1 = hi + pad;
+        const int ox = int(r) * pw + margin, oy = 20, w = pw - margin - 10, h = ph - 60;
+        svg << "<text x=\"" << ox << "\" y=\"14\">texel (" << x << ", " << y << "): " << frags.size() << " fragments</text>\n";
+        svg << "<rect x=\"" << ox << "\" y=\"" << oy << "\" width=\"" << w << "\" height=\"" << h << "\" fill=\"none\" stroke=\"#444\"/>\n";
+        svg << "<text x=\"" << ox - 6 << "\" y=\"" << oy + 4 << "\" text-anchor=\"end\">1</text><text x=\"" << ox - 6 << "\" y=\"" << oy + h
+            << "\" text-anchor=\"end\">0</text>\n";
+        svg << "<text x=\"" << ox + w / 2 << "\" y=\"" << oy + h + 16 << "\" text-anchor=\"middle\">depth along the light ray</text>\n";
+        svg << "<text x=\"" << ox - 28 << "\" y=\"" << oy + h / 2 << "\" transform=\"rotate(-90 " << ox - 28 << " " << oy + h / 2
+            << ")\" text-anchor=\"middle\">T</text>\n";
+        std::size_t colour = 0;
+        for (const auto& p : panels) {
+            if (!p.map) continue;
+            const bool exact = p.spec == "dsm";
+            svg << "<polyline fill=\"none\" stroke=\"" << (exact ? "#000" : colours[colour++ % 8]) << "\" stroke-width=\"" << (exact ? 2.2 : 1.3)
+                << "\" points=\"";
+            for (int i = 0; i <= 240; ++i) {
+                const float depth = d0 + (d1 - d0) * float(i) / 240.0f;
+                svg << ox + double(w) * i / 240.0 << "," << oy + double(h) * (1.0 - double(p.map->transmittance(x, y, depth))) << " ";
+            }
+            svg << "\"/>\n";
+        }
+    }
+    const int lx = int(rays.size()) * pw + 5;
+    std::size_t colour = 0;
+    int ly = 30;
+    for (const auto& p : panels) {
+        if (!p.map) continue;
+        const bool exact = p.spec == "dsm";
+        svg << "<line x1=\"" << lx << "\" y1=\"" << ly << "\" x2=\"" << lx + 24 << "\" y2=\"" << ly << "\" stroke=\"" << (exact ? "#000" : colours[colour++ % 8])
+            << "\" stroke-width=\"2\"/><text x=\"" << lx + 30 << "\" y=\"" << ly + 4 << "\">" << p.label << "</text>\n";
+        ly += 18;
+    }
+    svg << "</svg>\n";
+    return svg.str();
+}
+
+} // namespace
+
+int run_figure(const figure_options& o) {
+    std::fprintf(stderr, "figure of %s\n", o.model.c_str());
+    scene sc;
+    sc.hair = step("loading the model", [&] { return load_model(o.model); });
+    if (!o.mesh.empty()) sc.mesh = step("loading the mesh", [&] { return read_obj(o.mesh).mesh; });
+    else if (is_procedural_spec(o.model)) sc.mesh = make_sphere({0, 0, 0}, parse_procedural_spec(o.model).head_radius, 64);
+    sc.lights = {{parse_light_spec(o.light), glm::vec3(1.1f)}};
+    const auto space = light_space::fit(sc.lights[0].spec, sc.bounds(), o.resolution);
+    const auto fragments = step("rasterising the hair from the light", [&] {
+        raster_options ro;
+        ro.exec = o.exec;
+        return rasterize(sc.hair, space, ro);
+    });
+    const depth_shadow_map mesh_shadow = step("the mesh's depth shadow map", [&] { return depth_shadow_map(sc.mesh, space, 6e-3f, o.exec); });
+
+    std::vector<panel> panels;
+    panels.push_back({pretty("none"), "none", nullptr, 0, {}});
+    for (auto part : detail::split(o.methods, ',')) panels.push_back({pretty(std::string(part)), std::string(part), nullptr, 0, {}});
+    panels.push_back({pretty("dsm"), "dsm", nullptr, 0, {}});
+    for (auto& p : panels) {
+        if (p.spec == "none") continue;
+        p.map = make_shadow_map(p.spec); // throws spec_error for a bad spec, before any work
+    }
+    for (auto& p : panels) {
+        if (!p.map) continue;
+        const auto start = std::chrono::steady_clock::now();
+        step("building " + p.spec, [&] { p.map->build(fragments, space, o.exec); });
+        p.build_ms = ms_since(start);
+    }
+
+    const auto cam = camera::framing(sc.bounds(), o.azimuth, o.elevation, o.size, o.size, 1.15f);
+    render_options ro;
+    ro.exec = o.exec;
+    for (auto& p : panels) {
+        const std::vector<lit_light> lights{{sc.lights[0], p.map ? query_of(*p.map, o.exec) : transmittance_query{}, mesh_shadow}};
+        p.picture = step("rendering " + p.label, [&] { return render_cpu(sc, cam, lights, ro); });
+    }
+
+    fs::create_directories(o.out);
+    // 1. The panels, labelled with build times, the crop region outlined.
+    const int cw = o.size / 4, cx = o.size * 11 / 20 - cw / 2, cy = o.size * 7 / 20 - cw / 2; // upper middle: the hair
+    std::vector<image> cells;
+    std::vector<std::string> labels;
+    char label[128];
+    for (const auto& p : panels) {
+        image cell = p.picture;
+        outline(cell, cx, cy, cw, cw, glm::vec3(0.9f, 0.1f, 0.1f));
+        cells.push_back(cell);
+        std::snprintf(label, sizeof label, p.map ? "%s  %.0f ms" : "%s", p.label.c_str(), p.build_ms);
+        labels.push_back(label);
+    }
+    if (cells.size() % 4 != 0) { // the last cell of the grid: what was drawn
+        image info(o.size, o.size, paper);
+        int y = 20;
+        for (const std::string& line : {"model: " + fs::path(o.model).filename().string(), std::string("light: ") + o.light,
+                                        "maps: " + std::to_string(o.resolution) + "x" + std::to_string(o.resolution),
+                                        std::to_string(sc.hair.strand_count()) + " strands, " + std::to_string(sc.hair.segment_count()) + " segments",
+                                        std::to_string(fragments.size()) + " fragments",
+                                        std::string("times: one CPU build each")}) {
+            draw_text(info, 10, y, line, ink);
+            y += 26;
+        }
+        cells.push_back(info);
+        labels.push_back("");
+    }
+    save(fs::path(o.out) / "figure.png", grid(cells, labels, 4));
+    // 2. The crops, enlarged three times.
+    std::vector<image> crops;
+    for (const auto& p : panels) {
+        const image c = crop(p.picture, cx, cy, cw, cw);
+        image big(3 * cw, 3 * cw, paper);
+        blit(big, c, 0, 0, 3);
+        crops.push_back(big);
+    }
+    std::vector<std::string> crop_labels;
+    for (const auto& p : panels) crop_labels.push_back(p.label);
+    save(fs::path(o.out) / "crops.png", grid(crops, crop_labels, 4));
+    // 3. Heat maps of |T - T_exact| at the hair points, the mesh in grey.
+    const auto& exact = *panels.back().map;
+    std::vector<float> reference(sc.hair.point_count()), t(sc.hair.point_count());
+    step("the reference at the hair points", [&] { exact.transmittance(sc.hair.points, reference, {}, o.exec); });
+    const auto surface = detail::rasterise_mesh(sc.mesh, cam, o.exec);
+    std::vector<image> heat_cells;
+    std::vector<std::string> heat_labels;
+    std::vector<compare_row> rows;
+    for (const auto& p : panels) {
+        if (!p.map || p.spec == "dsm") continue;
+        p.map->transmittance(sc.hair.points, t, {}, o.exec);
+        std::vector<glm::vec3> colours(t.size());
+        for (std::size_t i = 0; i < t.size(); ++i) colours[i] = heat(std::abs(t[i] - reference[i]) / 0.5f);
+        image cell(o.size, o.size, glm::vec3(0.02f));
+        for (std::size_t i = 0; i < surface.inv_w.size(); ++i)
+            if (surface.inv_w[i] > 0.0f) cell.pixels[i] = glm::vec3(0.12f);
+        draw_hair_lines(cell, sc.hair, colours, cam, surface.inv_w, ro);
+        compare_row row{p.spec, p.map->layer_count(), p.map->memory_bytes(), p.build_ms};
+        set_errors(row, t, reference);
+        rows.push_back(row);
+        std::snprintf(label, sizeof label, "%s  mean %.3f", p.label.c_str(), row.mean);
+        heat_cells.push_back(cell);
+        heat_labels.push_back(label);
+    }
+    // The colour bar as a last cell.
+    image bar(o.size, o.size, paper);
+    for (int y = 40; y < o.size - 40; ++y)
+        for (int x = o.size / 2 - 20; x < o.size / 2 + 20; ++x) bar.at(x, y) = heat(1.0f - float(y - 40) / float(o.size - 81));
+    draw_text(bar, o.size / 2 + 28, 36, "0.5 or more", ink);
+    draw_text(bar, o.size / 2 + 28, o.size - 50, "0", ink);
+    heat_cells.push_back(bar);
+    heat_labels.push_back("|T - T_exact|");
+    save(fs::path(o.out) / "heatmaps.png", grid(heat_cells, heat_labels, 3));
+    // 4. Transmittance along light rays.
+    write_file(fs::path(o.out) / "rays.svg", ray_plots(panels, fragments));
+    std::fprintf(stderr, "wrote %s\n", (fs::path(o.out) / "rays.svg").string().c_str());
+    // 5. The table.
+    {
+        compare_row row{"dsm", 0, exact.memory_bytes(), panels.back().build_ms};
+        rows.push_back(row);
+    }
+    std::ostringstream preamble;
+    preamble << "Model `" << o.model << "`" << (o.mesh.empty() ? "" : ", mesh `" + o.mesh + "`") << ", light `" << o.light << "`, " << o.resolution
+             << "x" << o.resolution << ", " << sc.hair.point_count() << " points, " << fragments.size() << " fragments, " << o.exec.resolved()
+             << " threads. Errors are |T - T_exact| at the hair's points; times are single CPU builds.";
+    const auto [md, csv] = format_table(rows, preamble.str());
+    write_table(o.out, md, csv);
+    std::fputs(md.c_str(), stdout);
+    return 0;
+}
+
+} // namespace cli

@@ -1,0 +1,24 @@
+#pragma once
+// `hairshadow figure`: the comparison figure of the papers' Figures 1, 3 and 5 (see figure.cpp).
+#include <hairshadow/core/parallel.hpp>
+
+#include <string>
+
+namespace cli {
+
+struct figure_options {
+    std::string model = "procedural:curly";
+    std::string mesh; ///< an OBJ whose faces are the opaque mesh; procedural models get their sphere
+    std::string light = "dir:-0.7,-0.9,-0.45";
+    std::string methods = "osm:16,osm:256,dc:4,dom:3,occ:128:4";
+    int resolution = 512;    ///< shadow maps
+    int size = 400;          ///< each panel, in pixels
+    float azimuth = 25.0f, elevation = 10.0f;
+    std::string out = "out/figure";
+    hairshadow::execution exec;
+};
+
+/// Writes figure.png, crops.png, heatmaps.png, rays.svg, compare.md and compare.csv into options.out.
+int run_figure(const figure_options& options);
+
+} // namespace cli
