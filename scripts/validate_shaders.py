@@ -97,6 +97,16 @@ for clusters in (4, 6):
         COMPOSITIONS[f"cluster_{name}_{clusters}"] = ("frag", defines, ["raster/coverage"] + clustering + [f"passes/cluster_{name}"], "")
     COMPOSITIONS[f"cluster_resolve_{clusters}"] = ("frag", defines, clustering + ["passes/cluster_resolve"], "")
 
+# The shaded renderer (gl/scene_renderer.hpp), over one method's look-up.
+DOM_LOOKUP = ["accumulation/float", "placement/common", "placement/per_pixel_depth", "texel_state/per_pixel_depth", "lookup/layers",
+              "reconstruction/interpolation", "lookup/light", "lookup/interpolation"]
+DOM_DEFINES = "#define HS_LAYERS 3\n#define HS_CUMULATIVE\n"
+COMPOSITIONS["render_hair_vertex"] = ("vert", DOM_DEFINES, DOM_LOOKUP + ["render/light", "render/hair_vertex"], "")
+COMPOSITIONS["render_hair_fragment"] = ("frag", "", ["render/hair_fragment"], "")
+COMPOSITIONS["render_mesh_vertex"] = ("vert", "", ["render/mesh_vertex"], "")
+COMPOSITIONS["render_mesh_fragment"] = ("frag", DOM_DEFINES, DOM_LOOKUP + ["render/light", "render/mesh_fragment"], "")
+COMPOSITIONS["render_mesh_depth"] = ("frag", "", ["render/mesh_depth"], "")
+
 
 def expand(text: str) -> str:
     """Inlines '#include family/name' lines (our composition shorthand, not GLSL's)."""

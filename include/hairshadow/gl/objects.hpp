@@ -44,6 +44,7 @@ inline void delete_vertex_array(GLuint n) { glDeleteVertexArrays(1, &n); }
 inline void delete_shader(GLuint n) { glDeleteShader(n); }
 inline void delete_program(GLuint n) { glDeleteProgram(n); }
 inline void delete_query(GLuint n) { glDeleteQueries(1, &n); }
+inline void delete_renderbuffer(GLuint n) { glDeleteRenderbuffers(1, &n); }
 
 } // namespace detail
 
@@ -54,6 +55,7 @@ using vertex_array = object<detail::delete_vertex_array>;
 using shader = object<detail::delete_shader>;
 using program = object<detail::delete_program>;
 using query = object<detail::delete_query>;
+using renderbuffer = object<detail::delete_renderbuffer>;
 
 inline buffer make_buffer() {
     GLuint n = 0;
@@ -69,6 +71,11 @@ inline framebuffer make_framebuffer() {
     GLuint n = 0;
     glGenFramebuffers(1, &n);
     return framebuffer(n);
+}
+inline renderbuffer make_renderbuffer() {
+    GLuint n = 0;
+    glGenRenderbuffers(1, &n);
+    return renderbuffer(n);
 }
 inline vertex_array make_vertex_array() {
     GLuint n = 0;

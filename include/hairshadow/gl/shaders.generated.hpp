@@ -595,6 +595,102 @@ float hs_occupancy_optical_depth(hs_layer_position p, uint bits[HS_WORDS], float
 }
 )hs_glsl";
 
+/// shaders/render/hair_fragment.glsl
+inline constexpr std::string_view render_hair_fragment = R"hs_glsl(// Hair, fragment stage: the interpolated colour; multisampling gives the lines their coverage.
+in vec3 hs_colour;
+layout(location = 0) out vec4 hs_out;
+void main() { hs_out = vec4(hs_colour, 1.0); }
+)hs_glsl";
+
+/// shaders/render/hair_vertex.glsl
+inline constexpr std::string_view render_hair_vertex = R"hs_glsl(// Hair, vertex stage: Kajiya-Kay shading at each strand point (as hairshadow::shade_hair_points),
+// the light scaled by its visibility; lines interpolate the colour.
+layout(location = 0) in vec3 hs_position;
+layout(location = 1) in vec3 hs_tangent;
+uniform mat4 hs_camera_view_projection;
+uniform vec3 hs_eye;
+uniform vec3 hs_hair_colour;
+uniform vec3 hs_hair_specular;
+uniform float hs_hair_shininess;
+uniform float hs_hair_ambient;
+out vec3 hs_colour;
+
+void main() {
+    vec3 l = hs_to_light(hs_position), e = normalize(hs_eye - hs_position);
+    float tl = dot(hs_tangent, l), te = dot(hs_tangent, e);
+    float sin_tl = sqrt(max(0.0, 1.0 - tl * tl)), sin_te = sqrt(max(0.0, 1.0 - te * te));
+    vec3 reflected = hs_hair_colour * sin_tl + hs_hair_specular * pow(max(0.0, sin_tl * sin_te - tl * te), hs_hair_shininess);
+    hs_colour = hs_ambient_weight * hs_hair_ambient * hs_hair_colour + hs_light_colour * hs_light_visibility(hs_position) * reflected;
+    gl_Position = hs_camera_view_projection * vec4(hs_position, 1.0);
+}
+)hs_glsl";
+
+/// shaders/render/light.glsl
+inline constexpr std::string_view render_light = R"hs_glsl(// One light of a shaded render (multi-pass: one pass per light, added by blending): its colour and
+// direction, and the opaque mesh's depth shadow map seen from it (linear depth, R32F), compared
+// with a bias as hairshadow::depth_shadow_map does. hs_transmittance comes from the light's method.
+uniform vec3 hs_light_colour;
+uniform vec3 hs_light_position;  // point and spot lights
+uniform vec3 hs_light_direction; // directional lights: the direction the light travels
+uniform bool hs_light_directional;
+uniform float hs_ambient_weight; // 1 in the first pass, 0 after
+uniform sampler2D hs_mesh_depth;
+uniform float hs_mesh_bias;
+
+vec3 hs_to_light(vec3 p) { return hs_light_directional ? -normalize(hs_light_direction) : normalize(hs_light_position - p); }
+
+// 1 in front of the mesh from the light (or outside the map), else 0. Uses the look-up's light
+// uniforms (lookup/light.glsl), which every method's look-up declares.
+float hs_mesh_visibility(vec3 p) {
+    vec4 clip = hs_lookup_view_projection * vec4(p, 1.0);
+    vec2 window = (clip.xy / clip.w + 1.0) * (0.5 * float(hs_lookup_resolution));
+    if (!(clip.w > 0.0) || any(lessThan(window, vec2(0.0))) || any(greaterThanEqual(window, vec2(float(hs_lookup_resolution))))) return 1.0;
+    float depth = (-(hs_lookup_view * vec4(p, 1.0)).z - hs_lookup_near) / (hs_lookup_far - hs_lookup_near);
+    return depth <= texelFetch(hs_mesh_depth, ivec2(window), 0).r + hs_mesh_bias ? 1.0 : 0.0;
+}
+
+float hs_light_visibility(vec3 p) { return hs_transmittance(p) * hs_mesh_visibility(p); }
+)hs_glsl";
+
+/// shaders/render/mesh_depth.glsl
+inline constexpr std::string_view render_mesh_depth = R"hs_glsl(// The mesh's depth shadow map: linear depth from the light (hs_view, hs_near, hs_far of
+// raster/vertex's uniforms), the nearest kept by the depth test.
+layout(location = 0) out float hs_depth_out;
+in float hs_v_depth;
+void main() { hs_depth_out = hs_v_depth; }
+)hs_glsl";
+
+/// shaders/render/mesh_fragment.glsl
+inline constexpr std::string_view render_mesh_fragment = R"hs_glsl(// Opaque mesh, fragment stage: two-sided Lambert shading (as hairshadow::render_cpu), the light
+// scaled by the hair's transmittance and the mesh's own shadow at this pixel.
+in vec3 hs_world;
+in vec3 hs_world_normal;
+uniform vec3 hs_eye;
+uniform vec3 hs_mesh_colour;
+uniform float hs_mesh_ambient;
+layout(location = 0) out vec4 hs_out;
+void main() {
+    vec3 n = normalize(hs_world_normal);
+    if (dot(n, hs_eye - hs_world) < 0.0) n = -n;
+    float lit = max(0.0, dot(n, hs_to_light(hs_world))) * hs_light_visibility(hs_world);
+    hs_out = vec4(hs_ambient_weight * hs_mesh_ambient * hs_mesh_colour + hs_light_colour * hs_mesh_colour * lit, 1.0);
+}
+)hs_glsl";
+
+/// shaders/render/mesh_vertex.glsl
+inline constexpr std::string_view render_mesh_vertex = R"hs_glsl(// Opaque mesh, vertex stage: world position and normal for per-pixel shading.
+layout(location = 0) in vec3 hs_position;
+layout(location = 1) in vec3 hs_normal;
+uniform mat4 hs_camera_view_projection;
+out vec3 hs_world;
+out vec3 hs_world_normal;
+void main() {
+    hs_world = hs_position;
+    hs_world_normal = hs_normal;
+    gl_Position = hs_camera_view_projection * vec4(hs_position, 1.0);
+}
+)hs_glsl";
+
 /// shaders/texel_state/clustered.glsl
 inline constexpr std::string_view texel_state_clustered = R"hs_glsl(// Density clustering's per-texel state: the means (array layers [0, HS_STATE_TARGETS)) and standard
 // deviations (the next HS_STATE_TARGETS layers) written by passes/cluster_resolve.
@@ -652,7 +748,7 @@ struct entry {
 };
 
 /// Every snippet, sorted by name.
-inline constexpr std::array<entry, 29> all{{
+inline constexpr std::array<entry, 35> all{{
     {"accumulation/emulated_8bit", accumulation_emulated_8bit},
     {"accumulation/float", accumulation_float},
     {"lookup/interpolation", lookup_interpolation},
@@ -678,6 +774,12 @@ inline constexpr std::array<entry, 29> all{{
     {"raster/vertex", raster_vertex},
     {"reconstruction/interpolation", reconstruction_interpolation},
     {"reconstruction/occupancy_bitcount", reconstruction_occupancy_bitcount},
+    {"render/hair_fragment", render_hair_fragment},
+    {"render/hair_vertex", render_hair_vertex},
+    {"render/light", render_light},
+    {"render/mesh_depth", render_mesh_depth},
+    {"render/mesh_fragment", render_mesh_fragment},
+    {"render/mesh_vertex", render_mesh_vertex},
     {"texel_state/clustered", texel_state_clustered},
     {"texel_state/depth_range", texel_state_depth_range},
     {"texel_state/per_pixel_depth", texel_state_per_pixel_depth},

@@ -1,0 +1,256 @@
+#pragma once
+/// @file
+/// The GL renderer: the same scene description as render_cpu, drawn with multisampled lines. One
+/// pass per light, added by blending: each pass's programs are composed from that light's method
+/// look-up (hs_transmittance) and the shading snippets (shaders/render/), so Kajiya-Kay hair (at
+/// the strand points) and Lambert mesh (per pixel) see the hair's transmittance and the mesh's depth
+/// shadow map, which is drawn on GL too.
+
+#include <hairshadow/gl/depth_range_pass.hpp>
+#include <hairshadow/gl/hair_mesh.hpp>
+#include <hairshadow/gl/objects.hpp>
+#include <hairshadow/gl/shaders.generated.hpp>
+#include <hairshadow/shading/camera.hpp>
+#include <hairshadow/shading/cpu_renderer.hpp>
+#include <hairshadow/shading/image.hpp>
+#include <hairshadow/shading/scene.hpp>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace hairshadow::gl {
+
+/// Draws a scene on the current GL 4.3+ context.
+class scene_renderer {
+public:
+    /// Uploads the hair (points and tangents) and the mesh (vertices and smooth normals).
+    explicit scene_renderer(const scene& sc) : scene_(sc) {
+        require_version(4, 3, "the GL renderer");
+        const auto tangents = hairshadow::detail::strand_tangents(sc.hair);
+        std::vector<float> hair;
+        for (std::size_t i = 0; i < sc.hair.point_count(); ++i)
+            hair.insert(hair.end(), {sc.hair.points[i].x, sc.hair.points[i].y, sc.hair.points[i].z, tangents[i].x, tangents[i].y, tangents[i].z});
+        std::vector<std::uint32_t> lines;
+        for (std::size_t s = 0; s < sc.hair.strand_count(); ++s)
+            for (std::uint32_t i = sc.hair.strand_offsets[s]; i + 1 < sc.hair.strand_offsets[s + 1]; ++i) lines.insert(lines.end(), {i, i + 1});
+        upload(hair_, hair, lines);
+        hair_count_ = GLsizei(lines.size());
+        const auto normals = hairshadow::detail::vertex_normals(sc.mesh);
+        std::vector<float> mesh;
+        for (std::size_t i = 0; i < sc.mesh.vertices.size(); ++i)
+            mesh.insert(mesh.end(), {sc.mesh.vertices[i].x, sc.mesh.vertices[i].y, sc.mesh.vertices[i].z, normals[i].x, normals[i].y, normals[i].z});
+        std::vector<std::uint32_t> triangles;
+        for (const auto& t : sc.mesh.triangles)
+            if (t[0] < sc.mesh.vertices.size() && t[1] < sc.mesh.vertices.size() && t[2] < sc.mesh.vertices.size()) triangles.insert(triangles.end(), t.begin(), t.end());
+        upload(mesh_, mesh, triangles);
+        mesh_count_ = GLsizei(triangles.size());
+        const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::raster_vertex}, "raster/vertex");
+        const auto fs = compile_shader(GL_FRAGMENT_SHADER, {version, shaders::render_mesh_depth}, "render/mesh_depth");
+        depth_program_ = link_program({&vs, &fs}, "mesh depth pass");
+    }
+
+    /// Adds a light whose hair shadows come from `maps` (a built gl::maps<Method>, kept alive by the
+    /// caller) seen from `light`'s frustum: maps.light(). The mesh's depth map is drawn now.
+    template <class Maps>
+    void add_light(const scene_light& light, const Maps& maps, float mesh_bias = 2e-3f) {
+        add(light, maps.light(), maps.lookup_source(), [&maps](GLuint program) { maps.bind_lookup(program, 0); }, mesh_bias);
+    }
+    /// Adds a light whose hair casts no shadow (the mesh still does), with `space` its frustum.
+    void add_unshadowed_light(const scene_light& light, const light_space& space, float mesh_bias = 2e-3f) {
+        static constexpr std::string_view no_hair = R"(
+uniform mat4 hs_lookup_view_projection;
+uniform mat4 hs_lookup_view;
+uniform float hs_lookup_near;
+uniform float hs_lookup_far;
+uniform int hs_lookup_resolution;
+float hs_transmittance(vec3 world_pos) { return 1.0; }
+)";
+        add(light, space, std::string(no_hair), [space](GLuint program) { set_light_frustum(program, space); }, mesh_bias);
+    }
+
+    /// Draws the scene from `cam` into the bound framebuffer (viewport and clearing are the caller's).
+    void draw(const camera& cam) const {
+        glEnable(GL_DEPTH_TEST);
+        glEnable(GL_MULTISAMPLE);
+        glDisable(GL_BLEND);
+        for (std::size_t i = 0; i < lights_.size(); ++i) {
+            const auto& l = lights_[i];
+            // Later passes add their light where the first pass left the nearest surface.
+            glDepthFunc(i == 0 ? GL_LESS : GL_LEQUAL);
+            if (i == 1) {
+                glEnable(GL_BLEND);
+                glBlendFunc(GL_ONE, GL_ONE);
+                glDepthMask(GL_FALSE);
+            }
+            for (const auto* p : {&l.mesh_program, &l.hair_program}) {
+                glUseProgram(p->get());
+                set_pass_uniforms(p->get(), l, cam, i == 0);
+                if (p == &l.mesh_program) draw_elements(mesh_, GL_TRIANGLES, mesh_count_);
+                else draw_elements(hair_, GL_LINES, hair_count_);
+            }
+        }
+        glDepthMask(GL_TRUE);
+        glDepthFunc(GL_LESS);
+        glDisable(GL_BLEND);
+        check("scene renderer draw");
+    }
+
+    /// Renders off screen with `samples` multisamples and reads the image back.
+    image render(const camera& cam, int samples = 8) const {
+        camera::check_image_size(cam.width, cam.height);
+        GLint max_samples = 1;
+        glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+        samples = std::clamp(samples, 1, int(max_samples));
+        auto colour = make_renderbuffer(), depth = make_renderbuffer();
+        glBindRenderbuffer(GL_RENDERBUFFER, colour.get());
+        glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA32F, cam.width, cam.height);
+        glBindRenderbuffer(GL_RENDERBUFFER, depth.get());
+        glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH_COMPONENT32F, cam.width, cam.height);
+        auto fbo = make_framebuffer(), resolved = make_framebuffer();
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo.get());
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour.get());
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth.get());
+        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) throw gl_error("scene renderer: incomplete framebuffer");
+        glViewport(0, 0, cam.width, cam.height);
+        const float background[4] = {scene_.background.r, scene_.background.g, scene_.background.b, 1.0f};
+        glClearBufferfv(GL_COLOR, 0, background);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        draw(cam);
+        // Resolve the samples (their average: the lines' coverage) and read back, top row first.
+        auto single = make_texture();
+        glBindTexture(GL_TEXTURE_2D, single.get());
+        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, cam.width, cam.height);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolved.get());
+        glFramebufferTexture(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, single.get(), 0);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo.get());
+        glBlitFramebuffer(0, 0, cam.width, cam.height, 0, 0, cam.width, cam.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        std::vector<float> rgba(4 * std::size_t(cam.width) * std::size_t(cam.height));
+        glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, rgba.data());
+        check("scene renderer read-back");
+        image out(cam.width, cam.height, scene_.background);
+        for (int y = 0; y < cam.height; ++y)
+            for (int x = 0; x < cam.width; ++x) {
+                const float* p = &rgba[4 * (std::size_t(cam.height - 1 - y) * std::size_t(cam.width) + std::size_t(x))];
+                out.at(x, y) = glm::vec3(p[0], p[1], p[2]);
+            }
+        return out;
+    }
+
+private:
+    static constexpr std::string_view version = "#version 430 core\n";
+
+    struct geometry {
+        vertex_array vao = make_vertex_array();
+        buffer vertices = make_buffer(), indices = make_buffer();
+    };
+    struct light_entry {
+        scene_light light;
+        light_space space;
+        std::function<void(GLuint)> bind_lookup;
+        float mesh_bias;
+        texture mesh_depth;
+        program mesh_program, hair_program;
+    };
+
+    static void upload(geometry& g, const std::vector<float>& vertices, const std::vector<std::uint32_t>& indices) {
+        glBindVertexArray(g.vao.get());
+        glBindBuffer(GL_ARRAY_BUFFER, g.vertices.get());
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(float)), vertices.data(), GL_STATIC_DRAW);
+        glEnableVertexAttribArray(0);
+        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+        glEnableVertexAttribArray(1);
+        glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.indices.get());
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(std::uint32_t)), indices.data(), GL_STATIC_DRAW);
+        glBindVertexArray(0);
+    }
+    static void draw_elements(const geometry& g, GLenum mode, GLsizei count) {
+        if (count == 0) return;
+        glBindVertexArray(g.vao.get());
+        glDrawElements(mode, count, GL_UNSIGNED_INT, nullptr);
+        glBindVertexArray(0);
+    }
+    /// The look-up's light uniforms, for a light whose hair casts no shadow.
+    static void set_light_frustum(GLuint prog, const light_space& light) {
+        glUniformMatrix4fv(glGetUniformLocation(prog, "hs_lookup_view_projection"), 1, GL_FALSE, &light.view_projection()[0][0]);
+        glUniformMatrix4fv(glGetUniformLocation(prog, "hs_lookup_view"), 1, GL_FALSE, &light.view()[0][0]);
+        glUniform1f(glGetUniformLocation(prog, "hs_lookup_near"), light.near_plane());
+        glUniform1f(glGetUniformLocation(prog, "hs_lookup_far"), light.far_plane());
+        glUniform1i(glGetUniformLocation(prog, "hs_lookup_resolution"), light.resolution());
+    }
+
+    void add(const scene_light& light, const light_space& space, const std::string& lookup, std::function<void(GLuint)> bind, float bias) {
+        light_entry e{light, space, std::move(bind), bias, draw_mesh_depth(space), {}, {}};
+        const auto compile = [&](GLenum stage, std::string_view body, const char* name) {
+            return compile_shader(stage, {version, lookup, shaders::render_light, body}, name);
+        };
+        const auto mesh_vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::render_mesh_vertex}, "render/mesh_vertex");
+        const auto mesh_fs = compile(GL_FRAGMENT_SHADER, shaders::render_mesh_fragment, "render/mesh_fragment");
+        const auto hair_vs = compile(GL_VERTEX_SHADER, shaders::render_hair_vertex, "render/hair_vertex");
+        const auto hair_fs = compile_shader(GL_FRAGMENT_SHADER, {version, shaders::render_hair_fragment}, "render/hair_fragment");
+        e.mesh_program = link_program({&mesh_vs, &mesh_fs}, "mesh shading");
+        e.hair_program = link_program({&hair_vs, &hair_fs}, "hair shading");
+        lights_.push_back(std::move(e));
+    }
+
+    /// The mesh's linear depth from `space`, nearest by MIN blending into R32F.
+    texture draw_mesh_depth(const light_space& space) const {
+        const int res = space.resolution();
+        auto t = make_texture();
+        glBindTexture(GL_TEXTURE_2D, t.get());
+        glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, res, res);
+        auto fbo = make_framebuffer();
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo.get());
+        glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, t.get(), 0);
+        const GLenum first = GL_COLOR_ATTACHMENT0;
+        glDrawBuffers(1, &first);
+        glViewport(0, 0, res, res);
+        const float far_away[4] = {3.0e38f, 0, 0, 0};
+        glClearBufferfv(GL_COLOR, 0, far_away);
+        glDisable(GL_DEPTH_TEST);
+        glEnable(GL_BLEND);
+        glBlendEquation(GL_MIN);
+        glUseProgram(depth_program_.get());
+        set_light_uniforms(depth_program_.get(), space, raster_options{});
+        draw_elements(mesh_, GL_TRIANGLES, mesh_count_);
+        glBlendEquation(GL_FUNC_ADD);
+        glDisable(GL_BLEND);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        check("mesh depth map");
+        return t;
+    }
+
+    void set_pass_uniforms(GLuint prog, const light_entry& l, const camera& cam, bool first) const {
+        l.bind_lookup(prog); // texture units 0-2
+        glActiveTexture(GL_TEXTURE3);
+        glBindTexture(GL_TEXTURE_2D, l.mesh_depth.get());
+        glUniform1i(glGetUniformLocation(prog, "hs_mesh_depth"), 3);
+        glActiveTexture(GL_TEXTURE0);
+        glUniform1f(glGetUniformLocation(prog, "hs_mesh_bias"), l.mesh_bias);
+        const auto vp = cam.view_projection();
+        glUniformMatrix4fv(glGetUniformLocation(prog, "hs_camera_view_projection"), 1, GL_FALSE, &vp[0][0]);
+        glUniform3fv(glGetUniformLocation(prog, "hs_eye"), 1, &cam.eye[0]);
+        glUniform3fv(glGetUniformLocation(prog, "hs_light_colour"), 1, &l.light.colour[0]);
+        glUniform3fv(glGetUniformLocation(prog, "hs_light_position"), 1, &l.light.spec.position[0]);
+        glUniform3fv(glGetUniformLocation(prog, "hs_light_direction"), 1, &l.light.spec.direction[0]);
+        glUniform1i(glGetUniformLocation(prog, "hs_light_directional"), l.light.spec.type == light_type::directional);
+        glUniform1f(glGetUniformLocation(prog, "hs_ambient_weight"), first ? 1.0f : 0.0f);
+        const auto& m = scene_.material;
+        glUniform3fv(glGetUniformLocation(prog, "hs_hair_colour"), 1, &m.colour[0]);
+        glUniform3fv(glGetUniformLocation(prog, "hs_hair_specular"), 1, &m.specular_colour[0]);
+        glUniform1f(glGetUniformLocation(prog, "hs_hair_shininess"), m.shininess);
+        glUniform1f(glGetUniformLocation(prog, "hs_hair_ambient"), m.ambient);
+        glUniform3fv(glGetUniformLocation(prog, "hs_mesh_colour"), 1, &scene_.mesh_colour[0]);
+        glUniform1f(glGetUniformLocation(prog, "hs_mesh_ambient"), scene_.mesh_ambient);
+    }
+
+    const scene& scene_;
+    geometry hair_, mesh_;
+    GLsizei hair_count_ = 0, mesh_count_ = 0;
+    program depth_program_;
+    std::vector<light_entry> lights_;
+};
+
+} // namespace hairshadow::gl
