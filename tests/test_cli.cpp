@@ -109,7 +109,7 @@ TEST_CASE("compare prints and writes one row per method", "[cli][methods]") {
 
 TEST_CASE("render writes the stored maps for inspection", "[cli][methods]") {
     test::temp_dir dir("cli_maps");
-    const auto r = test::run_cli("render procedural:straight:strands=200:segments=8 --res 32 --method dom:3 --out " + dir.file("t.png") +
+    const auto r = test::run_cli("render procedural:straight:strands=200:segments=8 --view light --res 32 --method dom:3 --out " + dir.file("t.png") +
                                  " --maps " + dir.file("maps"));
     REQUIRE(r.status == 0);
     CHECK(std::filesystem::exists(dir.file("maps/map_000.png")));
@@ -119,7 +119,7 @@ TEST_CASE("render writes the stored maps for inspection", "[cli][methods]") {
 
 TEST_CASE("render writes a PNG of the light's view", "[cli]") {
     test::temp_dir dir("cli_render");
-    const auto r = test::run_cli("render procedural:straight:strands=200:segments=8 --res 64 --out " + dir.file("t.png"));
+    const auto r = test::run_cli("render procedural:straight:strands=200:segments=8 --view light --res 64 --out " + dir.file("t.png"));
     REQUIRE(r.status == 0);
     const auto png = test::read_bytes(dir.file("t.png"));
     REQUIRE(png.size() > 8);

@@ -6,6 +6,8 @@
 #include "figure.hpp"
 
 #include "compare_table.hpp"
+#include "progress.hpp"
+#include "scene_setup.hpp"
 #include "text.hpp"
 
 #include <hairshadow/hairshadow.hpp>
@@ -25,26 +27,6 @@ namespace {
 
 using namespace hairshadow;
 namespace fs = std::filesystem;
-
-double ms_since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-/// Progress on stderr: long CPU work says what it is doing and how long it took.
-template <class Work>
-auto step(const std::string& what, Work&& work) {
-    std::fprintf(stderr, "  %-44s", (what + " ...").c_str());
-    std::fflush(stderr);
-    const auto start = std::chrono::steady_clock::now();
-    if constexpr (std::is_void_v<decltype(work())>) {
-        work();
-        std::fprintf(stderr, "%8.0f ms\n", ms_since(start));
-    } else {
-        auto result = work();
-        std::fprintf(stderr, "%8.0f ms\n", ms_since(start));
-        return result;
-    }
-}
 
 /// One column of the figure: a method (or none) with its maps and build time.
 struct panel {
@@ -181,18 +163,14 @@ std::string ray_plots(const std::vector<panel>& panels, const fragment_buffer& f
 
 int run_figure(const figure_options& o) {
     std::fprintf(stderr, "figure of %s\n", o.model.c_str());
-    scene sc;
-    sc.hair = step("loading the model", [&] { return load_model(o.model); });
-    if (!o.mesh.empty()) sc.mesh = step("loading the mesh", [&] { return read_obj(o.mesh).mesh; });
-    else if (is_procedural_spec(o.model)) sc.mesh = make_sphere({0, 0, 0}, parse_procedural_spec(o.model).head_radius, 64);
-    sc.lights = {{parse_light_spec(o.light), glm::vec3(1.1f)}};
+    const scene sc = load_scene(o.model, o.mesh, {parse_light_spec(o.light)});
     const auto space = light_space::fit(sc.lights[0].spec, sc.bounds(), o.resolution);
     const auto fragments = step("rasterising the hair from the light", [&] {
         raster_options ro;
         ro.exec = o.exec;
         return rasterize(sc.hair, space, ro);
     });
-    const depth_shadow_map mesh_shadow = step("the mesh's depth shadow map", [&] { return depth_shadow_map(sc.mesh, space, 6e-3f, o.exec); });
+    const depth_shadow_map mesh_shadow = step("the mesh's depth shadow map", [&] { return depth_shadow_map(sc.mesh, space, default_mesh_bias, o.exec); });
 
     std::vector<panel> panels;
     panels.push_back({pretty("none"), "none", nullptr, 0, {}});

@@ -6,6 +6,7 @@
 #include <hairshadow/gl/egl_context.hpp>
 #include <hairshadow/gl/osmesa_context.hpp>
 #include <hairshadow/gl/registry.hpp>
+#include <hairshadow/gl/scene_renderer.hpp>
 
 #include "gl_backend.hpp"
 
@@ -40,6 +41,18 @@ public:
     std::vector<float> transmittance(std::span<const glm::vec3> points) override { return built().transmittance(points); }
     std::unique_ptr<any_shadow_map> to_cpu() override { return built().to_cpu(); }
     std::size_t memory_bytes() override { return built().memory_bytes(); }
+    image render_scene(const scene& sc, const camera& cam, const method_spec& spec, const std::vector<light_space>& spaces,
+                       const raster_options& options) override {
+        const gl::hair_mesh mesh(sc.hair);
+        gl::scene_renderer renderer(sc);
+        std::vector<std::unique_ptr<gl::any_gl_shadow_map>> maps;
+        for (std::size_t i = 0; i < spaces.size(); ++i) {
+            maps.push_back(gl::make_gl_shadow_map(spec));
+            maps.back()->build(mesh, spaces[i], options);
+            renderer.add_light(sc.lights[i], *maps.back());
+        }
+        return renderer.render(cam);
+    }
 
 private:
     gl::any_gl_shadow_map& built() {

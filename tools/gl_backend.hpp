@@ -5,6 +5,9 @@
 
 #include <hairshadow/hairshadow.hpp>
 #include <hairshadow/methods/registry.hpp>
+#include <hairshadow/shading/camera.hpp>
+#include <hairshadow/shading/image.hpp>
+#include <hairshadow/shading/scene.hpp>
 
 #include <memory>
 #include <span>
@@ -29,6 +32,10 @@ public:
     virtual std::vector<float> transmittance(std::span<const glm::vec3> points) = 0;
     /// Bytes of the last built maps' textures.
     virtual std::size_t memory_bytes() = 0;
+    /// Renders `sc` from `cam` on GL: each light's maps (one per frustum in `spaces`) built there and
+    /// read by the GL renderer's passes.
+    virtual hairshadow::image render_scene(const hairshadow::scene& sc, const hairshadow::camera& cam, const hairshadow::method_spec& spec,
+                                           const std::vector<hairshadow::light_space>& spaces, const hairshadow::raster_options& options) = 0;
     /// The last built maps read back for CPU queries.
     virtual std::unique_ptr<hairshadow::any_shadow_map> to_cpu() = 0;
 };

@@ -12,6 +12,7 @@
 #include "compare_table.hpp"
 #include "figure.hpp"
 #include "gl_backend.hpp"
+#include "scene_setup.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -86,7 +87,7 @@ double milliseconds_since(std::chrono::steady_clock::time_point start) {
 
 /// A model seen from one light (rasterised on the CPU unless only GL draws it), ready for any number
 /// of methods.
-struct scene {
+struct lit_model {
     hair_model model;
     light_space light;
     raster_options raster;
@@ -97,13 +98,13 @@ struct scene {
 
 /// Loads the model and fits the light; rasterises on the CPU where `cpu_fragments` (the CPU methods,
 /// and the exact reference of `compare`); opens the GL context with --backend gl.
-scene prepare_scene(const map_options& o, bool cpu_fragments) {
+lit_model prepare_scene(const map_options& o, bool cpu_fragments) {
     const auto light = parse_light(o.light);
     check_resolution(o.resolution);
     if (o.on_gl() && o.wide > 0.0f) throw usage_error("--wide needs --backend cpu: core GL draws lines one pixel wide");
     if (o.on_gl() && (o.box_filter || o.jitter || o.bias != 0.0f))
         throw usage_error("--filter, --jitter and --bias are CPU queries; the GLSL look-up has none: use --backend cpu");
-    scene s{load(o.model), {}, {}, {}, 0.0, nullptr};
+    lit_model s{load(o.model), {}, {}, {}, 0.0, nullptr};
     s.light = light_space::fit(light, s.model.bounds(), o.resolution);
     s.raster.exec = o.exec();
     s.raster.fixed_alpha = o.alpha;
@@ -121,7 +122,7 @@ scene prepare_scene(const map_options& o, bool cpu_fragments) {
 }
 
 /// Builds a method's maps on the CPU, for CPU queries.
-std::unique_ptr<any_shadow_map> build_map(const method_spec& spec, const scene& s, const execution& exec, double* build_ms = nullptr) {
+std::unique_ptr<any_shadow_map> build_map(const method_spec& spec, const lit_model& s, const execution& exec, double* build_ms = nullptr) {
     auto map = make_shadow_map(spec);
     const auto start = std::chrono::steady_clock::now();
     map->build(s.fragments, s.light, exec);
@@ -193,7 +194,7 @@ struct method_result {
 };
 
 /// Builds a method on the scene's back end and queries it at `points` (by the GLSL look-up on GL).
-method_result evaluate(const method_spec& spec, scene& s, const map_options& o, std::span<const glm::vec3> points) {
+method_result evaluate(const method_spec& spec, lit_model& s, const map_options& o, std::span<const glm::vec3> points) {
     method_result r;
     r.transmittance.resize(points.size());
     if (s.gl) {
@@ -232,7 +233,69 @@ int run_query(const map_options& o, const std::string& points_file) {
     return 0;
 }
 
-int run_render(const map_options& o, const std::string& out_path, const std::string& maps_dir) {
+/// What `render` draws beyond the maps: the camera's shaded view (the default) or the light's.
+struct render_view {
+    std::string view = "camera";
+    std::string mesh;
+    std::vector<std::string> fill_lights;
+    float azimuth = 25.0f, elevation = 10.0f;
+    int size = 512;
+};
+
+/// The shaded scene from the camera: Kajiya-Kay hair and the mesh, each light with the method's
+/// maps (built on the chosen back end) and the mesh's depth map.
+int run_shaded(const map_options& o, const render_view& v, const std::string& out_path) {
+    const auto spec = parse_method_for(o.method, o);
+    std::vector<light_spec> lights{parse_light(o.light)};
+    for (const auto& l : v.fill_lights) lights.push_back(parse_light(l));
+    check_resolution(o.resolution);
+    camera::check_image_size(v.size, v.size);
+    if (is_procedural_spec(o.model)) { // a malformed spec is a usage error, as for the other commands
+        try {
+            parse_procedural_spec(o.model);
+        } catch (const argument_error& e) {
+            throw usage_error(e.what());
+        }
+    }
+    if (o.on_gl() && o.wide > 0.0f) throw usage_error("--wide needs --backend cpu: core GL draws lines one pixel wide");
+    std::fprintf(stderr, "render of %s with %s, %zu light(s), on the %s\n", o.model.c_str(), spec.text.c_str(), lights.size(), o.backend.c_str());
+    const hairshadow::scene sc = cli::load_scene(o.model, v.mesh, lights);
+    const auto cam = camera::framing(sc.bounds(), v.azimuth, v.elevation, v.size, v.size, 1.15f);
+    raster_options ro;
+    ro.exec = o.exec();
+    ro.fixed_alpha = o.alpha;
+    ro.wide_line_width = o.wide;
+    std::vector<light_space> spaces;
+    for (const auto& l : sc.lights) spaces.push_back(light_space::fit(l.spec, sc.bounds(), o.resolution));
+    image picture;
+    if (o.on_gl()) {
+        const auto gl = cli::gl_backend::open(o.context);
+        picture = cli::step("building the maps and rendering on GL", [&] { return gl->render_scene(sc, cam, spec, spaces, ro); });
+    } else {
+        std::vector<std::unique_ptr<any_shadow_map>> maps;
+        std::vector<lit_light> lit;
+        for (std::size_t i = 0; i < spaces.size(); ++i) {
+            const auto n = std::to_string(i + 1);
+            const auto fragments = cli::step("light " + n + ": rasterising the hair", [&] { return rasterize(sc.hair, spaces[i], ro); });
+            maps.push_back(make_shadow_map(spec));
+            cli::step("light " + n + ": building " + spec.text, [&] { maps.back()->build(fragments, spaces[i], o.exec()); });
+            auto mesh_map = cli::step("light " + n + ": the mesh's depth map", [&] { return depth_shadow_map(sc.mesh, spaces[i], default_mesh_bias, o.exec()); });
+            lit.push_back({sc.lights[i], query_of(*maps.back(), o.exec()), std::move(mesh_map)});
+        }
+        render_options options;
+        options.exec = o.exec();
+        picture = cli::step("rendering", [&] { return render_cpu(sc, cam, lit, options); });
+    }
+    write_png(out_path, picture.width, picture.height, 3, picture.to_srgb8());
+    std::fprintf(stderr, "wrote %s (%dx%d)\n", out_path.c_str(), picture.width, picture.height);
+    return 0;
+}
+
+int run_render(const map_options& o, const render_view& v, const std::string& out_path, const std::string& maps_dir) {
+    if (v.view == "camera") {
+        if (!maps_dir.empty()) throw usage_error("--maps needs --view light");
+        return run_shaded(o, v, out_path);
+    }
     const auto spec = parse_method_for(o.method, o);
     auto s = prepare_scene(o, !o.on_gl());
     std::unique_ptr<any_shadow_map> map;
@@ -349,12 +412,20 @@ int main(int argc, char** argv) {
     query->add_option("--points", points_file, "file of 'x y z' lines")->required();
 
     std::string out_path = "transmittance.png", maps_dir;
-    auto* render = app.add_subcommand("render", "write the light's view of the transmittance behind the model as a PNG");
+    render_view view;
+    auto* render = app.add_subcommand("render", "write the shaded hair (or the light's view of its transmittance) as a PNG");
     add_model(render, o);
     add_map_options(render, o);
     add_backend_options(render, o);
     render->add_option("--out", out_path, "output PNG");
-    render->add_option("--maps", maps_dir, "also write each stored map (layer, bin or slab) as a PNG into this folder");
+    render->add_option("--view", view.view, "camera: the shaded scene; light: the transmittance behind the model, from the light")
+        ->check(CLI::IsMember({"camera", "light"}));
+    render->add_option("--mesh", view.mesh, "an OBJ whose faces are the opaque mesh (procedural models stand on their sphere)");
+    render->add_option("--fill-light", view.fill_lights, "another light, dimmer, with its own maps (repeatable)");
+    render->add_option("--azimuth", view.azimuth, "camera azimuth in degrees about +y");
+    render->add_option("--elevation", view.elevation, "camera elevation in degrees")->check(CLI::Range(-89.0f, 89.0f));
+    render->add_option("--size", view.size, "image size in pixels");
+    render->add_option("--maps", maps_dir, "with --view light: also write each stored map (layer, bin or slab) as a PNG into this folder");
 
     auto* memory = app.add_subcommand("memory", "print the bytes a method's maps hold at a resolution");
     add_model(memory, o, false);
@@ -390,7 +461,7 @@ int main(int argc, char** argv) {
     try {
         if (*info) return run_info(o);
         if (*query) return run_query(o, points_file);
-        if (*render) return run_render(o, out_path, maps_dir);
+        if (*render) return run_render(o, view, out_path, maps_dir);
         if (*memory) return run_memory(o);
         if (*compare) return run_compare(o, methods, out_dir);
         if (*figure) {

@@ -55,7 +55,7 @@ TEST_CASE("compare and render --backend gl", "[gl][cli]") {
     CHECK_THAT(compare.out, Catch::Contains("Methods built on OpenGL"));
     for (const char* row : {"| osm:16 | 16 |", "| dc:4 | 4 |", "| occ:128:4 | 128 |"}) CHECK_THAT(compare.out, Catch::Contains(row));
     CHECK(std::filesystem::exists(dir.file("out/compare.csv")));
-    const auto render = test::run_cli("render procedural:wavy:strands=300:segments=12 --res 64 --backend gl --method dc:4 --out " +
+    const auto render = test::run_cli("render procedural:wavy:strands=300:segments=12 --view light --res 64 --backend gl --method dc:4 --out " +
                                       dir.file("t.png") + " --maps " + dir.file("maps"));
     REQUIRE(render.status == 0);
     CHECK(std::filesystem::file_size(dir.file("t.png")) > 0);
@@ -90,4 +90,19 @@ TEST_CASE("a context older than GL 4.3 is refused with the version it lacks", "[
             CHECK_THAT(r.err, Catch::Contains("needs OpenGL 4.3; the context has 3.3"));
         }
     ::unsetenv("MESA_GL_VERSION_OVERRIDE");
+}
+
+TEST_CASE("render draws the shaded scene on either back end, with fill lights", "[gl][cli][render]") {
+    test::temp_dir dir("gl_cli_shaded");
+    for (const char* backend : {"cpu", "gl"}) {
+        CAPTURE(backend);
+        const auto r = test::run_cli(std::string("render procedural:wavy:strands=400:segments=12 --res 128 --size 96 --method dom:3 ") +
+                                     "--fill-light point:0.5,0.2,0.5 --backend " + backend + " --out " + dir.file(std::string(backend) + ".png"));
+        REQUIRE(r.status == 0);
+        CHECK_THAT(r.err, Catch::Contains("2 light(s)"));
+        CHECK(std::filesystem::file_size(dir.file(std::string(backend) + ".png")) > 1000);
+    }
+    const auto maps = test::run_cli("render procedural:wavy:strands=40:segments=4 --maps " + dir.file("maps") + " --out " + dir.file("x.png"));
+    CHECK(maps.status == 2);
+    CHECK_THAT(maps.err, Catch::Contains("--view light"));
 }

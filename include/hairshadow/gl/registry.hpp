@@ -25,6 +25,10 @@ public:
     virtual std::unique_ptr<any_shadow_map> to_cpu() = 0;
     /// Bytes of the textures the look-up reads.
     virtual std::size_t memory_bytes() const = 0;
+    /// The method's GLSL look-up and its binding (as gl::maps<Method>), for user shaders and the renderer.
+    virtual std::string lookup_source() const = 0;
+    virtual void bind_lookup(GLuint prog, int first_unit = 0) const = 0;
+    virtual const light_space& light() const = 0;
     const method_spec& spec() const noexcept { return spec_; }
 
 protected:
@@ -46,9 +50,12 @@ public:
     }
     std::vector<float> transmittance(std::span<const glm::vec3> points) override {
         if (!queries_) queries_.emplace(maps_.lookup_source());
-        return queries_->run(points, [&](GLuint program) { maps_.bind_lookup(program); });
+        return queries_->run(points, [&](GLuint prog) { maps_.bind_lookup(prog); });
     }
     std::size_t memory_bytes() const override { return maps_.memory_bytes(); }
+    std::string lookup_source() const override { return maps_.lookup_source(); }
+    void bind_lookup(GLuint prog, int first_unit) const override { maps_.bind_lookup(prog, first_unit); }
+    const light_space& light() const override { return maps_.light(); }
     std::unique_ptr<any_shadow_map> to_cpu() override {
         return std::make_unique<hairshadow::detail::method_map<Method>>(spec(), maps_.to_cpu());
     }

@@ -53,11 +53,11 @@ public:
     /// Adds a light whose hair shadows come from `maps` (a built gl::maps<Method>, kept alive by the
     /// caller) seen from `light`'s frustum: maps.light(). The mesh's depth map is drawn now.
     template <class Maps>
-    void add_light(const scene_light& light, const Maps& maps, float mesh_bias = 2e-3f) {
-        add(light, maps.light(), maps.lookup_source(), [&maps](GLuint program) { maps.bind_lookup(program, 0); }, mesh_bias);
+    void add_light(const scene_light& light, const Maps& maps, float mesh_bias = default_mesh_bias) {
+        add(light, maps.light(), maps.lookup_source(), [&maps](GLuint prog) { maps.bind_lookup(prog, 0); }, mesh_bias);
     }
     /// Adds a light whose hair casts no shadow (the mesh still does), with `space` its frustum.
-    void add_unshadowed_light(const scene_light& light, const light_space& space, float mesh_bias = 2e-3f) {
+    void add_unshadowed_light(const scene_light& light, const light_space& space, float mesh_bias = default_mesh_bias) {
         static constexpr std::string_view no_hair = R"(
 uniform mat4 hs_lookup_view_projection;
 uniform mat4 hs_lookup_view;
@@ -66,7 +66,7 @@ uniform float hs_lookup_far;
 uniform int hs_lookup_resolution;
 float hs_transmittance(vec3 world_pos) { return 1.0; }
 )";
-        add(light, space, std::string(no_hair), [space](GLuint program) { set_light_frustum(program, space); }, mesh_bias);
+        add(light, space, std::string(no_hair), [space](GLuint prog) { set_light_frustum(prog, space); }, mesh_bias);
     }
 
     /// Draws the scene from `cam` into the bound framebuffer (viewport and clearing are the caller's).

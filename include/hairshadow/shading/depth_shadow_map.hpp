@@ -16,6 +16,10 @@
 
 namespace hairshadow {
 
+/// Bias of the mesh's depth comparisons, in linear depth units (of the light's near-far range):
+/// enough to keep a surface lit by its own map on the Sintel head at 512x512.
+inline constexpr float default_mesh_bias = 6e-3f;
+
 /// Nearest opaque depth per texel of a light's map.
 class depth_shadow_map {
 public:
@@ -23,7 +27,7 @@ public:
 
     /// Rasterises `mesh` from `light` (texel centres inside a triangle, as GL's rule for polygons).
     /// `bias` is added to the stored depth before comparisons, in linear depth units.
-    depth_shadow_map(const triangle_mesh& mesh, const light_space& light, float bias = 2e-3f, const execution& exec = {})
+    depth_shadow_map(const triangle_mesh& mesh, const light_space& light, float bias = default_mesh_bias, const execution& exec = {})
         : light_(light), bias_(bias) {
         const int res = light.resolution();
         depth_.assign(std::size_t(res) * std::size_t(res), std::numeric_limits<float>::infinity());
