@@ -106,6 +106,7 @@ COMPOSITIONS["render_hair_fragment"] = ("frag", "", ["render/hair_fragment"], ""
 COMPOSITIONS["render_mesh_vertex"] = ("vert", "", ["render/mesh_vertex"], "")
 COMPOSITIONS["render_mesh_fragment"] = ("frag", DOM_DEFINES, DOM_LOOKUP + ["render/light", "render/mesh_fragment"], "")
 COMPOSITIONS["render_mesh_depth"] = ("frag", "", ["render/mesh_depth"], "")
+COMPOSITIONS["render_present"] = ("frag", "", ["render/present"], "")
 
 
 def expand(text: str) -> str:

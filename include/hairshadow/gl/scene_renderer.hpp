@@ -96,8 +96,9 @@ float hs_transmittance(vec3 world_pos) { return 1.0; }
         check("scene renderer draw");
     }
 
-    /// Renders off screen with `samples` multisamples and reads the image back.
-    image render(const camera& cam, int samples = 8) const {
+    /// Draws the scene with `samples` multisamples off screen and resolves it (the samples' average:
+    /// the lines' coverage) into framebuffer `target` (0: the window's), over the whole viewport.
+    void render_into(const camera& cam, GLuint target, int samples = 8) const {
         camera::check_image_size(cam.width, cam.height);
         GLint max_samples = 1;
         glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
@@ -107,26 +108,37 @@ float hs_transmittance(vec3 world_pos) { return 1.0; }
         glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA32F, cam.width, cam.height);
         glBindRenderbuffer(GL_RENDERBUFFER, depth.get());
         glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH_COMPONENT32F, cam.width, cam.height);
-        auto fbo = make_framebuffer(), resolved = make_framebuffer();
+        auto fbo = make_framebuffer();
         glBindFramebuffer(GL_FRAMEBUFFER, fbo.get());
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour.get());
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth.get());
+        const GLenum first = GL_COLOR_ATTACHMENT0;
+        glDrawBuffers(1, &first);
         if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) throw gl_error("scene renderer: incomplete framebuffer");
         glViewport(0, 0, cam.width, cam.height);
         const float background[4] = {scene_.background.r, scene_.background.g, scene_.background.b, 1.0f};
         glClearBufferfv(GL_COLOR, 0, background);
         glClear(GL_DEPTH_BUFFER_BIT);
         draw(cam);
-        // Resolve the samples (their average: the lines' coverage) and read back, top row first.
-        auto single = make_texture();
-        glBindTexture(GL_TEXTURE_2D, single.get());
-        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, cam.width, cam.height);
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolved.get());
-        glFramebufferTexture(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, single.get(), 0);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target);
         glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo.get());
         glBlitFramebuffer(0, 0, cam.width, cam.height, 0, 0, cam.width, cam.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        check("scene renderer resolve");
+    }
+
+    /// Renders off screen with `samples` multisamples and reads the image back.
+    image render(const camera& cam, int samples = 8) const {
+        camera::check_image_size(cam.width, cam.height);
+        auto single = make_texture();
+        glBindTexture(GL_TEXTURE_2D, single.get());
+        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, cam.width, cam.height);
+        auto resolved = make_framebuffer();
+        glBindFramebuffer(GL_FRAMEBUFFER, resolved.get());
+        glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, single.get(), 0);
+        render_into(cam, resolved.get(), samples);
         std::vector<float> rgba(4 * std::size_t(cam.width) * std::size_t(cam.height));
+        glBindTexture(GL_TEXTURE_2D, single.get());
         glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, rgba.data());
         check("scene renderer read-back");
         image out(cam.width, cam.height, scene_.background);
@@ -137,6 +149,37 @@ float hs_transmittance(vec3 world_pos) { return 1.0; }
             }
         return out;
     }
+
+    /// Draws the scene into framebuffer `target` (0: the window's) encoded as sRGB for display: the
+    /// multisampled render resolved into a linear texture, then encoded by a full-screen pass.
+    void present(const camera& cam, GLuint target, int samples = 4) {
+        if (!present_program_.get()) {
+            const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::passes_fullscreen_vertex}, "passes/fullscreen_vertex");
+            const auto fs = compile_shader(GL_FRAGMENT_SHADER, {version, shaders::render_present}, "render/present");
+            present_program_ = link_program({&vs, &fs}, "present");
+        }
+        auto linear = make_texture();
+        glBindTexture(GL_TEXTURE_2D, linear.get());
+        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, cam.width, cam.height);
+        auto resolved = make_framebuffer();
+        glBindFramebuffer(GL_FRAMEBUFFER, resolved.get());
+        glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, linear.get(), 0);
+        render_into(cam, resolved.get(), samples);
+        glBindFramebuffer(GL_FRAMEBUFFER, target);
+        glViewport(0, 0, cam.width, cam.height);
+        glDisable(GL_DEPTH_TEST);
+        glUseProgram(present_program_.get());
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, linear.get());
+        glUniform1i(glGetUniformLocation(present_program_.get(), "hs_linear_image"), 0);
+        glBindVertexArray(empty_vao_.get());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glBindVertexArray(0);
+        check("scene renderer present");
+    }
+
+    /// Removes every light (to add them again after the maps or the lights change).
+    void clear_lights() { lights_.clear(); }
 
 private:
     static constexpr std::string_view version = "#version 430 core\n";
@@ -249,7 +292,8 @@ private:
     const scene& scene_;
     geometry hair_, mesh_;
     GLsizei hair_count_ = 0, mesh_count_ = 0;
-    program depth_program_;
+    program depth_program_, present_program_;
+    vertex_array empty_vao_ = make_vertex_array();
     std::vector<light_entry> lights_;
 };
 

@@ -691,6 +691,17 @@ void main() {
 }
 )hs_glsl";
 
+/// shaders/render/present.glsl
+inline constexpr std::string_view render_present = R"hs_glsl(// Shows a linear-RGB image on an 8-bit framebuffer: the sRGB encoding of hairshadow::image::encode.
+uniform sampler2D hs_linear_image;
+layout(location = 0) out vec4 hs_out;
+void main() {
+    vec3 v = clamp(texelFetch(hs_linear_image, ivec2(gl_FragCoord.xy), 0).rgb, 0.0, 1.0);
+    vec3 s = mix(1.055 * pow(v, vec3(1.0 / 2.4)) - 0.055, 12.92 * v, lessThanEqual(v, vec3(0.0031308)));
+    hs_out = vec4(s, 1.0);
+}
+)hs_glsl";
+
 /// shaders/texel_state/clustered.glsl
 inline constexpr std::string_view texel_state_clustered = R"hs_glsl(// Density clustering's per-texel state: the means (array layers [0, HS_STATE_TARGETS)) and standard
 // deviations (the next HS_STATE_TARGETS layers) written by passes/cluster_resolve.
@@ -748,7 +759,7 @@ struct entry {
 };
 
 /// Every snippet, sorted by name.
-inline constexpr std::array<entry, 35> all{{
+inline constexpr std::array<entry, 36> all{{
     {"accumulation/emulated_8bit", accumulation_emulated_8bit},
     {"accumulation/float", accumulation_float},
     {"lookup/interpolation", lookup_interpolation},
@@ -780,6 +791,7 @@ inline constexpr std::array<entry, 35> all{{
     {"render/mesh_depth", render_mesh_depth},
     {"render/mesh_fragment", render_mesh_fragment},
     {"render/mesh_vertex", render_mesh_vertex},
+    {"render/present", render_present},
     {"texel_state/clustered", texel_state_clustered},
     {"texel_state/depth_range", texel_state_depth_range},
     {"texel_state/per_pixel_depth", texel_state_per_pixel_depth},

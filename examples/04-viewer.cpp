@@ -1,0 +1,182 @@
+// An interactive viewer: the hair on its mesh, lit by one light whose shadows come from any method,
+// built on the GPU every time something changes.
+//
+//   04-viewer [MODEL] [--mesh OBJ] [--frames N] [--screenshot FILE.png]
+//
+// Drag with the left mouse button (or the arrow keys) to orbit the camera, WASD to move the light,
+// keys 1-6 to switch methods (no hair shadows, OSM, DOM, DC, OCC, deep occupancy; the exact reference
+// is CPU-only), [ and ] to halve or double the layer count, Esc to quit. The title shows the method, its GL build time and the frame rate. --frames N
+// draws N frames and exits (tests run it under Xvfb); --screenshot writes the last one.
+#include <glad/gl.h>
+
+#include <GLFW/glfw3.h>
+
+#include <hairshadow/gl/registry.hpp>
+#include <hairshadow/gl/scene_renderer.hpp>
+#include <hairshadow/hairshadow.hpp>
+#include <hairshadow/io/load.hpp>
+#include <hairshadow/io/obj_format.hpp>
+#include <hairshadow/io/png.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+using namespace hairshadow;
+
+namespace {
+
+struct state {
+    int family = 2; // 1 none, 2 OSM, 3 DOM, 4 DC, 5 OCC, 6 deep occupancy (hybrid)
+    int layers = 16;
+    float azimuth = 25, elevation = 10;
+    float light_azimuth = -60, light_elevation = 50;
+    bool dirty = true;
+    bool dragging = false;
+    double last_x = 0, last_y = 0;
+};
+
+std::string spec_of(const state& s) {
+    switch (s.family) {
+    case 2: return "osm:" + std::to_string(s.layers);
+    case 3: return "dom:" + std::to_string(std::clamp(s.layers, 1, 8));
+    case 4: return "dc:" + std::to_string(std::clamp(s.layers, 1, 8));
+    case 5: return "occ:" + std::to_string(std::clamp(s.layers, 32, 256)) + ":4";
+    case 6: return "docc:" + std::to_string(std::clamp(s.layers, 32, 256)) + ":4";
+    default: return "none";
+    }
+}
+
+glm::vec3 light_direction(const state& s) {
+    const float az = glm::radians(s.light_azimuth), el = glm::radians(s.light_elevation);
+    return -glm::vec3(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az)); // travels towards the model
+}
+
+void on_key(GLFWwindow* window, int key, int, int action, int) {
+    if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+    auto& s = *static_cast<state*>(glfwGetWindowUserPointer(window));
+    if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window, 1);
+    if (key >= GLFW_KEY_1 && key <= GLFW_KEY_6) s.family = key - GLFW_KEY_0, s.dirty = true;
+    if (key == GLFW_KEY_LEFT_BRACKET) s.layers = std::max(1, s.layers / 2), s.dirty = true;
+    if (key == GLFW_KEY_RIGHT_BRACKET) s.layers = std::min(512, s.layers * 2), s.dirty = true;
+    if (key == GLFW_KEY_LEFT) s.azimuth -= 5;
+    if (key == GLFW_KEY_RIGHT) s.azimuth += 5;
+    if (key == GLFW_KEY_UP) s.elevation = std::min(80.0f, s.elevation + 5);
+    if (key == GLFW_KEY_DOWN) s.elevation = std::max(-80.0f, s.elevation - 5);
+    if (key == GLFW_KEY_A) s.light_azimuth -= 10, s.dirty = true;
+    if (key == GLFW_KEY_D) s.light_azimuth += 10, s.dirty = true;
+    if (key == GLFW_KEY_W) s.light_elevation = std::min(85.0f, s.light_elevation + 10), s.dirty = true;
+    if (key == GLFW_KEY_S) s.light_elevation = std::max(-85.0f, s.light_elevation - 10), s.dirty = true;
+}
+
+void on_button(GLFWwindow* window, int button, int action, int) {
+    auto& s = *static_cast<state*>(glfwGetWindowUserPointer(window));
+    if (button == GLFW_MOUSE_BUTTON_LEFT) s.dragging = action == GLFW_PRESS;
+    glfwGetCursorPos(window, &s.last_x, &s.last_y);
+}
+
+void on_move(GLFWwindow* window, double x, double y) {
+    auto& s = *static_cast<state*>(glfwGetWindowUserPointer(window));
+    if (s.dragging) {
+        s.azimuth -= float(x - s.last_x) * 0.4f;
+        s.elevation = std::clamp(s.elevation + float(y - s.last_y) * 0.4f, -80.0f, 80.0f);
+    }
+    s.last_x = x, s.last_y = y;
+}
+
+int run(int argc, char** argv) {
+    std::string model = "procedural:wavy:strands=3000", mesh_path, screenshot;
+    long frames = -1;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--mesh" && i + 1 < argc) mesh_path = argv[++i];
+        else if (a == "--frames" && i + 1 < argc) frames = std::stol(argv[++i]);
+        else if (a == "--screenshot" && i + 1 < argc) screenshot = argv[++i];
+        else if (!a.starts_with("--")) model = a;
+        else return std::fprintf(stderr, "usage: 04-viewer [MODEL] [--mesh OBJ] [--frames N] [--screenshot FILE.png]\n"), 2;
+    }
+    scene sc;
+    sc.hair = load_model(model);
+    if (!mesh_path.empty()) sc.mesh = read_obj(mesh_path).mesh;
+    else if (is_procedural_spec(model)) sc.mesh = make_sphere({0, 0, 0}, parse_procedural_spec(model).head_radius, 48);
+
+    if (!glfwInit()) return std::fprintf(stderr, "error: GLFW cannot initialise (no display?)\n"), 1;
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    const int width = 720, height = 720;
+    GLFWwindow* window = glfwCreateWindow(width, height, "hairshadow viewer", nullptr, nullptr);
+    if (!window) return glfwTerminate(), std::fprintf(stderr, "error: cannot open a GL 4.3 core window\n"), 1;
+    glfwMakeContextCurrent(window);
+    if (!gladLoadGL(glfwGetProcAddress)) return std::fprintf(stderr, "error: cannot load GL\n"), 1;
+    state s;
+    glfwSetWindowUserPointer(window, &s);
+    glfwSetKeyCallback(window, on_key);
+    glfwSetMouseButtonCallback(window, on_button);
+    glfwSetCursorPosCallback(window, on_move);
+
+    {
+        const gl::hair_mesh hair_mesh(sc.hair);
+        gl::scene_renderer renderer(sc);
+        std::unique_ptr<gl::any_gl_shadow_map> maps;
+        double build_ms = 0, fps = 0;
+        auto last = std::chrono::steady_clock::now();
+        for (long frame = 0; !glfwWindowShouldClose(window) && frame != frames; ++frame) {
+            if (s.dirty) { // new method or light: rebuild the maps on the GPU
+                sc.lights = {{light_spec::directional(light_direction(s)), glm::vec3(1.1f)}};
+                const auto space = light_space::fit(sc.lights[0].spec, sc.bounds(), 512);
+                renderer.clear_lights();
+                const auto spec = spec_of(s);
+                const auto start = std::chrono::steady_clock::now();
+                if (spec == "none") {
+                    maps.reset();
+                    renderer.add_unshadowed_light(sc.lights[0], space);
+                } else {
+                    maps = gl::make_gl_shadow_map(parse_method_spec(spec));
+                    maps->build(hair_mesh, space);
+                    renderer.add_light(sc.lights[0], *maps);
+                }
+                build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+                s.dirty = false;
+            }
+            int fb_width = 0, fb_height = 0;
+            glfwGetFramebufferSize(window, &fb_width, &fb_height);
+            const auto cam = camera::framing(sc.bounds(), s.azimuth, s.elevation, std::max(fb_width, 1), std::max(fb_height, 1), 1.15f);
+            renderer.present(cam, 0);
+            if (frame + 1 == frames && !screenshot.empty()) {
+                std::vector<std::uint8_t> rgba(std::size_t(4 * fb_width * fb_height)), rgb;
+                glReadPixels(0, 0, fb_width, fb_height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+                for (int y = fb_height - 1; y >= 0; --y)
+                    for (int x = 0; x < fb_width; ++x)
+                        for (int c = 0; c < 3; ++c) rgb.push_back(rgba[std::size_t(4 * (y * fb_width + x) + c)]);
+                write_png(screenshot, fb_width, fb_height, 3, rgb);
+            }
+            glfwSwapBuffers(window);
+            glfwPollEvents();
+            const auto now = std::chrono::steady_clock::now();
+            fps = 0.9 * fps + 0.1 / std::max(1e-6, std::chrono::duration<double>(now - last).count());
+            last = now;
+            char title[160];
+            std::snprintf(title, sizeof title, "hairshadow viewer - %s (1-6 method, [ ] layers) - built in %.1f ms - %.1f fps", spec_of(s).c_str(),
+                          build_ms, fps);
+            glfwSetWindowTitle(window, title);
+        }
+        std::printf("%s: %ld frames, last build %.1f ms\n", spec_of(s).c_str(), frames, build_ms);
+    }
+    glfwDestroyWindow(window);
+    glfwTerminate();
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,35 @@
+// The interactive viewer example under Xvfb: it opens its GL window, draws a fixed number of frames
+// with the GL renderer and writes the last; the frame shows the hair (not just the background).
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb/stb_image.h>
+
+#include "../test_support.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+
+TEST_CASE("the viewer draws frames in a window under Xvfb", "[gl][viewer]") {
+    test::temp_dir dir("viewer");
+    const std::string shot = dir.file("frame.png");
+    const std::string command = "xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(HAIRSHADOW_VIEWER) +
+                                " procedural:wavy:strands=800:segments=12 --frames 4 --screenshot " + shot + " > " + dir.file("log.txt") + " 2>&1";
+    const int status = std::system(command.c_str());
+    CAPTURE(command, test::read_text(dir.file("log.txt")));
+    REQUIRE(status == 0);
+    CHECK_THAT(test::read_text(dir.file("log.txt")), Catch::Contains("osm:16: 4 frames"));
+    int w = 0, h = 0, channels = 0;
+    unsigned char* pixels = stbi_load(shot.c_str(), &w, &h, &channels, 3);
+    REQUIRE(pixels != nullptr);
+    long not_background = 0, dark = 0;
+    for (int i = 0; i < w * h; ++i) {
+        const unsigned char* p = pixels + 3 * i;
+        not_background += p[0] < 250 || p[1] < 250 || p[2] < 250;
+        dark += p[0] < 128;
+    }
+    stbi_image_free(pixels);
+    CHECK(w == 720);
+    CHECK(not_background > w * h / 20); // the hair and its sphere cover a good part of the frame
+    CHECK(dark > 100);                   // with shading and shadows, not a flat silhouette
+}
