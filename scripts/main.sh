@@ -7,4 +7,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh
-./build/tools/hairshadow figure --out out/figure "$@"
+out=(--out out/figure)
+for arg in "$@"; do [ "$arg" = "--out" ] && out=(); done
+./build/tools/hairshadow figure "${out[@]}" "$@"
