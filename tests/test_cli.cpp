@@ -198,3 +198,23 @@ TEST_CASE("figure refuses bad specs and sizes with a usage error", "[cli][figure
         CHECK_THAT(r.err, Catch::Contains("error") || Catch::Contains("--size"));
     }
 }
+
+TEST_CASE("render and figure blend transparent hair", "[cli][transparency]") {
+    test::temp_dir dir("cli_transparency");
+    for (const char* mode : {"occupancy", "weighted", "exact", "none"}) {
+        CAPTURE(mode);
+        const auto r = test::run_cli(std::string("render procedural:wavy:strands=300:segments=10 --res 64 --size 64 --method occ:128:4 --transparency ") +
+                                     mode + " --hair-opacity 0.3 --out " + dir.file(std::string(mode) + ".png"));
+        REQUIRE(r.status == 0);
+        CHECK_THAT(r.err, Catch::Contains(std::string("transparency ") + mode));
+    }
+    const auto fig = test::run_cli("figure --transparency 0.3 --model procedural:wavy:strands=300:segments=10 --res 64 --size 64 --out " + dir.file("fig"));
+    REQUIRE(fig.status == 0);
+    CHECK(std::filesystem::file_size(dir.file("fig/transparency.png")) > 100);
+    CHECK_THAT(test::read_text(dir.file("fig/transparency.md")), Catch::Contains("| occupancy order |"));
+    for (const char* bad : {"--transparency sorted", "--hair-opacity 0", "--transparency exact --backend gl"}) {
+        CAPTURE(bad);
+        const auto r = test::run_cli(std::string("render procedural:wavy:strands=30:segments=4 --res 32 --size 32 ") + bad + " --out " + dir.file("x.png"));
+        CHECK(r.status == 2);
+    }
+}

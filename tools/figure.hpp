@@ -21,4 +21,9 @@ struct figure_options {
 /// Writes figure.png, crops.png, heatmaps.png, rays.svg, compare.md and compare.csv into options.out.
 int run_figure(const figure_options& options);
 
+/// Writes transparency.png and transparency.md into options.out: the hair blended exactly (sorted),
+/// by occupancy order, by weighted averages and opaque, in the manner of Sintorn & Assarsson's Fig. 2,
+/// with times and the error against exact blending; occupancy maps 128/4 shadow every panel.
+int run_transparency_figure(const figure_options& options, float hair_opacity);
+
 } // namespace cli

@@ -240,6 +240,8 @@ struct render_view {
     std::vector<std::string> fill_lights;
     float azimuth = 25.0f, elevation = 10.0f;
     int size = 512;
+    std::string transparency = "none";
+    float hair_opacity = 0.4f;
 };
 
 /// The shaded scene from the camera: Kajiya-Kay hair and the mesh, each light with the method's
@@ -258,6 +260,9 @@ int run_shaded(const map_options& o, const render_view& v, const std::string& ou
         }
     }
     if (o.on_gl() && o.wide > 0.0f) throw usage_error("--wide needs --backend cpu: core GL draws lines one pixel wide");
+    const auto mode = parse_transparency(v.transparency);
+    if (o.on_gl() && mode != transparency::none) throw usage_error("--transparency is CPU-only so far; use --backend cpu");
+    if (mode == transparency::occupancy && v.size > 4096) throw usage_error("--transparency occupancy needs --size up to 4096");
     std::fprintf(stderr, "render of %s with %s, %zu light(s), on the %s\n", o.model.c_str(), spec.text.c_str(), lights.size(), o.backend.c_str());
     const hairshadow::scene sc = cli::load_scene(o.model, v.mesh, lights);
     const auto cam = camera::framing(sc.bounds(), v.azimuth, v.elevation, v.size, v.size, 1.15f);
@@ -284,7 +289,8 @@ int run_shaded(const map_options& o, const render_view& v, const std::string& ou
         }
         render_options options;
         options.exec = o.exec();
-        picture = cli::step("rendering", [&] { return render_cpu(sc, cam, lit, options); });
+        picture = cli::step("rendering (transparency " + v.transparency + ")",
+                            [&] { return render_transparent(sc, cam, lit, mode, v.hair_opacity, options); });
     }
     write_png(out_path, picture.width, picture.height, 3, picture.to_srgb8());
     std::fprintf(stderr, "wrote %s (%dx%d)\n", out_path.c_str(), picture.width, picture.height);
@@ -425,6 +431,11 @@ int main(int argc, char** argv) {
     render->add_option("--azimuth", view.azimuth, "camera azimuth in degrees about +y");
     render->add_option("--elevation", view.elevation, "camera elevation in degrees")->check(CLI::Range(-89.0f, 89.0f));
     render->add_option("--size", view.size, "image size in pixels");
+    render->add_option("--transparency", view.transparency,
+                       "none (opaque hair), occupancy (Sintorn & Assarsson 3.4), weighted (Bavoil & Myers), exact (sorted)")
+        ->check(CLI::IsMember({"none", "occupancy", "weighted", "exact"}));
+    render->add_option("--hair-opacity", view.hair_opacity, "each strand's alpha over a pixel it covers, with --transparency")
+        ->check(CLI::Range(0.001f, 1.0f));
     render->add_option("--maps", maps_dir, "with --view light: also write each stored map (layer, bin or slab) as a PNG into this folder");
 
     auto* memory = app.add_subcommand("memory", "print the bytes a method's maps hold at a resolution");
@@ -452,6 +463,10 @@ int main(int argc, char** argv) {
     figure->add_option("--azimuth", fig.azimuth, "camera azimuth in degrees about +y");
     figure->add_option("--elevation", fig.elevation, "camera elevation in degrees")->check(CLI::Range(-89.0f, 89.0f));
     figure->add_option("--out", fig.out, "output folder");
+    float figure_opacity = 0.0f;
+    figure->add_option("--transparency", figure_opacity,
+                       "instead: the transparency figure (exact, occupancy-ordered, weighted, opaque) with this hair opacity")
+        ->check(CLI::Range(0.001f, 1.0f));
 
     try {
         app.parse(argc, argv);
@@ -474,7 +489,7 @@ int main(int argc, char** argv) {
             for (auto part : detail::split(fig.methods, ',')) parse_method(std::string(part));
             parse_light(fig.light);
             fig.exec = o.exec();
-            return cli::run_figure(fig);
+            return figure_opacity > 0.0f ? cli::run_transparency_figure(fig, figure_opacity) : cli::run_figure(fig);
         }
     } catch (const usage_error& e) {
         std::fprintf(stderr, "error: %s\n", e.what());

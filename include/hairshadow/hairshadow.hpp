@@ -43,3 +43,4 @@
 #include <hairshadow/shading/image.hpp>
 #include <hairshadow/shading/kajiya_kay.hpp>
 #include <hairshadow/shading/scene.hpp>
+#include <hairshadow/shading/transparency.hpp>

@@ -2680,6 +2680,26 @@ struct occupancy_bitcount {
         return omega;
     }
 
+    /// Optical depth of the fragments in the slices before the slice a fragment at `depth` was
+    /// assigned to: the slabs in front, and the set bits of its own slab before its slice, each worth
+    /// the slab's mean. Divided by one fragment's b = -ln(1 - alpha) it is the depth order o of
+    /// Sintorn & Assarsson 3.4, exact where every fragment of the texel has a slice of its own and
+    /// the same alpha.
+    template <class Placement, class Accumulation>
+    static float optical_depth_in_front(const Placement& placement, const typename Placement::texel_state& state,
+                                        const storage<Placement, Accumulation>& in, float depth) noexcept {
+        constexpr int S = Placement::layer_count, per_slab = S / Slabs;
+        const int k = placement.assign(state, depth); // as the build placed it (the furthest fragment in the last slice)
+        float omega = 0.0f;
+        const int slab = k < 0 ? Slabs : k / per_slab; // a fragment the placement dropped: behind everything
+        for (int i = 0; i < std::min(slab, Slabs); ++i) omega += Accumulation::decode(in.slabs[std::size_t(i)]);
+        if (k < 0) return omega;
+        const int first = slab * per_slab;
+        const int set = count_bits(in.bits, first, first + per_slab);
+        if (set == 0) return omega;
+        return omega + Accumulation::decode(in.slabs[std::size_t(slab)]) / float(set) * float(count_bits(in.bits, first, k));
+    }
+
     template <class Placement, class Accumulation>
     static float optical_depth(const Placement& placement, const typename Placement::texel_state& state,
                                const storage<Placement, Accumulation>& in, float depth) noexcept {
@@ -3486,6 +3506,37 @@ inline std::vector<glm::vec3> strand_tangents(const hair_model& hair) {
     return t;
 }
 
+/// Calls visit(x, y, depth, coverage, colour) for every pixel each hair line covers in front of the
+/// surface, in rows [row0, row1): coverage of a line `line_width` pixels wide, depth as 1/w.
+template <class Visit>
+void for_each_line_pixel(const hair_model& hair, std::span<const glm::vec3> colours, const camera& cam, const std::vector<float>& surface_inv_w,
+                         float line_width, int row0, int row1, const std::vector<screen_point>& screen, Visit&& visit) {
+    const float reach = 0.5f * line_width + 0.5f;
+    const int w = cam.width;
+    for (std::size_t s = 0; s < hair.strand_count(); ++s)
+        for (std::uint32_t i = hair.strand_offsets[s]; i + 1 < hair.strand_offsets[s + 1]; ++i) {
+            const auto &a = screen[i], &b = screen[i + 1];
+            if (!a.valid || !b.valid) continue;
+            if (std::max(a.xy.y, b.xy.y) + reach < float(row0) || std::min(a.xy.y, b.xy.y) - reach > float(row1)) continue;
+            const glm::vec2 d = b.xy - a.xy;
+            const float length2 = glm::dot(d, d);
+            const int x0 = std::max(0, int(std::floor(std::min(a.xy.x, b.xy.x) - reach)));
+            const int x1 = std::min(w - 1, int(std::ceil(std::max(a.xy.x, b.xy.x) + reach)));
+            const int y0 = std::max(row0, int(std::floor(std::min(a.xy.y, b.xy.y) - reach)));
+            const int y1 = std::min(row1 - 1, int(std::ceil(std::max(a.xy.y, b.xy.y) + reach)));
+            for (int y = y0; y <= y1; ++y)
+                for (int x = x0; x <= x1; ++x) {
+                    const glm::vec2 p(float(x) + 0.5f, float(y) + 0.5f);
+                    const float t = length2 > 0.0f ? std::clamp(glm::dot(p - a.xy, d) / length2, 0.0f, 1.0f) : 0.0f;
+                    const float coverage = std::clamp(reach - glm::length(p - (a.xy + t * d)), 0.0f, 1.0f);
+                    if (!(coverage > 0.0f)) continue;
+                    const float inv_w = a.inv_w + t * (b.inv_w - a.inv_w);
+                    if (!surface_inv_w.empty() && !(inv_w > surface_inv_w[std::size_t(y) * std::size_t(w) + std::size_t(x)])) continue;
+                    visit(x, y, inv_w, coverage, colours[i] + t * (colours[i + 1] - colours[i]));
+                }
+        }
+}
+
 } // namespace detail
 
 /// Kajiya-Kay radiance towards the camera at every hair point, each light scaled by its visibility.
@@ -3513,17 +3564,6 @@ inline void draw_hair_lines(image& base, const hair_model& hair, std::span<const
     const glm::mat4 vp = cam.view_projection();
     std::vector<detail::screen_point> screen(hair.point_count());
     for (std::size_t i = 0; i < screen.size(); ++i) screen[i] = detail::to_screen(vp, hair.points[i], w, h);
-    struct segment {
-        std::uint32_t a, b;
-        float y0, y1;
-    };
-    std::vector<segment> segments;
-    segments.reserve(hair.segment_count());
-    for (std::size_t s = 0; s < hair.strand_count(); ++s)
-        for (std::uint32_t i = hair.strand_offsets[s]; i + 1 < hair.strand_offsets[s + 1]; ++i)
-            if (screen[i].valid && screen[i + 1].valid)
-                segments.push_back({i, i + 1, std::min(screen[i].xy.y, screen[i + 1].xy.y), std::max(screen[i].xy.y, screen[i + 1].xy.y)});
-    const float reach = 0.5f * options.line_width + 0.5f; // distance at which coverage reaches zero
     constexpr int band_rows = 8;
     const int bands = (h + band_rows - 1) / band_rows;
     parallel_for(std::size_t(bands), options.exec, [&](std::size_t band) {
@@ -3532,28 +3572,12 @@ inline void draw_hair_lines(image& base, const hair_model& hair, std::span<const
         std::vector<float> full_depth(n, 0.0f), best_coverage(n, 0.0f);
         std::vector<glm::vec3> full_colour(n), best_colour(n);
         std::vector<char> has_full(n, 0);
-        for (const auto& sg : segments) {
-            if (sg.y1 + reach < float(row0) || sg.y0 - reach > float(row1)) continue;
-            const auto &a = screen[sg.a], &b = screen[sg.b];
-            const glm::vec2 d = b.xy - a.xy;
-            const float length2 = glm::dot(d, d);
-            const int x0 = std::max(0, int(std::floor(std::min(a.xy.x, b.xy.x) - reach)));
-            const int x1 = std::min(w - 1, int(std::ceil(std::max(a.xy.x, b.xy.x) + reach)));
-            const int y0 = std::max(row0, int(std::floor(sg.y0 - reach))), y1 = std::min(row1 - 1, int(std::ceil(sg.y1 + reach)));
-            for (int y = y0; y <= y1; ++y)
-                for (int x = x0; x <= x1; ++x) {
-                    const glm::vec2 p(float(x) + 0.5f, float(y) + 0.5f);
-                    const float t = length2 > 0.0f ? std::clamp(glm::dot(p - a.xy, d) / length2, 0.0f, 1.0f) : 0.0f;
-                    const float coverage = std::clamp(reach - glm::length(p - (a.xy + t * d)), 0.0f, 1.0f);
-                    if (!(coverage > 0.0f)) continue;
-                    const float inv_w = a.inv_w + t * (b.inv_w - a.inv_w);
-                    if (!surface_inv_w.empty() && !(inv_w > surface_inv_w[std::size_t(y) * std::size_t(w) + std::size_t(x)])) continue;
-                    const std::size_t i = std::size_t(y - row0) * std::size_t(w) + std::size_t(x);
-                    const glm::vec3 c = point_colours[sg.a] + t * (point_colours[sg.b] - point_colours[sg.a]);
-                    if (coverage > best_coverage[i]) best_coverage[i] = coverage, best_colour[i] = c;
-                    if (coverage >= 0.5f && inv_w > full_depth[i]) full_depth[i] = inv_w, full_colour[i] = c, has_full[i] = 1;
-                }
-        }
+        detail::for_each_line_pixel(hair, point_colours, cam, surface_inv_w, options.line_width, row0, row1, screen,
+                                    [&](int x, int y, float inv_w, float coverage, const glm::vec3& c) {
+                                        const std::size_t i = std::size_t(y - row0) * std::size_t(w) + std::size_t(x);
+                                        if (coverage > best_coverage[i]) best_coverage[i] = coverage, best_colour[i] = c;
+                                        if (coverage >= 0.5f && inv_w > full_depth[i]) full_depth[i] = inv_w, full_colour[i] = c, has_full[i] = 1;
+                                    });
         for (int y = row0; y < row1; ++y)
             for (int x = 0; x < w; ++x) {
                 const std::size_t i = std::size_t(y - row0) * std::size_t(w) + std::size_t(x);
@@ -3595,4 +3619,180 @@ inline image render_cpu(const scene& sc, const camera& cam, std::span<const lit_
 
 } // namespace hairshadow
 // ---- end hairshadow/shading/cpu_renderer.hpp
+// ---- begin hairshadow/shading/transparency.hpp
+/// @file
+/// Transparent hair (Sintorn & Assarsson 2009, section 3.4): every hair fragment of the camera's view
+/// blended by an estimate of its depth order, from occupancy and slab maps built from the camera,
+/// against exact back-to-front blending, the weighted-average blending of Bavoil & Myers (2008) and
+/// opaque hair. The fragments are the CPU renderer's anti-aliased lines, each with alpha = coverage
+/// times the strand's opacity and its Kajiya-Kay colour.
+
+
+#include <algorithm>
+#include <string_view>
+
+namespace hairshadow {
+
+/// How hair fragments are blended over what lies behind them.
+enum class transparency {
+    none,      ///< opaque hair: each pixel shows its nearest fragment
+    occupancy, ///< occupancy-ordered blending (Sintorn & Assarsson 3.4)
+    weighted,  ///< weighted-average blending (Bavoil & Myers 2008)
+    exact,     ///< back-to-front blending of the sorted fragments
+};
+
+inline transparency parse_transparency(std::string_view name) {
+    if (name == "none") return transparency::none;
+    if (name == "occupancy") return transparency::occupancy;
+    if (name == "weighted") return transparency::weighted;
+    if (name == "exact") return transparency::exact;
+    throw argument_error("unknown transparency '" + std::string(name) + "'; valid: none, occupancy, weighted, exact");
+}
+
+/// A hair fragment seen from the camera.
+struct camera_fragment {
+    float depth; ///< view distance, normalised to [0, 1] between the camera's near and far planes
+    float alpha;
+    glm::vec3 colour;
+};
+
+/// Every pixel's hair fragments in front of the opaque surface, in drawing order.
+struct camera_fragments {
+    int width = 0, height = 0;
+    std::vector<std::uint64_t> offsets; ///< CSR: pixel i's fragments are [offsets[i], offsets[i + 1])
+    std::vector<camera_fragment> fragments;
+
+    std::span<const camera_fragment> pixel(std::size_t i) const noexcept {
+        return {fragments.data() + offsets[i], std::size_t(offsets[i + 1] - offsets[i])};
+    }
+};
+
+
+/// The hair's fragments from `cam`: anti-aliased lines of `line_width` pixels, alpha = coverage x
+/// `opacity`, coloured by `point_colours`, hidden by the surface's depths. Identical for any thread count.
+inline camera_fragments collect_camera_fragments(const hair_model& hair, std::span<const glm::vec3> point_colours, const camera& cam,
+                                                 const std::vector<float>& surface_inv_w, float opacity, const render_options& options = {}) {
+    camera::check_image_size(cam.width, cam.height);
+    const glm::mat4 vp = cam.view_projection();
+    std::vector<detail::screen_point> screen(hair.point_count());
+    for (std::size_t i = 0; i < screen.size(); ++i) screen[i] = detail::to_screen(vp, hair.points[i], cam.width, cam.height);
+    constexpr int band_rows = 8;
+    const int bands = (cam.height + band_rows - 1) / band_rows;
+    using located = std::pair<std::uint32_t, camera_fragment>; // (pixel, fragment)
+    std::vector<std::vector<located>> per_band(static_cast<std::size_t>(bands));
+    const float span = cam.far_plane - cam.near_plane;
+    parallel_for(std::size_t(bands), options.exec, [&](std::size_t band) {
+        const int row0 = int(band) * band_rows, row1 = std::min(cam.height, row0 + band_rows);
+        auto& out = per_band[band];
+        detail::for_each_line_pixel(hair, point_colours, cam, surface_inv_w, options.line_width, row0, row1, screen,
+                                    [&](int x, int y, float inv_w, float coverage, const glm::vec3& colour) {
+                                        out.push_back({std::uint32_t(y * cam.width + x),
+                                                       {(1.0f / inv_w - cam.near_plane) / span, std::min(coverage * opacity, HAIRSHADOW_ALPHA_MAX), colour}});
+                                    });
+        // Group by pixel, keeping drawing order inside each pixel.
+        std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    });
+    camera_fragments f;
+    f.width = cam.width;
+    f.height = cam.height;
+    const std::size_t pixels = std::size_t(cam.width) * std::size_t(cam.height);
+    f.offsets.assign(pixels + 1, 0);
+    for (const auto& band : per_band)
+        for (const auto& [pixel, fragment] : band) ++f.offsets[pixel + 1];
+    for (std::size_t i = 0; i < pixels; ++i) f.offsets[i + 1] += f.offsets[i];
+    f.fragments.reserve(f.offsets.back());
+    for (const auto& band : per_band) // bands are in pixel order, and pixels inside each band
+        for (const auto& [pixel, fragment] : band) f.fragments.push_back(fragment);
+    return f;
+}
+
+/// Blends every pixel's fragments over `base` (the opaque surface and background) by `mode`.
+/// Occupancy-ordered blending builds occupancy_maps<128, 4> from the fragments (Sintorn &
+/// Assarsson's configuration) and weights each fragment by exp(-optical depth in front of its
+/// slice) = (1 - alpha)^o, then rescales the hair's colour so that its alpha is the exact
+/// 1 - prod(1 - alpha_i) (the paper's correction; we scale by Lambda / alpha_sum, which is what
+/// makes the alpha right, where the paper's text reads alpha_sum / Lambda).
+namespace detail {
+inline aabb unit_box() {
+    aabb box;
+    box.add({0, 0, 0});
+    box.add({1, 1, 1});
+    return box;
+}
+} // namespace detail
+
+inline void blend_fragments(image& base, const camera_fragments& f, transparency mode, const execution& exec = {}) {
+    const std::size_t pixels = std::size_t(f.width) * std::size_t(f.height);
+    occupancy_maps<128, 4> order;
+    if (mode == transparency::occupancy) {
+        if (f.width != f.height) throw argument_error("occupancy-ordered blending needs a square image");
+        std::vector<fragment> plain(f.fragments.size());
+        for (std::size_t i = 0; i < plain.size(); ++i) plain[i] = {f.fragments[i].depth, f.fragments[i].alpha};
+        const fragment_buffer buffer(f.width, f.offsets, std::move(plain));
+        order.build(buffer, light_space::fit(light_spec::directional({0, 0, -1}), detail::unit_box(), f.width), exec);
+    }
+    parallel_for(pixels, exec, [&](std::size_t i) {
+        const auto frags = f.pixel(i);
+        if (frags.empty()) return;
+        glm::vec3& out = base.pixels[i];
+        switch (mode) {
+        case transparency::none: {
+            const auto nearest = std::min_element(frags.begin(), frags.end(), [](const auto& a, const auto& b) { return a.depth < b.depth; });
+            out = nearest->colour;
+            break;
+        }
+        case transparency::exact: {
+            std::vector<camera_fragment> sorted(frags.begin(), frags.end());
+            std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.depth > b.depth; });
+            for (const auto& g : sorted) out = g.alpha * g.colour + (1.0f - g.alpha) * out; // back to front
+            break;
+        }
+        case transparency::weighted: { // Bavoil & Myers: the average colour and alpha, n times
+            glm::vec3 colour(0.0f);
+            float alpha = 0.0f;
+            for (const auto& g : frags) colour += g.alpha * g.colour, alpha += g.alpha;
+            const float mean_alpha = alpha / float(frags.size());
+            const float behind = std::pow(1.0f - mean_alpha, float(frags.size()));
+            out = colour / alpha * (1.0f - behind) + behind * out;
+            break;
+        }
+        case transparency::occupancy: {
+            const int x = int(i % std::size_t(f.width)), y = int(i / std::size_t(f.width));
+            const auto& t = order.texel(x, y);
+            glm::vec3 colour(0.0f);
+            float alpha_sum = 0.0f, total = 0.0f;
+            for (const auto& g : frags) {
+                const float in_front = occupancy_bitcount<4>::optical_depth_in_front<depth_range<128>, float_accumulation>(order.placement(), t.placement,
+                                                                                                                      t.data, g.depth);
+                const float weight = std::exp(-in_front) * g.alpha; // (1 - alpha)^o alpha
+                colour += weight * g.colour;
+                alpha_sum += weight;
+                total += -std::log1p(-g.alpha);
+            }
+            const float lambda = 1.0f - std::exp(-total); // 1 - prod(1 - alpha_i)
+            out = colour * (lambda / alpha_sum) + (1.0f - lambda) * out;
+            break;
+        }
+        }
+    }, 1024);
+}
+
+/// Renders the scene with transparent hair of `opacity` per strand: the opaque mesh as render_cpu
+/// draws it, then every hair fragment blended by `mode`; transparency::none is render_cpu itself
+/// (opaque hair, anti-aliased by coverage).
+inline image render_transparent(const scene& sc, const camera& cam, std::span<const lit_light> lights, transparency mode, float opacity,
+                                const render_options& options = {}) {
+    if (mode == transparency::none) return render_cpu(sc, cam, lights, options);
+    if (!(opacity > 0.0f && opacity <= 1.0f)) throw argument_error("hair opacity must be in (0, 1]");
+    render_options opaque = options;
+    opaque.draw_hair = false;
+    image out = render_cpu(sc, cam, lights, opaque);
+    const auto surface = detail::rasterise_mesh(sc.mesh, cam, options.exec);
+    const auto colours = shade_hair_points(sc, cam, lights, options.exec);
+    blend_fragments(out, collect_camera_fragments(sc.hair, colours, cam, surface.inv_w, opacity, options), mode, options.exec);
+    return out;
+}
+
+} // namespace hairshadow
+// ---- end hairshadow/shading/transparency.hpp
 // ---- end hairshadow/hairshadow.hpp

@@ -76,6 +76,26 @@ struct occupancy_bitcount {
         return omega;
     }
 
+    /// Optical depth of the fragments in the slices before the slice a fragment at `depth` was
+    /// assigned to: the slabs in front, and the set bits of its own slab before its slice, each worth
+    /// the slab's mean. Divided by one fragment's b = -ln(1 - alpha) it is the depth order o of
+    /// Sintorn & Assarsson 3.4, exact where every fragment of the texel has a slice of its own and
+    /// the same alpha.
+    template <class Placement, class Accumulation>
+    static float optical_depth_in_front(const Placement& placement, const typename Placement::texel_state& state,
+                                        const storage<Placement, Accumulation>& in, float depth) noexcept {
+        constexpr int S = Placement::layer_count, per_slab = S / Slabs;
+        const int k = placement.assign(state, depth); // as the build placed it (the furthest fragment in the last slice)
+        float omega = 0.0f;
+        const int slab = k < 0 ? Slabs : k / per_slab; // a fragment the placement dropped: behind everything
+        for (int i = 0; i < std::min(slab, Slabs); ++i) omega += Accumulation::decode(in.slabs[std::size_t(i)]);
+        if (k < 0) return omega;
+        const int first = slab * per_slab;
+        const int set = count_bits(in.bits, first, first + per_slab);
+        if (set == 0) return omega;
+        return omega + Accumulation::decode(in.slabs[std::size_t(slab)]) / float(set) * float(count_bits(in.bits, first, k));
+    }
+
     template <class Placement, class Accumulation>
     static float optical_depth(const Placement& placement, const typename Placement::texel_state& state,
                                const storage<Placement, Accumulation>& in, float depth) noexcept {

@@ -139,6 +139,37 @@ inline std::vector<glm::vec3> strand_tangents(const hair_model& hair) {
     return t;
 }
 
+/// Calls visit(x, y, depth, coverage, colour) for every pixel each hair line covers in front of the
+/// surface, in rows [row0, row1): coverage of a line `line_width` pixels wide, depth as 1/w.
+template <class Visit>
+void for_each_line_pixel(const hair_model& hair, std::span<const glm::vec3> colours, const camera& cam, const std::vector<float>& surface_inv_w,
+                         float line_width, int row0, int row1, const std::vector<screen_point>& screen, Visit&& visit) {
+    const float reach = 0.5f * line_width + 0.5f;
+    const int w = cam.width;
+    for (std::size_t s = 0; s < hair.strand_count(); ++s)
+        for (std::uint32_t i = hair.strand_offsets[s]; i + 1 < hair.strand_offsets[s + 1]; ++i) {
+            const auto &a = screen[i], &b = screen[i + 1];
+            if (!a.valid || !b.valid) continue;
+            if (std::max(a.xy.y, b.xy.y) + reach < float(row0) || std::min(a.xy.y, b.xy.y) - reach > float(row1)) continue;
+            const glm::vec2 d = b.xy - a.xy;
+            const float length2 = glm::dot(d, d);
+            const int x0 = std::max(0, int(std::floor(std::min(a.xy.x, b.xy.x) - reach)));
+            const int x1 = std::min(w - 1, int(std::ceil(std::max(a.xy.x, b.xy.x) + reach)));
+            const int y0 = std::max(row0, int(std::floor(std::min(a.xy.y, b.xy.y) - reach)));
+            const int y1 = std::min(row1 - 1, int(std::ceil(std::max(a.xy.y, b.xy.y) + reach)));
+            for (int y = y0; y <= y1; ++y)
+                for (int x = x0; x <= x1; ++x) {
+                    const glm::vec2 p(float(x) + 0.5f, float(y) + 0.5f);
+                    const float t = length2 > 0.0f ? std::clamp(glm::dot(p - a.xy, d) / length2, 0.0f, 1.0f) : 0.0f;
+                    const float coverage = std::clamp(reach - glm::length(p - (a.xy + t * d)), 0.0f, 1.0f);
+                    if (!(coverage > 0.0f)) continue;
+                    const float inv_w = a.inv_w + t * (b.inv_w - a.inv_w);
+                    if (!surface_inv_w.empty() && !(inv_w > surface_inv_w[std::size_t(y) * std::size_t(w) + std::size_t(x)])) continue;
+                    visit(x, y, inv_w, coverage, colours[i] + t * (colours[i + 1] - colours[i]));
+                }
+        }
+}
+
 } // namespace detail
 
 /// Kajiya-Kay radiance towards the camera at every hair point, each light scaled by its visibility.
@@ -166,17 +197,6 @@ inline void draw_hair_lines(image& base, const hair_model& hair, std::span<const
     const glm::mat4 vp = cam.view_projection();
     std::vector<detail::screen_point> screen(hair.point_count());
     for (std::size_t i = 0; i < screen.size(); ++i) screen[i] = detail::to_screen(vp, hair.points[i], w, h);
-    struct segment {
-        std::uint32_t a, b;
-        float y0, y1;
-    };
-    std::vector<segment> segments;
-    segments.reserve(hair.segment_count());
-    for (std::size_t s = 0; s < hair.strand_count(); ++s)
-        for (std::uint32_t i = hair.strand_offsets[s]; i + 1 < hair.strand_offsets[s + 1]; ++i)
-            if (screen[i].valid && screen[i + 1].valid)
-                segments.push_back({i, i + 1, std::min(screen[i].xy.y, screen[i + 1].xy.y), std::max(screen[i].xy.y, screen[i + 1].xy.y)});
-    const float reach = 0.5f * options.line_width + 0.5f; // distance at which coverage reaches zero
     constexpr int band_rows = 8;
     const int bands = (h + band_rows - 1) / band_rows;
     parallel_for(std::size_t(bands), options.exec, [&](std::size_t band) {
@@ -185,28 +205,12 @@ inline void draw_hair_lines(image& base, const hair_model& hair, std::span<const
         std::vector<float> full_depth(n, 0.0f), best_coverage(n, 0.0f);
         std::vector<glm::vec3> full_colour(n), best_colour(n);
         std::vector<char> has_full(n, 0);
-        for (const auto& sg : segments) {
-            if (sg.y1 + reach < float(row0) || sg.y0 - reach > float(row1)) continue;
-            const auto &a = screen[sg.a], &b = screen[sg.b];
-            const glm::vec2 d = b.xy - a.xy;
-            const float length2 = glm::dot(d, d);
-            const int x0 = std::max(0, int(std::floor(std::min(a.xy.x, b.xy.x) - reach)));
-            const int x1 = std::min(w - 1, int(std::ceil(std::max(a.xy.x, b.xy.x) + reach)));
-            const int y0 = std::max(row0, int(std::floor(sg.y0 - reach))), y1 = std::min(row1 - 1, int(std::ceil(sg.y1 + reach)));
-            for (int y = y0; y <= y1; ++y)
-                for (int x = x0; x <= x1; ++x) {
-                    const glm::vec2 p(float(x) + 0.5f, float(y) + 0.5f);
-                    const float t = length2 > 0.0f ? std::clamp(glm::dot(p - a.xy, d) / length2, 0.0f, 1.0f) : 0.0f;
-                    const float coverage = std::clamp(reach - glm::length(p - (a.xy + t * d)), 0.0f, 1.0f);
-                    if (!(coverage > 0.0f)) continue;
-                    const float inv_w = a.inv_w + t * (b.inv_w - a.inv_w);
-                    if (!surface_inv_w.empty() && !(inv_w > surface_inv_w[std::size_t(y) * std::size_t(w) + std::size_t(x)])) continue;
-                    const std::size_t i = std::size_t(y - row0) * std::size_t(w) + std::size_t(x);
-                    const glm::vec3 c = point_colours[sg.a] + t * (point_colours[sg.b] - point_colours[sg.a]);
-                    if (coverage > best_coverage[i]) best_coverage[i] = coverage, best_colour[i] = c;
-                    if (coverage >= 0.5f && inv_w > full_depth[i]) full_depth[i] = inv_w, full_colour[i] = c, has_full[i] = 1;
-                }
-        }
+        detail::for_each_line_pixel(hair, point_colours, cam, surface_inv_w, options.line_width, row0, row1, screen,
+                                    [&](int x, int y, float inv_w, float coverage, const glm::vec3& c) {
+                                        const std::size_t i = std::size_t(y - row0) * std::size_t(w) + std::size_t(x);
+                                        if (coverage > best_coverage[i]) best_coverage[i] = coverage, best_colour[i] = c;
+                                        if (coverage >= 0.5f && inv_w > full_depth[i]) full_depth[i] = inv_w, full_colour[i] = c, has_full[i] = 1;
+                                    });
         for (int y = row0; y < row1; ++y)
             for (int x = 0; x < w; ++x) {
                 const std::size_t i = std::size_t(y - row0) * std::size_t(w) + std::size_t(x);
