@@ -169,6 +169,17 @@ TEST_CASE("renders are identical for any thread count", "[shading]") {
     CHECK(mean_absolute_difference(a, image(120, 100, sc.background)) > 0.01); // something was drawn
 }
 
+TEST_CASE("a spot light lights its cone only", "[shading]") {
+    scene sc;
+    sc.hair = make_procedural({.style = hair_style::straight, .strands = 300, .segments = 8});
+    const scene_light spot{light_spec::spot({0, 0.6f, 0}, {0, -1, 0}, 10.0f), glm::vec3(1.0f)};
+    const lit_light light{spot, {}, {}};
+    const std::vector<glm::vec3> points{{0, 0.1f, 0}, {0.3f, -0.1f, 0.3f}};
+    const auto v = light_visibility(light, points);
+    CHECK(v[0] == 1.0f); // on the axis
+    CHECK(v[1] == 0.0f); // 36 degrees off it
+}
+
 TEST_CASE("bad images and spheres are refused", "[shading][errors]") {
     aabb box;
     box.add({0, 0, 0});
@@ -177,6 +188,11 @@ TEST_CASE("bad images and spheres are refused", "[shading][errors]") {
     CHECK_THROWS_AS(camera::framing(box, 0, 0, 10, HAIRSHADOW_MAX_RESOLUTION + 1), argument_error);
     CHECK_THROWS_AS(camera::framing(aabb{}, 0, 0, 10, 10), argument_error);
     CHECK_THROWS_AS(camera::framing(box, 0, 0, 10, 10, std::nanf("")), argument_error);
+    CHECK_THROWS_AS(camera::framing(box, std::nanf(""), 0, 10, 10), argument_error);
+    CHECK_THROWS_AS(camera::framing(box, 0, 90, 10, 10), argument_error);
+    aabb point;
+    point.add({1, 1, 1});
+    CHECK_THROWS_AS(camera::framing(point, 0, 0, 10, 10), argument_error); // nothing to see around
     CHECK_THROWS_AS(make_sphere({0, 0, 0}, -1.0f), argument_error);
     CHECK_THROWS_AS(make_sphere({0, 0, 0}, 1.0f, 1), argument_error);
 }

@@ -49,7 +49,7 @@ std::string pretty(const std::string& spec) {
 /// A colour ramp for errors in [0, 1]: black, blue, magenta, orange, yellow.
 glm::vec3 heat(float v) {
     static const glm::vec3 stops[] = {{0.02f, 0.02f, 0.05f}, {0.10f, 0.15f, 0.75f}, {0.75f, 0.10f, 0.55f}, {1.0f, 0.45f, 0.05f}, {1.0f, 1.0f, 0.35f}};
-    const float x = std::clamp(v, 0.0f, 1.0f) * 4.0f;
+    const float x = (v > 0.0f ? std::min(v, 1.0f) : 0.0f) * 4.0f; // NaN counts as 0
     const int i = std::min(3, int(x));
     return stops[i] + (x - float(i)) * (stops[i + 1] - stops[i]);
 }
@@ -261,7 +261,7 @@ int run_figure(const figure_options& o) {
     // The colour bar as a last cell.
     image bar(o.size, o.size, paper);
     for (int y = 40; y < o.size - 40; ++y)
-        for (int x = o.size / 2 - 20; x < o.size / 2 + 20; ++x) bar.at(x, y) = heat(1.0f - float(y - 40) / float(o.size - 81));
+        for (int x = o.size / 2 - 20; x < o.size / 2 + 20; ++x) bar.at(x, y) = heat(1.0f - float(y - 40) / float(std::max(1, o.size - 81)));
     draw_text(bar, o.size / 2 + 28, 36, "0.5 or more", ink);
     draw_text(bar, o.size / 2 + 28, o.size - 50, "0", ink);
     heat_cells.push_back(bar);

@@ -430,7 +430,7 @@ int main(int argc, char** argv) {
     render->add_option("--fill-light", view.fill_lights, "another light, dimmer, with its own maps (repeatable)");
     render->add_option("--azimuth", view.azimuth, "camera azimuth in degrees about +y");
     render->add_option("--elevation", view.elevation, "camera elevation in degrees")->check(CLI::Range(-89.0f, 89.0f));
-    render->add_option("--size", view.size, "image size in pixels");
+    render->add_option("--size", view.size, "image size in pixels")->check(CLI::Range(1, HAIRSHADOW_MAX_RESOLUTION));
     render->add_option("--transparency", view.transparency,
                        "none (opaque hair), occupancy (Sintorn & Assarsson 3.4), weighted (Bavoil & Myers), exact (sorted)")
         ->check(CLI::IsMember({"none", "occupancy", "weighted", "exact"}));

@@ -9,6 +9,13 @@
 
 namespace cli {
 
+/// `text` with every byte stb_easy_font has no glyph for (outside ' '..'~') shown as '?'.
+inline std::string printable(std::string text) {
+    for (auto& c : text)
+        if (c != '\n' && (c < ' ' || c > '~')) c = '?';
+    return text;
+}
+
 /// Draws `text` with its top-left corner at (x, y), `scale` pixels per font unit, in `colour`.
 inline void draw_text(hairshadow::image& img, int x, int y, const std::string& text, const glm::vec3& colour, int scale = 2) {
     struct vertex {
@@ -16,7 +23,7 @@ inline void draw_text(hairshadow::image& img, int x, int y, const std::string& t
         unsigned char colour[4];
     };
     std::vector<vertex> quads(text.size() * 70 + 4); // stb_easy_font's bound: at most ~270 bytes a character
-    std::string copy = text;
+    std::string copy = printable(text);
     const int count = stb_easy_font_print(0, 0, copy.data(), nullptr, quads.data(), int(quads.size() * sizeof(vertex)));
     for (int q = 0; q < count; ++q) {
         const vertex* v = &quads[std::size_t(4 * q)];
@@ -28,7 +35,7 @@ inline void draw_text(hairshadow::image& img, int x, int y, const std::string& t
 
 /// Width in pixels of `text` at `scale`.
 inline int text_width(const std::string& text, int scale = 2) {
-    std::string copy = text;
+    std::string copy = printable(text);
     return stb_easy_font_width(copy.data()) * scale;
 }
 

@@ -3,6 +3,7 @@
 layout(location = 0) in vec3 hs_position;
 layout(location = 1) in vec3 hs_tangent;
 uniform mat4 hs_camera_view_projection;
+invariant gl_Position; // the same depth in every light's pass (GL_LEQUAL)
 uniform vec3 hs_eye;
 uniform vec3 hs_hair_colour;
 uniform vec3 hs_hair_specular;

@@ -5,6 +5,7 @@ uniform vec3 hs_light_colour;
 uniform vec3 hs_light_position;  // point and spot lights
 uniform vec3 hs_light_direction; // directional lights: the direction the light travels
 uniform bool hs_light_directional;
+uniform float hs_light_cos_cone; // spot lights: cos of the half angle; -2 for the others
 uniform float hs_ambient_weight; // 1 in the first pass, 0 after
 uniform sampler2D hs_mesh_depth;
 uniform float hs_mesh_bias;
@@ -21,4 +22,9 @@ float hs_mesh_visibility(vec3 p) {
     return depth <= texelFetch(hs_mesh_depth, ivec2(window), 0).r + hs_mesh_bias ? 1.0 : 0.0;
 }
 
-float hs_light_visibility(vec3 p) { return hs_transmittance(p) * hs_mesh_visibility(p); }
+float hs_spot_cone(vec3 p) {
+    vec3 d = p - hs_light_position;
+    return dot(d, hs_light_direction) >= hs_light_cos_cone * length(d) * length(hs_light_direction) ? 1.0 : 0.0;
+}
+
+float hs_light_visibility(vec3 p) { return hs_transmittance(p) * hs_mesh_visibility(p) * hs_spot_cone(p); }

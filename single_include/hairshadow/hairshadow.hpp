@@ -3107,11 +3107,14 @@ struct camera {
         if (box.empty()) throw argument_error("camera: nothing to frame");
         check_image_size(width, height);
         if (!(zoom > 0.0f) || !std::isfinite(zoom)) throw argument_error("camera: zoom must be positive");
+        if (!std::isfinite(azimuth_degrees) || !std::isfinite(elevation_degrees)) throw argument_error("camera: angles must be finite");
+        if (!(std::abs(elevation_degrees) < 89.9f)) throw argument_error("camera: elevation must be within (-89.9, 89.9) degrees");
         camera c;
         c.width = width;
         c.height = height;
         c.target = box.center();
         const float radius = 0.5f * glm::length(box.max - box.min);
+        if (!(radius > 0.0f) || !std::isfinite(radius)) throw argument_error("camera: the scene has no extent to frame");
         const float distance = radius / std::sin(glm::radians(0.5f * c.fov_y_degrees)) / zoom;
         const float az = glm::radians(azimuth_degrees), el = glm::radians(elevation_degrees);
         c.eye = c.target + distance * glm::vec3(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));
@@ -3151,6 +3154,13 @@ struct camera {
 
 namespace hairshadow {
 
+namespace detail {
+/// floor(v) and ceil(v) as pixel indices clamped to [lo, hi] before the conversion (window
+/// coordinates of points near the eye or light plane can be beyond int's range); NaN gives lo.
+inline int floor_index(float v, int lo, int hi) noexcept { return v > float(lo) ? int(std::min(std::floor(v), float(hi))) : lo; }
+inline int ceil_index(float v, int lo, int hi) noexcept { return v > float(lo) ? int(std::min(std::ceil(v), float(hi))) : lo; }
+} // namespace detail
+
 /// Bias of the mesh's depth comparisons, in linear depth units (of the light's near-far range):
 /// enough to keep a surface lit by its own map on the Sintel head at 512x512.
 inline constexpr float default_mesh_bias = 6e-3f;
@@ -3187,8 +3197,8 @@ public:
                 if (y < std::min({a.window.y, b.window.y, c.window.y}) || y > std::max({a.window.y, b.window.y, c.window.y})) continue;
                 const float area = edge(a.window, b.window, c.window);
                 if (!(std::abs(area) > 0.0f)) continue;
-                const int x0 = std::max(0, int(std::floor(std::min({a.window.x, b.window.x, c.window.x}))));
-                const int x1 = std::min(res - 1, int(std::ceil(std::max({a.window.x, b.window.x, c.window.x}))));
+                const int x0 = detail::floor_index(std::min({a.window.x, b.window.x, c.window.x}), 0, res - 1);
+                const int x1 = detail::ceil_index(std::max({a.window.x, b.window.x, c.window.x}), 0, res - 1);
                 for (int x = x0; x <= x1; ++x) {
                     const glm::vec2 p(float(x) + 0.5f, y);
                     const float w0 = edge(b.window, c.window, p) / area, w1 = edge(c.window, a.window, p) / area, w2 = edge(a.window, b.window, p) / area;
@@ -3286,6 +3296,7 @@ inline double mean_absolute_difference(const image& a, const image& b) {
 
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <glm/vec3.hpp>
 
 #include <algorithm>
@@ -3306,6 +3317,15 @@ inline glm::vec3 direction_to_light(const light_spec& light, const glm::vec3& po
     const glm::vec3 d = light.type == light_type::directional ? -light.direction : light.position - point;
     const float length = glm::length(d);
     return length > 0.0f ? d / length : glm::vec3(0, 1, 0);
+}
+
+/// 1 inside a spot light's cone (and for other lights), 0 outside it.
+inline float spot_cone(const light_spec& light, const glm::vec3& point) noexcept {
+    if (light.type != light_type::spot) return 1.0f;
+    const glm::vec3 d = point - light.position;
+    const float length = glm::length(d), axis = glm::length(light.direction);
+    if (!(length > 0.0f) || !(axis > 0.0f)) return 0.0f;
+    return glm::dot(d, light.direction) / (length * axis) >= std::cos(glm::radians(light.spot_half_angle_degrees)) ? 1.0f : 0.0f;
 }
 
 /// Light reflected towards `to_eye` by a strand with unit `tangent` lit from `to_light`, per unit
@@ -3408,11 +3428,12 @@ struct render_options {
     execution exec;
 };
 
-/// A light's visibility at `points`: the hair's transmittance times the mesh's depth test.
+/// A light's visibility at `points`: the hair's transmittance times the mesh's depth test (and a
+/// spot light's cone).
 inline std::vector<float> light_visibility(const lit_light& light, std::span<const glm::vec3> points, const execution& exec = {}) {
     std::vector<float> v(points.size(), 1.0f);
     if (light.hair) light.hair(points, v);
-    parallel_for(points.size(), exec, [&](std::size_t i) { v[i] *= light.mesh.visibility(points[i]); }, 4096);
+    parallel_for(points.size(), exec, [&](std::size_t i) { v[i] *= light.mesh.visibility(points[i]) * spot_cone(light.light.spec, points[i]); }, 4096);
     return v;
 }
 
@@ -3473,8 +3494,8 @@ inline surface_buffer rasterise_mesh(const triangle_mesh& mesh, const camera& ca
             if (y < std::min({a.xy.y, b.xy.y, c.xy.y}) || y > std::max({a.xy.y, b.xy.y, c.xy.y})) continue;
             const float area = edge_function(a.xy, b.xy, c.xy);
             if (!(std::abs(area) > 0.0f)) continue;
-            const int x0 = std::max(0, int(std::floor(std::min({a.xy.x, b.xy.x, c.xy.x}))));
-            const int x1 = std::min(w - 1, int(std::ceil(std::max({a.xy.x, b.xy.x, c.xy.x}))));
+            const int x0 = floor_index(std::min({a.xy.x, b.xy.x, c.xy.x}), 0, w - 1);
+            const int x1 = ceil_index(std::max({a.xy.x, b.xy.x, c.xy.x}), 0, w - 1);
             for (int x = x0; x <= x1; ++x) {
                 const glm::vec2 p(float(x) + 0.5f, y);
                 const float l0 = edge_function(b.xy, c.xy, p) / area, l1 = edge_function(c.xy, a.xy, p) / area, l2 = edge_function(a.xy, b.xy, p) / area;
@@ -3520,10 +3541,10 @@ void for_each_line_pixel(const hair_model& hair, std::span<const glm::vec3> colo
             if (std::max(a.xy.y, b.xy.y) + reach < float(row0) || std::min(a.xy.y, b.xy.y) - reach > float(row1)) continue;
             const glm::vec2 d = b.xy - a.xy;
             const float length2 = glm::dot(d, d);
-            const int x0 = std::max(0, int(std::floor(std::min(a.xy.x, b.xy.x) - reach)));
-            const int x1 = std::min(w - 1, int(std::ceil(std::max(a.xy.x, b.xy.x) + reach)));
-            const int y0 = std::max(row0, int(std::floor(std::min(a.xy.y, b.xy.y) - reach)));
-            const int y1 = std::min(row1 - 1, int(std::ceil(std::max(a.xy.y, b.xy.y) + reach)));
+            const int x0 = floor_index(std::min(a.xy.x, b.xy.x) - reach, 0, w - 1);
+            const int x1 = ceil_index(std::max(a.xy.x, b.xy.x) + reach, 0, w - 1);
+            const int y0 = floor_index(std::min(a.xy.y, b.xy.y) - reach, row0, row1 - 1);
+            const int y1 = ceil_index(std::max(a.xy.y, b.xy.y) + reach, row0, row1 - 1);
             for (int y = y0; y <= y1; ++y)
                 for (int x = x0; x <= x1; ++x) {
                     const glm::vec2 p(float(x) + 0.5f, float(y) + 0.5f);
@@ -3751,6 +3772,7 @@ inline void blend_fragments(image& base, const camera_fragments& f, transparency
             glm::vec3 colour(0.0f);
             float alpha = 0.0f;
             for (const auto& g : frags) colour += g.alpha * g.colour, alpha += g.alpha;
+            if (!(alpha > 0.0f)) break; // nothing visible
             const float mean_alpha = alpha / float(frags.size());
             const float behind = std::pow(1.0f - mean_alpha, float(frags.size()));
             out = colour / alpha * (1.0f - behind) + behind * out;
@@ -3769,6 +3791,7 @@ inline void blend_fragments(image& base, const camera_fragments& f, transparency
                 alpha_sum += weight;
                 total += -std::log1p(-g.alpha);
             }
+            if (!(alpha_sum > 0.0f)) break;
             const float lambda = 1.0f - std::exp(-total); // 1 - prod(1 - alpha_i)
             out = colour * (lambda / alpha_sum) + (1.0f - lambda) * out;
             break;

@@ -20,21 +20,22 @@ scene small_scene() {
 }
 } // namespace
 
-TEST_CASE("the GL renderer draws what the CPU renderer draws", "[gl][render]") {
+template <class Method>
+void check_renderers_agree() {
     test::gl_context();
     const auto sc = small_scene();
     const auto cam = camera::framing(sc.bounds(), 20.0f, 10.0f, 160, 160);
     std::vector<lit_light> cpu_lights;
-    std::vector<std::unique_ptr<deep_opacity_maps<3>>> cpu_maps;
-    std::vector<std::unique_ptr<gl::maps<deep_opacity_maps<3>>>> gl_maps;
+    std::vector<std::unique_ptr<Method>> cpu_maps;
+    std::vector<std::unique_ptr<gl::maps<Method>>> gl_maps;
     gl::hair_mesh mesh(sc.hair);
     gl::scene_renderer renderer(sc);
     for (const auto& light : sc.lights) {
         const auto space = light_space::fit(light.spec, sc.bounds(), 256);
-        cpu_maps.push_back(std::make_unique<deep_opacity_maps<3>>());
+        cpu_maps.push_back(std::make_unique<Method>());
         cpu_maps.back()->build(rasterize(sc.hair, space), space);
         cpu_lights.push_back({light, query_of(*cpu_maps.back()), depth_shadow_map(sc.mesh, space)});
-        gl_maps.push_back(std::make_unique<gl::maps<deep_opacity_maps<3>>>());
+        gl_maps.push_back(std::make_unique<gl::maps<Method>>());
         gl_maps.back()->build(mesh, space);
         renderer.add_light(light, *gl_maps.back());
     }
@@ -63,4 +64,10 @@ TEST_CASE("the GL renderer draws what the CPU renderer draws", "[gl][render]") {
     CAPTURE(on_cpu_darkening, on_gl_darkening);
     CHECK(on_cpu_darkening > 0.002); // linear RGB averaged over the whole image, background included
     CHECK(on_gl_darkening == Approx(on_cpu_darkening).epsilon(0.25));
+}
+
+TEST_CASE("the GL renderer draws what the CPU renderer draws", "[gl][render]") {
+    SECTION("deep opacity maps 3") { check_renderers_agree<deep_opacity_maps<3>>(); }
+    // 256 slices and 8 slabs: a look-up reading 5 texture units beside the mesh's depth map.
+    SECTION("occupancy maps 256/8") { check_renderers_agree<occupancy_maps<256, 8>>(); }
 }

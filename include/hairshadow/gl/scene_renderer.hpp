@@ -100,6 +100,10 @@ float hs_transmittance(vec3 world_pos) { return 1.0; }
     /// the lines' coverage) into framebuffer `target` (0: the window's), over the whole viewport.
     void render_into(const camera& cam, GLuint target, int samples = 8) const {
         camera::check_image_size(cam.width, cam.height);
+        // State a caller may have left that would keep the new buffers from being cleared.
+        glDepthMask(GL_TRUE);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glDisable(GL_SCISSOR_TEST);
         GLint max_samples = 1;
         glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
         samples = std::clamp(samples, 1, int(max_samples));
@@ -153,6 +157,7 @@ float hs_transmittance(vec3 world_pos) { return 1.0; }
     /// Draws the scene into framebuffer `target` (0: the window's) encoded as sRGB for display: the
     /// multisampled render resolved into a linear texture, then encoded by a full-screen pass.
     void present(const camera& cam, GLuint target, int samples = 4) {
+        camera::check_image_size(cam.width, cam.height);
         if (!present_program_.get()) {
             const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::passes_fullscreen_vertex}, "passes/fullscreen_vertex");
             const auto fs = compile_shader(GL_FRAGMENT_SHADER, {version, shaders::render_present}, "render/present");
@@ -183,6 +188,8 @@ float hs_transmittance(vec3 world_pos) { return 1.0; }
 
 private:
     static constexpr std::string_view version = "#version 430 core\n";
+    /// The mesh's depth map sits on the last of the 16 units GL 4.3 guarantees, clear of any look-up's.
+    static constexpr int mesh_depth_unit = 15;
 
     struct geometry {
         vertex_array vao = make_vertex_array();
@@ -266,10 +273,10 @@ private:
     }
 
     void set_pass_uniforms(GLuint prog, const light_entry& l, const camera& cam, bool first) const {
-        l.bind_lookup(prog); // texture units 0-2
-        glActiveTexture(GL_TEXTURE3);
+        l.bind_lookup(prog); // texture units from 0: as many as the method's look-up reads (up to 5)
+        glActiveTexture(GLenum(GL_TEXTURE0 + mesh_depth_unit));
         glBindTexture(GL_TEXTURE_2D, l.mesh_depth.get());
-        glUniform1i(glGetUniformLocation(prog, "hs_mesh_depth"), 3);
+        glUniform1i(glGetUniformLocation(prog, "hs_mesh_depth"), mesh_depth_unit);
         glActiveTexture(GL_TEXTURE0);
         glUniform1f(glGetUniformLocation(prog, "hs_mesh_bias"), l.mesh_bias);
         const auto vp = cam.view_projection();
@@ -279,6 +286,8 @@ private:
         glUniform3fv(glGetUniformLocation(prog, "hs_light_position"), 1, &l.light.spec.position[0]);
         glUniform3fv(glGetUniformLocation(prog, "hs_light_direction"), 1, &l.light.spec.direction[0]);
         glUniform1i(glGetUniformLocation(prog, "hs_light_directional"), l.light.spec.type == light_type::directional);
+        glUniform1f(glGetUniformLocation(prog, "hs_light_cos_cone"),
+                    l.light.spec.type == light_type::spot ? std::cos(glm::radians(l.light.spec.spot_half_angle_degrees)) : -2.0f);
         glUniform1f(glGetUniformLocation(prog, "hs_ambient_weight"), first ? 1.0f : 0.0f);
         const auto& m = scene_.material;
         glUniform3fv(glGetUniformLocation(prog, "hs_hair_colour"), 1, &m.colour[0]);

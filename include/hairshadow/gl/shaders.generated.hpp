@@ -608,6 +608,7 @@ inline constexpr std::string_view render_hair_vertex = R"hs_glsl(// Hair, vertex
 layout(location = 0) in vec3 hs_position;
 layout(location = 1) in vec3 hs_tangent;
 uniform mat4 hs_camera_view_projection;
+invariant gl_Position; // the same depth in every light's pass (GL_LEQUAL)
 uniform vec3 hs_eye;
 uniform vec3 hs_hair_colour;
 uniform vec3 hs_hair_specular;
@@ -633,6 +634,7 @@ uniform vec3 hs_light_colour;
 uniform vec3 hs_light_position;  // point and spot lights
 uniform vec3 hs_light_direction; // directional lights: the direction the light travels
 uniform bool hs_light_directional;
+uniform float hs_light_cos_cone; // spot lights: cos of the half angle; -2 for the others
 uniform float hs_ambient_weight; // 1 in the first pass, 0 after
 uniform sampler2D hs_mesh_depth;
 uniform float hs_mesh_bias;
@@ -649,7 +651,12 @@ float hs_mesh_visibility(vec3 p) {
     return depth <= texelFetch(hs_mesh_depth, ivec2(window), 0).r + hs_mesh_bias ? 1.0 : 0.0;
 }
 
-float hs_light_visibility(vec3 p) { return hs_transmittance(p) * hs_mesh_visibility(p); }
+float hs_spot_cone(vec3 p) {
+    vec3 d = p - hs_light_position;
+    return dot(d, hs_light_direction) >= hs_light_cos_cone * length(d) * length(hs_light_direction) ? 1.0 : 0.0;
+}
+
+float hs_light_visibility(vec3 p) { return hs_transmittance(p) * hs_mesh_visibility(p) * hs_spot_cone(p); }
 )hs_glsl";
 
 /// shaders/render/mesh_depth.glsl
@@ -682,6 +689,7 @@ inline constexpr std::string_view render_mesh_vertex = R"hs_glsl(// Opaque mesh,
 layout(location = 0) in vec3 hs_position;
 layout(location = 1) in vec3 hs_normal;
 uniform mat4 hs_camera_view_projection;
+invariant gl_Position; // the same depth in every light's pass (GL_LEQUAL)
 out vec3 hs_world;
 out vec3 hs_world_normal;
 void main() {

@@ -31,11 +31,14 @@ struct camera {
         if (box.empty()) throw argument_error("camera: nothing to frame");
         check_image_size(width, height);
         if (!(zoom > 0.0f) || !std::isfinite(zoom)) throw argument_error("camera: zoom must be positive");
+        if (!std::isfinite(azimuth_degrees) || !std::isfinite(elevation_degrees)) throw argument_error("camera: angles must be finite");
+        if (!(std::abs(elevation_degrees) < 89.9f)) throw argument_error("camera: elevation must be within (-89.9, 89.9) degrees");
         camera c;
         c.width = width;
         c.height = height;
         c.target = box.center();
         const float radius = 0.5f * glm::length(box.max - box.min);
+        if (!(radius > 0.0f) || !std::isfinite(radius)) throw argument_error("camera: the scene has no extent to frame");
         const float distance = radius / std::sin(glm::radians(0.5f * c.fov_y_degrees)) / zoom;
         const float az = glm::radians(azimuth_degrees), el = glm::radians(elevation_degrees);
         c.eye = c.target + distance * glm::vec3(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));

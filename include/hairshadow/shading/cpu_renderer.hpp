@@ -41,11 +41,12 @@ struct render_options {
     execution exec;
 };
 
-/// A light's visibility at `points`: the hair's transmittance times the mesh's depth test.
+/// A light's visibility at `points`: the hair's transmittance times the mesh's depth test (and a
+/// spot light's cone).
 inline std::vector<float> light_visibility(const lit_light& light, std::span<const glm::vec3> points, const execution& exec = {}) {
     std::vector<float> v(points.size(), 1.0f);
     if (light.hair) light.hair(points, v);
-    parallel_for(points.size(), exec, [&](std::size_t i) { v[i] *= light.mesh.visibility(points[i]); }, 4096);
+    parallel_for(points.size(), exec, [&](std::size_t i) { v[i] *= light.mesh.visibility(points[i]) * spot_cone(light.light.spec, points[i]); }, 4096);
     return v;
 }
 
@@ -106,8 +107,8 @@ inline surface_buffer rasterise_mesh(const triangle_mesh& mesh, const camera& ca
             if (y < std::min({a.xy.y, b.xy.y, c.xy.y}) || y > std::max({a.xy.y, b.xy.y, c.xy.y})) continue;
             const float area = edge_function(a.xy, b.xy, c.xy);
             if (!(std::abs(area) > 0.0f)) continue;
-            const int x0 = std::max(0, int(std::floor(std::min({a.xy.x, b.xy.x, c.xy.x}))));
-            const int x1 = std::min(w - 1, int(std::ceil(std::max({a.xy.x, b.xy.x, c.xy.x}))));
+            const int x0 = floor_index(std::min({a.xy.x, b.xy.x, c.xy.x}), 0, w - 1);
+            const int x1 = ceil_index(std::max({a.xy.x, b.xy.x, c.xy.x}), 0, w - 1);
             for (int x = x0; x <= x1; ++x) {
                 const glm::vec2 p(float(x) + 0.5f, y);
                 const float l0 = edge_function(b.xy, c.xy, p) / area, l1 = edge_function(c.xy, a.xy, p) / area, l2 = edge_function(a.xy, b.xy, p) / area;
@@ -153,10 +154,10 @@ void for_each_line_pixel(const hair_model& hair, std::span<const glm::vec3> colo
             if (std::max(a.xy.y, b.xy.y) + reach < float(row0) || std::min(a.xy.y, b.xy.y) - reach > float(row1)) continue;
             const glm::vec2 d = b.xy - a.xy;
             const float length2 = glm::dot(d, d);
-            const int x0 = std::max(0, int(std::floor(std::min(a.xy.x, b.xy.x) - reach)));
-            const int x1 = std::min(w - 1, int(std::ceil(std::max(a.xy.x, b.xy.x) + reach)));
-            const int y0 = std::max(row0, int(std::floor(std::min(a.xy.y, b.xy.y) - reach)));
-            const int y1 = std::min(row1 - 1, int(std::ceil(std::max(a.xy.y, b.xy.y) + reach)));
+            const int x0 = floor_index(std::min(a.xy.x, b.xy.x) - reach, 0, w - 1);
+            const int x1 = ceil_index(std::max(a.xy.x, b.xy.x) + reach, 0, w - 1);
+            const int y0 = floor_index(std::min(a.xy.y, b.xy.y) - reach, row0, row1 - 1);
+            const int y1 = ceil_index(std::max(a.xy.y, b.xy.y) + reach, row0, row1 - 1);
             for (int y = y0; y <= y1; ++y)
                 for (int x = x0; x <= x1; ++x) {
                     const glm::vec2 p(float(x) + 0.5f, float(y) + 0.5f);

@@ -16,6 +16,13 @@
 
 namespace hairshadow {
 
+namespace detail {
+/// floor(v) and ceil(v) as pixel indices clamped to [lo, hi] before the conversion (window
+/// coordinates of points near the eye or light plane can be beyond int's range); NaN gives lo.
+inline int floor_index(float v, int lo, int hi) noexcept { return v > float(lo) ? int(std::min(std::floor(v), float(hi))) : lo; }
+inline int ceil_index(float v, int lo, int hi) noexcept { return v > float(lo) ? int(std::min(std::ceil(v), float(hi))) : lo; }
+} // namespace detail
+
 /// Bias of the mesh's depth comparisons, in linear depth units (of the light's near-far range):
 /// enough to keep a surface lit by its own map on the Sintel head at 512x512.
 inline constexpr float default_mesh_bias = 6e-3f;
@@ -52,8 +59,8 @@ public:
                 if (y < std::min({a.window.y, b.window.y, c.window.y}) || y > std::max({a.window.y, b.window.y, c.window.y})) continue;
                 const float area = edge(a.window, b.window, c.window);
                 if (!(std::abs(area) > 0.0f)) continue;
-                const int x0 = std::max(0, int(std::floor(std::min({a.window.x, b.window.x, c.window.x}))));
-                const int x1 = std::min(res - 1, int(std::ceil(std::max({a.window.x, b.window.x, c.window.x}))));
+                const int x0 = detail::floor_index(std::min({a.window.x, b.window.x, c.window.x}), 0, res - 1);
+                const int x1 = detail::ceil_index(std::max({a.window.x, b.window.x, c.window.x}), 0, res - 1);
                 for (int x = x0; x <= x1; ++x) {
                     const glm::vec2 p(float(x) + 0.5f, y);
                     const float w0 = edge(b.window, c.window, p) / area, w1 = edge(c.window, a.window, p) / area, w2 = edge(a.window, b.window, p) / area;

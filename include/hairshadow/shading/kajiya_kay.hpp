@@ -8,6 +8,7 @@
 #include <hairshadow/core/light.hpp>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <glm/vec3.hpp>
 
 #include <algorithm>
@@ -28,6 +29,15 @@ inline glm::vec3 direction_to_light(const light_spec& light, const glm::vec3& po
     const glm::vec3 d = light.type == light_type::directional ? -light.direction : light.position - point;
     const float length = glm::length(d);
     return length > 0.0f ? d / length : glm::vec3(0, 1, 0);
+}
+
+/// 1 inside a spot light's cone (and for other lights), 0 outside it.
+inline float spot_cone(const light_spec& light, const glm::vec3& point) noexcept {
+    if (light.type != light_type::spot) return 1.0f;
+    const glm::vec3 d = point - light.position;
+    const float length = glm::length(d), axis = glm::length(light.direction);
+    if (!(length > 0.0f) || !(axis > 0.0f)) return 0.0f;
+    return glm::dot(d, light.direction) / (length * axis) >= std::cos(glm::radians(light.spot_half_angle_degrees)) ? 1.0f : 0.0f;
 }
 
 /// Light reflected towards `to_eye` by a strand with unit `tangent` lit from `to_light`, per unit

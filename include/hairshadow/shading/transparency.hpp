@@ -132,6 +132,7 @@ inline void blend_fragments(image& base, const camera_fragments& f, transparency
             glm::vec3 colour(0.0f);
             float alpha = 0.0f;
             for (const auto& g : frags) colour += g.alpha * g.colour, alpha += g.alpha;
+            if (!(alpha > 0.0f)) break; // nothing visible
             const float mean_alpha = alpha / float(frags.size());
             const float behind = std::pow(1.0f - mean_alpha, float(frags.size()));
             out = colour / alpha * (1.0f - behind) + behind * out;
@@ -150,6 +151,7 @@ inline void blend_fragments(image& base, const camera_fragments& f, transparency
                 alpha_sum += weight;
                 total += -std::log1p(-g.alpha);
             }
+            if (!(alpha_sum > 0.0f)) break;
             const float lambda = 1.0f - std::exp(-total); // 1 - prod(1 - alpha_i)
             out = colour * (lambda / alpha_sum) + (1.0f - lambda) * out;
             break;
