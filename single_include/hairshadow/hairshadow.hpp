@@ -3149,7 +3149,9 @@ struct camera {
 
 #include <algorithm>
 #include <cmath>
+#include <array>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace hairshadow {
@@ -3159,6 +3161,36 @@ namespace detail {
 /// coordinates of points near the eye or light plane can be beyond int's range); NaN gives lo.
 inline int floor_index(float v, int lo, int hi) noexcept { return v > float(lo) ? int(std::min(std::floor(v), float(hi))) : lo; }
 inline int ceil_index(float v, int lo, int hi) noexcept { return v > float(lo) ? int(std::min(std::ceil(v), float(hi))) : lo; }
+
+inline float edge_function(const glm::vec2& a, const glm::vec2& b, const glm::vec2& p) noexcept {
+    return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
+}
+
+/// Calls visit(triangle, x, barycentrics) for every pixel centre of row `row` (of `width` pixels)
+/// inside a triangle of `mesh` whose three vertices are valid: `window(i)` gives vertex i's
+/// pixel coordinates and whether it is in front of the eye. Triangles are visited in mesh order.
+template <class Window, class Visit>
+void scan_triangles_row(const triangle_mesh& mesh, std::size_t row, int width, Window&& window, Visit&& visit) {
+    const float y = float(row) + 0.5f;
+    const std::size_t n = mesh.vertices.size();
+    for (const auto& t : mesh.triangles) {
+        if (t[0] >= n || t[1] >= n || t[2] >= n) continue;
+        const auto [a, a_ok] = window(t[0]);
+        const auto [b, b_ok] = window(t[1]);
+        const auto [c, c_ok] = window(t[2]);
+        if (!a_ok || !b_ok || !c_ok) continue; // no near-plane clipping: such triangles are dropped
+        if (y < std::min({a.y, b.y, c.y}) || y > std::max({a.y, b.y, c.y})) continue;
+        const float area = edge_function(a, b, c);
+        if (!(std::abs(area) > 0.0f)) continue;
+        const int x0 = floor_index(std::min({a.x, b.x, c.x}), 0, width - 1), x1 = ceil_index(std::max({a.x, b.x, c.x}), 0, width - 1);
+        for (int x = x0; x <= x1; ++x) {
+            const glm::vec2 p(float(x) + 0.5f, y);
+            const glm::vec3 l(edge_function(b, c, p) / area, edge_function(c, a, p) / area, edge_function(a, b, p) / area);
+            if (l.x < 0.0f || l.y < 0.0f || l.z < 0.0f) continue;
+            visit(t, x, l);
+        }
+    }
+}
 } // namespace detail
 
 /// Bias of the mesh's depth comparisons, in linear depth units (of the light's near-far range):
@@ -3189,26 +3221,14 @@ public:
         }
         // Rows in parallel: each row owns its texels, so the result is the same for any thread count.
         parallel_for(std::size_t(res), exec, [&](std::size_t row) {
-            const float y = float(row) + 0.5f;
-            for (const auto& t : mesh.triangles) {
-                if (t[0] >= points.size() || t[1] >= points.size() || t[2] >= points.size()) continue;
+            const auto window = [&](std::uint32_t i) { return std::pair(points[i].window, points[i].valid); };
+            detail::scan_triangles_row(mesh, row, res, window, [&](const std::array<std::uint32_t, 3>& t, int x, const glm::vec3& l) {
                 const auto &a = points[t[0]], &b = points[t[1]], &c = points[t[2]];
-                if (!a.valid || !b.valid || !c.valid) continue;
-                if (y < std::min({a.window.y, b.window.y, c.window.y}) || y > std::max({a.window.y, b.window.y, c.window.y})) continue;
-                const float area = edge(a.window, b.window, c.window);
-                if (!(std::abs(area) > 0.0f)) continue;
-                const int x0 = detail::floor_index(std::min({a.window.x, b.window.x, c.window.x}), 0, res - 1);
-                const int x1 = detail::ceil_index(std::max({a.window.x, b.window.x, c.window.x}), 0, res - 1);
-                for (int x = x0; x <= x1; ++x) {
-                    const glm::vec2 p(float(x) + 0.5f, y);
-                    const float w0 = edge(b.window, c.window, p) / area, w1 = edge(c.window, a.window, p) / area, w2 = edge(a.window, b.window, p) / area;
-                    if (w0 < 0.0f || w1 < 0.0f || w2 < 0.0f) continue;
-                    float& stored = depth_[row * std::size_t(res) + std::size_t(x)];
-                    const float depth = (w0 * a.depth_over_w + w1 * b.depth_over_w + w2 * c.depth_over_w) /
-                                        (w0 * a.one_over_w + w1 * b.one_over_w + w2 * c.one_over_w);
-                    stored = std::min(stored, depth);
-                }
-            }
+                float& stored = depth_[row * std::size_t(res) + std::size_t(x)];
+                const float depth = (l.x * a.depth_over_w + l.y * b.depth_over_w + l.z * c.depth_over_w) /
+                                    (l.x * a.one_over_w + l.y * b.one_over_w + l.z * c.one_over_w);
+                stored = std::min(stored, depth);
+            });
         }, 8);
     }
 
@@ -3225,9 +3245,6 @@ public:
     const light_space& light() const noexcept { return light_; }
 
 private:
-    static float edge(const glm::vec2& a, const glm::vec2& b, const glm::vec2& p) noexcept {
-        return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
-    }
     light_space light_;
     float bias_ = 0.0f;
     std::vector<float> depth_;
@@ -3470,10 +3487,6 @@ inline std::vector<glm::vec3> vertex_normals(const triangle_mesh& mesh) {
     return n;
 }
 
-inline float edge_function(const glm::vec2& a, const glm::vec2& b, const glm::vec2& p) noexcept {
-    return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
-}
-
 inline surface_buffer rasterise_mesh(const triangle_mesh& mesh, const camera& cam, const execution& exec) {
     const int w = cam.width, h = cam.height;
     surface_buffer s;
@@ -3486,30 +3499,18 @@ inline surface_buffer rasterise_mesh(const triangle_mesh& mesh, const camera& ca
     for (std::size_t i = 0; i < screen.size(); ++i) screen[i] = to_screen(vp, mesh.vertices[i], w, h);
     const auto normals = vertex_normals(mesh);
     parallel_for(std::size_t(h), exec, [&](std::size_t row) { // each row owns its pixels
-        const float y = float(row) + 0.5f;
-        for (const auto& t : mesh.triangles) {
-            if (t[0] >= screen.size() || t[1] >= screen.size() || t[2] >= screen.size()) continue;
+        const auto window = [&](std::uint32_t i) { return std::pair(screen[i].xy, screen[i].valid); };
+        scan_triangles_row(mesh, row, w, window, [&](const std::array<std::uint32_t, 3>& t, int x, const glm::vec3& l) {
             const auto &a = screen[t[0]], &b = screen[t[1]], &c = screen[t[2]];
-            if (!a.valid || !b.valid || !c.valid) continue;
-            if (y < std::min({a.xy.y, b.xy.y, c.xy.y}) || y > std::max({a.xy.y, b.xy.y, c.xy.y})) continue;
-            const float area = edge_function(a.xy, b.xy, c.xy);
-            if (!(std::abs(area) > 0.0f)) continue;
-            const int x0 = floor_index(std::min({a.xy.x, b.xy.x, c.xy.x}), 0, w - 1);
-            const int x1 = ceil_index(std::max({a.xy.x, b.xy.x, c.xy.x}), 0, w - 1);
-            for (int x = x0; x <= x1; ++x) {
-                const glm::vec2 p(float(x) + 0.5f, y);
-                const float l0 = edge_function(b.xy, c.xy, p) / area, l1 = edge_function(c.xy, a.xy, p) / area, l2 = edge_function(a.xy, b.xy, p) / area;
-                if (l0 < 0.0f || l1 < 0.0f || l2 < 0.0f) continue;
-                const float inv_w = l0 * a.inv_w + l1 * b.inv_w + l2 * c.inv_w;
-                const std::size_t i = row * std::size_t(w) + std::size_t(x);
-                if (!(inv_w > s.inv_w[i])) continue;
-                // Perspective-correct weights for the world-space attributes.
-                const glm::vec3 q = glm::vec3(l0 * a.inv_w, l1 * b.inv_w, l2 * c.inv_w) / inv_w;
-                s.inv_w[i] = inv_w;
-                s.position[i] = q.x * mesh.vertices[t[0]] + q.y * mesh.vertices[t[1]] + q.z * mesh.vertices[t[2]];
-                s.normal[i] = glm::normalize(q.x * normals[t[0]] + q.y * normals[t[1]] + q.z * normals[t[2]]);
-            }
-        }
+            const float inv_w = l.x * a.inv_w + l.y * b.inv_w + l.z * c.inv_w;
+            const std::size_t i = row * std::size_t(w) + std::size_t(x);
+            if (!(inv_w > s.inv_w[i])) return;
+            // Perspective-correct weights for the world-space attributes.
+            const glm::vec3 q = glm::vec3(l.x * a.inv_w, l.y * b.inv_w, l.z * c.inv_w) / inv_w;
+            s.inv_w[i] = inv_w;
+            s.position[i] = q.x * mesh.vertices[t[0]] + q.y * mesh.vertices[t[1]] + q.z * mesh.vertices[t[2]];
+            s.normal[i] = glm::normalize(q.x * normals[t[0]] + q.y * normals[t[1]] + q.z * normals[t[2]]);
+        });
     }, 4);
     return s;
 }

@@ -16,6 +16,7 @@
 #include <hairshadow/shading/scene.hpp>
 
 #include <functional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -134,12 +135,7 @@ float hs_transmittance(vec3 world_pos) { return 1.0; }
     /// Renders off screen with `samples` multisamples and reads the image back.
     image render(const camera& cam, int samples = 8) const {
         camera::check_image_size(cam.width, cam.height);
-        auto single = make_texture();
-        glBindTexture(GL_TEXTURE_2D, single.get());
-        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, cam.width, cam.height);
-        auto resolved = make_framebuffer();
-        glBindFramebuffer(GL_FRAMEBUFFER, resolved.get());
-        glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, single.get(), 0);
+        const auto [single, resolved] = linear_target(cam.width, cam.height);
         render_into(cam, resolved.get(), samples);
         std::vector<float> rgba(4 * std::size_t(cam.width) * std::size_t(cam.height));
         glBindTexture(GL_TEXTURE_2D, single.get());
@@ -163,12 +159,7 @@ float hs_transmittance(vec3 world_pos) { return 1.0; }
             const auto fs = compile_shader(GL_FRAGMENT_SHADER, {version, shaders::render_present}, "render/present");
             present_program_ = link_program({&vs, &fs}, "present");
         }
-        auto linear = make_texture();
-        glBindTexture(GL_TEXTURE_2D, linear.get());
-        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, cam.width, cam.height);
-        auto resolved = make_framebuffer();
-        glBindFramebuffer(GL_FRAMEBUFFER, resolved.get());
-        glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, linear.get(), 0);
+        const auto [linear, resolved] = linear_target(cam.width, cam.height);
         render_into(cam, resolved.get(), samples);
         glBindFramebuffer(GL_FRAMEBUFFER, target);
         glViewport(0, 0, cam.width, cam.height);
@@ -203,6 +194,17 @@ private:
         texture mesh_depth;
         program mesh_program, hair_program;
     };
+
+    /// A single-sampled RGBA32F texture and a framebuffer drawing into it.
+    static std::pair<texture, framebuffer> linear_target(int width, int height) {
+        auto t = make_texture();
+        glBindTexture(GL_TEXTURE_2D, t.get());
+        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, width, height);
+        auto f = make_framebuffer();
+        glBindFramebuffer(GL_FRAMEBUFFER, f.get());
+        glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, t.get(), 0);
+        return {std::move(t), std::move(f)};
+    }
 
     static void upload(geometry& g, const std::vector<float>& vertices, const std::vector<std::uint32_t>& indices) {
         glBindVertexArray(g.vao.get());

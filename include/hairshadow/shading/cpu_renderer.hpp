@@ -83,10 +83,6 @@ inline std::vector<glm::vec3> vertex_normals(const triangle_mesh& mesh) {
     return n;
 }
 
-inline float edge_function(const glm::vec2& a, const glm::vec2& b, const glm::vec2& p) noexcept {
-    return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
-}
-
 inline surface_buffer rasterise_mesh(const triangle_mesh& mesh, const camera& cam, const execution& exec) {
     const int w = cam.width, h = cam.height;
     surface_buffer s;
@@ -99,30 +95,18 @@ inline surface_buffer rasterise_mesh(const triangle_mesh& mesh, const camera& ca
     for (std::size_t i = 0; i < screen.size(); ++i) screen[i] = to_screen(vp, mesh.vertices[i], w, h);
     const auto normals = vertex_normals(mesh);
     parallel_for(std::size_t(h), exec, [&](std::size_t row) { // each row owns its pixels
-        const float y = float(row) + 0.5f;
-        for (const auto& t : mesh.triangles) {
-            if (t[0] >= screen.size() || t[1] >= screen.size() || t[2] >= screen.size()) continue;
+        const auto window = [&](std::uint32_t i) { return std::pair(screen[i].xy, screen[i].valid); };
+        scan_triangles_row(mesh, row, w, window, [&](const std::array<std::uint32_t, 3>& t, int x, const glm::vec3& l) {
             const auto &a = screen[t[0]], &b = screen[t[1]], &c = screen[t[2]];
-            if (!a.valid || !b.valid || !c.valid) continue;
-            if (y < std::min({a.xy.y, b.xy.y, c.xy.y}) || y > std::max({a.xy.y, b.xy.y, c.xy.y})) continue;
-            const float area = edge_function(a.xy, b.xy, c.xy);
-            if (!(std::abs(area) > 0.0f)) continue;
-            const int x0 = floor_index(std::min({a.xy.x, b.xy.x, c.xy.x}), 0, w - 1);
-            const int x1 = ceil_index(std::max({a.xy.x, b.xy.x, c.xy.x}), 0, w - 1);
-            for (int x = x0; x <= x1; ++x) {
-                const glm::vec2 p(float(x) + 0.5f, y);
-                const float l0 = edge_function(b.xy, c.xy, p) / area, l1 = edge_function(c.xy, a.xy, p) / area, l2 = edge_function(a.xy, b.xy, p) / area;
-                if (l0 < 0.0f || l1 < 0.0f || l2 < 0.0f) continue;
-                const float inv_w = l0 * a.inv_w + l1 * b.inv_w + l2 * c.inv_w;
-                const std::size_t i = row * std::size_t(w) + std::size_t(x);
-                if (!(inv_w > s.inv_w[i])) continue;
-                // Perspective-correct weights for the world-space attributes.
-                const glm::vec3 q = glm::vec3(l0 * a.inv_w, l1 * b.inv_w, l2 * c.inv_w) / inv_w;
-                s.inv_w[i] = inv_w;
-                s.position[i] = q.x * mesh.vertices[t[0]] + q.y * mesh.vertices[t[1]] + q.z * mesh.vertices[t[2]];
-                s.normal[i] = glm::normalize(q.x * normals[t[0]] + q.y * normals[t[1]] + q.z * normals[t[2]]);
-            }
-        }
+            const float inv_w = l.x * a.inv_w + l.y * b.inv_w + l.z * c.inv_w;
+            const std::size_t i = row * std::size_t(w) + std::size_t(x);
+            if (!(inv_w > s.inv_w[i])) return;
+            // Perspective-correct weights for the world-space attributes.
+            const glm::vec3 q = glm::vec3(l.x * a.inv_w, l.y * b.inv_w, l.z * c.inv_w) / inv_w;
+            s.inv_w[i] = inv_w;
+            s.position[i] = q.x * mesh.vertices[t[0]] + q.y * mesh.vertices[t[1]] + q.z * mesh.vertices[t[2]];
+            s.normal[i] = glm::normalize(q.x * normals[t[0]] + q.y * normals[t[1]] + q.z * normals[t[2]]);
+        });
     }, 4);
     return s;
 }

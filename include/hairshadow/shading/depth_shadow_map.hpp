@@ -11,7 +11,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <array>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace hairshadow {
@@ -21,6 +23,36 @@ namespace detail {
 /// coordinates of points near the eye or light plane can be beyond int's range); NaN gives lo.
 inline int floor_index(float v, int lo, int hi) noexcept { return v > float(lo) ? int(std::min(std::floor(v), float(hi))) : lo; }
 inline int ceil_index(float v, int lo, int hi) noexcept { return v > float(lo) ? int(std::min(std::ceil(v), float(hi))) : lo; }
+
+inline float edge_function(const glm::vec2& a, const glm::vec2& b, const glm::vec2& p) noexcept {
+    return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
+}
+
+/// Calls visit(triangle, x, barycentrics) for every pixel centre of row `row` (of `width` pixels)
+/// inside a triangle of `mesh` whose three vertices are valid: `window(i)` gives vertex i's
+/// pixel coordinates and whether it is in front of the eye. Triangles are visited in mesh order.
+template <class Window, class Visit>
+void scan_triangles_row(const triangle_mesh& mesh, std::size_t row, int width, Window&& window, Visit&& visit) {
+    const float y = float(row) + 0.5f;
+    const std::size_t n = mesh.vertices.size();
+    for (const auto& t : mesh.triangles) {
+        if (t[0] >= n || t[1] >= n || t[2] >= n) continue;
+        const auto [a, a_ok] = window(t[0]);
+        const auto [b, b_ok] = window(t[1]);
+        const auto [c, c_ok] = window(t[2]);
+        if (!a_ok || !b_ok || !c_ok) continue; // no near-plane clipping: such triangles are dropped
+        if (y < std::min({a.y, b.y, c.y}) || y > std::max({a.y, b.y, c.y})) continue;
+        const float area = edge_function(a, b, c);
+        if (!(std::abs(area) > 0.0f)) continue;
+        const int x0 = floor_index(std::min({a.x, b.x, c.x}), 0, width - 1), x1 = ceil_index(std::max({a.x, b.x, c.x}), 0, width - 1);
+        for (int x = x0; x <= x1; ++x) {
+            const glm::vec2 p(float(x) + 0.5f, y);
+            const glm::vec3 l(edge_function(b, c, p) / area, edge_function(c, a, p) / area, edge_function(a, b, p) / area);
+            if (l.x < 0.0f || l.y < 0.0f || l.z < 0.0f) continue;
+            visit(t, x, l);
+        }
+    }
+}
 } // namespace detail
 
 /// Bias of the mesh's depth comparisons, in linear depth units (of the light's near-far range):
@@ -51,26 +83,14 @@ public:
         }
         // Rows in parallel: each row owns its texels, so the result is the same for any thread count.
         parallel_for(std::size_t(res), exec, [&](std::size_t row) {
-            const float y = float(row) + 0.5f;
-            for (const auto& t : mesh.triangles) {
-                if (t[0] >= points.size() || t[1] >= points.size() || t[2] >= points.size()) continue;
+            const auto window = [&](std::uint32_t i) { return std::pair(points[i].window, points[i].valid); };
+            detail::scan_triangles_row(mesh, row, res, window, [&](const std::array<std::uint32_t, 3>& t, int x, const glm::vec3& l) {
                 const auto &a = points[t[0]], &b = points[t[1]], &c = points[t[2]];
-                if (!a.valid || !b.valid || !c.valid) continue;
-                if (y < std::min({a.window.y, b.window.y, c.window.y}) || y > std::max({a.window.y, b.window.y, c.window.y})) continue;
-                const float area = edge(a.window, b.window, c.window);
-                if (!(std::abs(area) > 0.0f)) continue;
-                const int x0 = detail::floor_index(std::min({a.window.x, b.window.x, c.window.x}), 0, res - 1);
-                const int x1 = detail::ceil_index(std::max({a.window.x, b.window.x, c.window.x}), 0, res - 1);
-                for (int x = x0; x <= x1; ++x) {
-                    const glm::vec2 p(float(x) + 0.5f, y);
-                    const float w0 = edge(b.window, c.window, p) / area, w1 = edge(c.window, a.window, p) / area, w2 = edge(a.window, b.window, p) / area;
-                    if (w0 < 0.0f || w1 < 0.0f || w2 < 0.0f) continue;
-                    float& stored = depth_[row * std::size_t(res) + std::size_t(x)];
-                    const float depth = (w0 * a.depth_over_w + w1 * b.depth_over_w + w2 * c.depth_over_w) /
-                                        (w0 * a.one_over_w + w1 * b.one_over_w + w2 * c.one_over_w);
-                    stored = std::min(stored, depth);
-                }
-            }
+                float& stored = depth_[row * std::size_t(res) + std::size_t(x)];
+                const float depth = (l.x * a.depth_over_w + l.y * b.depth_over_w + l.z * c.depth_over_w) /
+                                    (l.x * a.one_over_w + l.y * b.one_over_w + l.z * c.one_over_w);
+                stored = std::min(stored, depth);
+            });
         }, 8);
     }
 
@@ -87,9 +107,6 @@ public:
     const light_space& light() const noexcept { return light_; }
 
 private:
-    static float edge(const glm::vec2& a, const glm::vec2& b, const glm::vec2& p) noexcept {
-        return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
-    }
     light_space light_;
     float bias_ = 0.0f;
     std::vector<float> depth_;
