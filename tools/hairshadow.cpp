@@ -242,6 +242,7 @@ struct render_view {
     int size = 512;
     std::string transparency = "none";
     float hair_opacity = 0.4f;
+    std::string camera_only; ///< the first camera-view option given, if any
 };
 
 /// The shaded scene from the camera: Kajiya-Kay hair and the mesh, each light with the method's
@@ -302,6 +303,7 @@ int run_render(const map_options& o, const render_view& v, const std::string& ou
         if (!maps_dir.empty()) throw usage_error("--maps needs --view light");
         return run_shaded(o, v, out_path);
     }
+    if (!v.camera_only.empty()) throw usage_error(v.camera_only + " needs --view camera");
     const auto spec = parse_method_for(o.method, o);
     auto s = prepare_scene(o, !o.on_gl());
     std::unique_ptr<any_shadow_map> map;
@@ -473,6 +475,8 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         return app.exit(e) == 0 ? 0 : 2;
     }
+    for (const char* name : {"--mesh", "--fill-light", "--azimuth", "--elevation", "--size", "--transparency", "--hair-opacity"})
+        if (render->count(name) > 0 && view.camera_only.empty()) view.camera_only = name;
     try {
         if (*info) return run_info(o);
         if (*query) return run_query(o, points_file);
