@@ -3166,12 +3166,12 @@ inline float edge_function(const glm::vec2& a, const glm::vec2& b, const glm::ve
     return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
 }
 
-/// Calls visit(triangle, x, barycentrics) for every pixel centre of row `row` (of `width` pixels)
-/// inside a triangle of `mesh` whose three vertices are valid: `window(i)` gives vertex i's
-/// pixel coordinates and whether it is in front of the eye. Triangles are visited in mesh order.
+/// Calls visit(triangle, x, row, barycentrics) for every pixel centre of rows [row0, row1) (of
+/// `width` pixels) inside a triangle of `mesh` whose three vertices are valid: `window(i)` gives
+/// vertex i's pixel coordinates and whether it is in front of the eye. Each triangle is set up once
+/// for the rows it spans; triangles are visited in mesh order, so a pixel sees them in that order.
 template <class Window, class Visit>
-void scan_triangles_row(const triangle_mesh& mesh, std::size_t row, int width, Window&& window, Visit&& visit) {
-    const float y = float(row) + 0.5f;
+void scan_triangles(const triangle_mesh& mesh, int row0, int row1, int width, Window&& window, Visit&& visit) {
     const std::size_t n = mesh.vertices.size();
     for (const auto& t : mesh.triangles) {
         if (t[0] >= n || t[1] >= n || t[2] >= n) continue;
@@ -3179,18 +3179,25 @@ void scan_triangles_row(const triangle_mesh& mesh, std::size_t row, int width, W
         const auto [b, b_ok] = window(t[1]);
         const auto [c, c_ok] = window(t[2]);
         if (!a_ok || !b_ok || !c_ok) continue; // no near-plane clipping: such triangles are dropped
-        if (y < std::min({a.y, b.y, c.y}) || y > std::max({a.y, b.y, c.y})) continue;
+        // Rows whose centre y + 0.5 lies within the triangle's vertical extent.
+        const int first = std::max(row0, ceil_index(std::min({a.y, b.y, c.y}) - 0.5f, row0, row1));
+        const int last = std::min(row1 - 1, floor_index(std::max({a.y, b.y, c.y}) - 0.5f, row0 - 1, row1 - 1));
+        if (first > last) continue;
         const float area = edge_function(a, b, c);
         if (!(std::abs(area) > 0.0f)) continue;
         const int x0 = floor_index(std::min({a.x, b.x, c.x}), 0, width - 1), x1 = ceil_index(std::max({a.x, b.x, c.x}), 0, width - 1);
-        for (int x = x0; x <= x1; ++x) {
-            const glm::vec2 p(float(x) + 0.5f, y);
-            const glm::vec3 l(edge_function(b, c, p) / area, edge_function(c, a, p) / area, edge_function(a, b, p) / area);
-            if (l.x < 0.0f || l.y < 0.0f || l.z < 0.0f) continue;
-            visit(t, x, l);
-        }
+        for (int row = first; row <= last; ++row)
+            for (int x = x0; x <= x1; ++x) {
+                const glm::vec2 p(float(x) + 0.5f, float(row) + 0.5f);
+                const glm::vec3 l(edge_function(b, c, p) / area, edge_function(c, a, p) / area, edge_function(a, b, p) / area);
+                if (l.x < 0.0f || l.y < 0.0f || l.z < 0.0f) continue;
+                visit(t, x, row, l);
+            }
     }
 }
+
+/// Rows per parallel task of the triangle scans.
+inline constexpr int scan_band_rows = 8;
 } // namespace detail
 
 /// Bias of the mesh's depth comparisons, in linear depth units (of the light's near-far range):
@@ -3219,17 +3226,19 @@ public:
             const auto p = light.project(mesh.vertices[i]);
             points[i] = {p.window, p.depth / p.w, 1.0f / p.w, p.w > 0.0f};
         }
-        // Rows in parallel: each row owns its texels, so the result is the same for any thread count.
-        parallel_for(std::size_t(res), exec, [&](std::size_t row) {
+        // Bands of rows in parallel: each band owns its texels, so the result is the same for any thread count.
+        const int bands = (res + detail::scan_band_rows - 1) / detail::scan_band_rows;
+        parallel_for(std::size_t(bands), exec, [&](std::size_t band) {
+            const int row0 = int(band) * detail::scan_band_rows, row1 = std::min(res, row0 + detail::scan_band_rows);
             const auto window = [&](std::uint32_t i) { return std::pair(points[i].window, points[i].valid); };
-            detail::scan_triangles_row(mesh, row, res, window, [&](const std::array<std::uint32_t, 3>& t, int x, const glm::vec3& l) {
+            detail::scan_triangles(mesh, row0, row1, res, window, [&](const std::array<std::uint32_t, 3>& t, int x, int row, const glm::vec3& l) {
                 const auto &a = points[t[0]], &b = points[t[1]], &c = points[t[2]];
-                float& stored = depth_[row * std::size_t(res) + std::size_t(x)];
+                float& stored = depth_[std::size_t(row) * std::size_t(res) + std::size_t(x)];
                 const float depth = (l.x * a.depth_over_w + l.y * b.depth_over_w + l.z * c.depth_over_w) /
                                     (l.x * a.one_over_w + l.y * b.one_over_w + l.z * c.one_over_w);
                 stored = std::min(stored, depth);
             });
-        }, 8);
+        }, 1);
     }
 
     /// 1 where `world` is in front of the mesh from the light (or outside the map), else 0.
@@ -3498,12 +3507,14 @@ inline surface_buffer rasterise_mesh(const triangle_mesh& mesh, const camera& ca
     std::vector<screen_point> screen(mesh.vertices.size());
     for (std::size_t i = 0; i < screen.size(); ++i) screen[i] = to_screen(vp, mesh.vertices[i], w, h);
     const auto normals = vertex_normals(mesh);
-    parallel_for(std::size_t(h), exec, [&](std::size_t row) { // each row owns its pixels
+    const int bands = (h + scan_band_rows - 1) / scan_band_rows;
+    parallel_for(std::size_t(bands), exec, [&](std::size_t band) { // each band owns its pixels
+        const int row0 = int(band) * scan_band_rows, row1 = std::min(h, row0 + scan_band_rows);
         const auto window = [&](std::uint32_t i) { return std::pair(screen[i].xy, screen[i].valid); };
-        scan_triangles_row(mesh, row, w, window, [&](const std::array<std::uint32_t, 3>& t, int x, const glm::vec3& l) {
+        scan_triangles(mesh, row0, row1, w, window, [&](const std::array<std::uint32_t, 3>& t, int x, int row, const glm::vec3& l) {
             const auto &a = screen[t[0]], &b = screen[t[1]], &c = screen[t[2]];
             const float inv_w = l.x * a.inv_w + l.y * b.inv_w + l.z * c.inv_w;
-            const std::size_t i = row * std::size_t(w) + std::size_t(x);
+            const std::size_t i = std::size_t(row) * std::size_t(w) + std::size_t(x);
             if (!(inv_w > s.inv_w[i])) return;
             // Perspective-correct weights for the world-space attributes.
             const glm::vec3 q = glm::vec3(l.x * a.inv_w, l.y * b.inv_w, l.z * c.inv_w) / inv_w;
@@ -3511,7 +3522,7 @@ inline surface_buffer rasterise_mesh(const triangle_mesh& mesh, const camera& ca
             s.position[i] = q.x * mesh.vertices[t[0]] + q.y * mesh.vertices[t[1]] + q.z * mesh.vertices[t[2]];
             s.normal[i] = glm::normalize(q.x * normals[t[0]] + q.y * normals[t[1]] + q.z * normals[t[2]]);
         });
-    }, 4);
+    }, 1);
     return s;
 }
 
@@ -3751,6 +3762,7 @@ inline void blend_fragments(image& base, const camera_fragments& f, transparency
         std::vector<fragment> plain(f.fragments.size());
         for (std::size_t i = 0; i < plain.size(); ++i) plain[i] = {f.fragments[i].depth, f.fragments[i].alpha};
         const fragment_buffer buffer(f.width, f.offsets, std::move(plain));
+        // The maps are read by pixel and depth only: any light of the image's resolution will do.
         order.build(buffer, light_space::fit(light_spec::directional({0, 0, -1}), detail::unit_box(), f.width), exec);
     }
     parallel_for(pixels, exec, [&](std::size_t i) {
@@ -3764,7 +3776,8 @@ inline void blend_fragments(image& base, const camera_fragments& f, transparency
             break;
         }
         case transparency::exact: {
-            std::vector<camera_fragment> sorted(frags.begin(), frags.end());
+            thread_local std::vector<camera_fragment> sorted; // reused: no allocation per pixel
+            sorted.assign(frags.begin(), frags.end());
             std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.depth > b.depth; });
             for (const auto& g : sorted) out = g.alpha * g.colour + (1.0f - g.alpha) * out; // back to front
             break;

@@ -30,6 +30,14 @@ void check_lookup(GLMaps& on_gl, const CpuMaps& cpu_maps, const light_space& lig
     CHECK(worst_t < 5e-5f);
 }
 
+/// A GL layer against the CPU's: the difference in steps (8-bit) or relative (float), and whether it
+/// exceeds what the acceptance allows (one step; 1e-5).
+template <bool EightBit>
+std::pair<float, bool> layer_error(float cpu, float gl) {
+    const float error = EightBit ? std::abs(cpu - gl) : std::abs(cpu - gl) / std::max(std::abs(cpu), 1e-3f);
+    return {error, EightBit ? error > 1.0f : error > 1e-5f};
+}
+
 template <class Method>
 void check_interpolated(const light_space& light, const gl::hair_mesh& mesh, const fragment_buffer& fragments) {
     constexpr bool eight_bit = std::is_same_v<typename Method::accumulation_type, emulated_8bit>;
@@ -48,10 +56,9 @@ void check_interpolated(const light_space& light, const gl::hair_mesh& mesh, con
             occupied += !fragments.texel(x, y).empty();
             if constexpr (!std::is_empty_v<decltype(c.placement)>) state_off += std::memcmp(&c.placement, &g.placement, sizeof(c.placement)) != 0;
             for (int k = 0; k < Method::layer_count; ++k) {
-                const float a = float(c.data.layers[std::size_t(k)]), b = float(g.data.layers[std::size_t(k)]);
-                const float error = eight_bit ? std::abs(a - b) : std::abs(a - b) / std::max(std::abs(a), 1e-3f);
+                const auto [error, off] = layer_error<eight_bit>(float(c.data.layers[std::size_t(k)]), float(g.data.layers[std::size_t(k)]));
                 worst = std::max(worst, error);
-                layers_off += eight_bit ? error > 1.0f : error > 1e-5f;
+                layers_off += off;
             }
         }
     CAPTURE(worst);
@@ -94,10 +101,9 @@ void check_clustered(const light_space& light, const gl::hair_mesh& mesh, const 
             typename Method::texel_maps from_gl_state{g.placement, {}};
             interpolation::build<P, A>(cpu.placement(), g.placement, in, from_gl_state.data);
             for (std::size_t k = 0; k < std::size_t(P::layer_count); ++k) {
-                const float a = float(from_gl_state.data.layers[k]), b = float(g.data.layers[k]);
-                const float error = eight_bit ? std::abs(a - b) : std::abs(a - b) / std::max(std::abs(a), 1e-3f);
+                const auto [error, off] = layer_error<eight_bit>(float(from_gl_state.data.layers[k]), float(g.data.layers[k]));
                 worst_layer = std::max(worst_layer, error);
-                layers_off += eight_bit ? error > 1.0f : error > 1e-5f;
+                layers_off += off;
                 cpu_layers_off += c.data.layers[k] != from_gl_state.data.layers[k];
             }
         }

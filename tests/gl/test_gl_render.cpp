@@ -4,7 +4,6 @@
 
 #include <hairshadow/gl.hpp>
 #include <hairshadow/gl/scene_renderer.hpp>
-#include <hairshadow/io/png.hpp>
 
 #include "../test_support.hpp"
 

@@ -78,13 +78,18 @@ private:
     std::vector<float> values_;
 };
 
-/// Sets the uniforms of a look-up (hs_lookup_*) for `light`'s map, and binds the range map to `unit`.
-inline void set_lookup_uniforms(GLuint prog, const light_space& light, const depth_range_pass& range, int unit) {
+/// Sets the light's frustum uniforms of lookup/light.glsl (hs_lookup_*) on `prog`.
+inline void set_lookup_frustum(GLuint prog, const light_space& light) {
     glUniformMatrix4fv(glGetUniformLocation(prog, "hs_lookup_view_projection"), 1, GL_FALSE, &light.view_projection()[0][0]);
     glUniformMatrix4fv(glGetUniformLocation(prog, "hs_lookup_view"), 1, GL_FALSE, &light.view()[0][0]);
     glUniform1f(glGetUniformLocation(prog, "hs_lookup_near"), light.near_plane());
     glUniform1f(glGetUniformLocation(prog, "hs_lookup_far"), light.far_plane());
     glUniform1i(glGetUniformLocation(prog, "hs_lookup_resolution"), light.resolution());
+}
+
+/// Sets the uniforms of a look-up (hs_lookup_*) for `light`'s map, and binds the range map to `unit`.
+inline void set_lookup_uniforms(GLuint prog, const light_space& light, const depth_range_pass& range, int unit) {
+    set_lookup_frustum(prog, light);
     glActiveTexture(GLenum(GL_TEXTURE0 + unit));
     glBindTexture(GL_TEXTURE_2D, range.map().get());
     glUniform1i(glGetUniformLocation(prog, "hs_range_texture"), unit);

@@ -59,15 +59,9 @@ public:
     }
     /// Adds a light whose hair casts no shadow (the mesh still does), with `space` its frustum.
     void add_unshadowed_light(const scene_light& light, const light_space& space, float mesh_bias = default_mesh_bias) {
-        static constexpr std::string_view no_hair = R"(
-uniform mat4 hs_lookup_view_projection;
-uniform mat4 hs_lookup_view;
-uniform float hs_lookup_near;
-uniform float hs_lookup_far;
-uniform int hs_lookup_resolution;
-float hs_transmittance(vec3 world_pos) { return 1.0; }
-)";
-        add(light, space, std::string(no_hair), [space](GLuint prog) { set_light_frustum(prog, space); }, mesh_bias);
+        // The light's frustum (lookup/light.glsl, which the mesh's depth test reads) and no hair.
+        const std::string no_hair = std::string(shaders::lookup_light) + "float hs_transmittance(vec3 world_pos) { return 1.0; }\n";
+        add(light, space, no_hair, [space](GLuint prog) { set_lookup_frustum(prog, space); }, mesh_bias);
     }
 
     /// Draws the scene from `cam` into the bound framebuffer (viewport and clearing are the caller's).
@@ -224,15 +218,6 @@ private:
         glDrawElements(mode, count, GL_UNSIGNED_INT, nullptr);
         glBindVertexArray(0);
     }
-    /// The look-up's light uniforms, for a light whose hair casts no shadow.
-    static void set_light_frustum(GLuint prog, const light_space& light) {
-        glUniformMatrix4fv(glGetUniformLocation(prog, "hs_lookup_view_projection"), 1, GL_FALSE, &light.view_projection()[0][0]);
-        glUniformMatrix4fv(glGetUniformLocation(prog, "hs_lookup_view"), 1, GL_FALSE, &light.view()[0][0]);
-        glUniform1f(glGetUniformLocation(prog, "hs_lookup_near"), light.near_plane());
-        glUniform1f(glGetUniformLocation(prog, "hs_lookup_far"), light.far_plane());
-        glUniform1i(glGetUniformLocation(prog, "hs_lookup_resolution"), light.resolution());
-    }
-
     void add(const scene_light& light, const light_space& space, const std::string& lookup, std::function<void(GLuint)> bind, float bias) {
         light_entry e{light, space, std::move(bind), bias, draw_mesh_depth(space), {}, {}};
         const auto compile = [&](GLenum stage, std::string_view body, const char* name) {

@@ -94,12 +94,14 @@ inline surface_buffer rasterise_mesh(const triangle_mesh& mesh, const camera& ca
     std::vector<screen_point> screen(mesh.vertices.size());
     for (std::size_t i = 0; i < screen.size(); ++i) screen[i] = to_screen(vp, mesh.vertices[i], w, h);
     const auto normals = vertex_normals(mesh);
-    parallel_for(std::size_t(h), exec, [&](std::size_t row) { // each row owns its pixels
+    const int bands = (h + scan_band_rows - 1) / scan_band_rows;
+    parallel_for(std::size_t(bands), exec, [&](std::size_t band) { // each band owns its pixels
+        const int row0 = int(band) * scan_band_rows, row1 = std::min(h, row0 + scan_band_rows);
         const auto window = [&](std::uint32_t i) { return std::pair(screen[i].xy, screen[i].valid); };
-        scan_triangles_row(mesh, row, w, window, [&](const std::array<std::uint32_t, 3>& t, int x, const glm::vec3& l) {
+        scan_triangles(mesh, row0, row1, w, window, [&](const std::array<std::uint32_t, 3>& t, int x, int row, const glm::vec3& l) {
             const auto &a = screen[t[0]], &b = screen[t[1]], &c = screen[t[2]];
             const float inv_w = l.x * a.inv_w + l.y * b.inv_w + l.z * c.inv_w;
-            const std::size_t i = row * std::size_t(w) + std::size_t(x);
+            const std::size_t i = std::size_t(row) * std::size_t(w) + std::size_t(x);
             if (!(inv_w > s.inv_w[i])) return;
             // Perspective-correct weights for the world-space attributes.
             const glm::vec3 q = glm::vec3(l.x * a.inv_w, l.y * b.inv_w, l.z * c.inv_w) / inv_w;
@@ -107,7 +109,7 @@ inline surface_buffer rasterise_mesh(const triangle_mesh& mesh, const camera& ca
             s.position[i] = q.x * mesh.vertices[t[0]] + q.y * mesh.vertices[t[1]] + q.z * mesh.vertices[t[2]];
             s.normal[i] = glm::normalize(q.x * normals[t[0]] + q.y * normals[t[1]] + q.z * normals[t[2]]);
         });
-    }, 4);
+    }, 1);
     return s;
 }
 

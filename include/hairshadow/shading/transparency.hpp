@@ -110,6 +110,7 @@ inline void blend_fragments(image& base, const camera_fragments& f, transparency
         std::vector<fragment> plain(f.fragments.size());
         for (std::size_t i = 0; i < plain.size(); ++i) plain[i] = {f.fragments[i].depth, f.fragments[i].alpha};
         const fragment_buffer buffer(f.width, f.offsets, std::move(plain));
+        // The maps are read by pixel and depth only: any light of the image's resolution will do.
         order.build(buffer, light_space::fit(light_spec::directional({0, 0, -1}), detail::unit_box(), f.width), exec);
     }
     parallel_for(pixels, exec, [&](std::size_t i) {
@@ -123,7 +124,8 @@ inline void blend_fragments(image& base, const camera_fragments& f, transparency
             break;
         }
         case transparency::exact: {
-            std::vector<camera_fragment> sorted(frags.begin(), frags.end());
+            thread_local std::vector<camera_fragment> sorted; // reused: no allocation per pixel
+            sorted.assign(frags.begin(), frags.end());
             std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.depth > b.depth; });
             for (const auto& g : sorted) out = g.alpha * g.colour + (1.0f - g.alpha) * out; // back to front
             break;
