@@ -1,12 +1,15 @@
 // An interactive viewer: the hair on its mesh, lit by one light whose shadows come from any method,
 // built on the GPU every time something changes.
 //
-//   04-viewer [MODEL] [--mesh OBJ] [--frames N] [--screenshot FILE.png]
+//   04-viewer [MODEL] [--mesh OBJ] [--transparency MODE] [--frames N] [--screenshot FILE.png]
 //
 // Drag with the left mouse button (or the arrow keys) to orbit the camera, WASD to move the light,
 // keys 1-6 to switch methods (no hair shadows, OSM, DOM, DC, OCC, deep occupancy; the exact reference
-// is CPU-only), [ and ] to halve or double the layer count, Esc to quit. The title shows the method, its GL build time and the frame rate. --frames N
-// draws N frames and exits (tests run it under Xvfb); --screenshot writes the last one.
+// is CPU-only), [ and ] to halve or double the layer count, T to cycle the hair's transparency (opaque,
+// occupancy-ordered, weighted averages, exact by depth peeling), - and = to change the hair's
+// opacity, Esc to quit. The title shows the method, its GL build time, the transparency and the
+// frame rate. --frames N draws N frames and exits (tests run it under Xvfb); --screenshot writes the
+// last one.
 #include <glad/gl.h>
 
 #include <GLFW/glfw3.h>
@@ -33,6 +36,8 @@ struct state {
     int layers = 16;
     float azimuth = 25, elevation = 10;
     float light_azimuth = -60, light_elevation = 50;
+    transparency hair = transparency::none;
+    float hair_opacity = 0.4f;
     bool dirty = true;
     bool dragging = false;
     double last_x = 0, last_y = 0;
@@ -59,6 +64,9 @@ void on_key(GLFWwindow* window, int key, int, int action, int) {
     auto& s = *static_cast<state*>(glfwGetWindowUserPointer(window));
     if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window, 1);
     if (key >= GLFW_KEY_1 && key <= GLFW_KEY_6) s.family = key - GLFW_KEY_0, s.dirty = true;
+    if (key == GLFW_KEY_T) s.hair = transparency((int(s.hair) + 1) % 4);
+    if (key == GLFW_KEY_MINUS) s.hair_opacity = std::max(0.05f, s.hair_opacity - 0.05f);
+    if (key == GLFW_KEY_EQUAL) s.hair_opacity = std::min(1.0f, s.hair_opacity + 0.05f);
     if (key == GLFW_KEY_LEFT_BRACKET) s.layers = std::max(1, s.layers / 2), s.dirty = true;
     if (key == GLFW_KEY_RIGHT_BRACKET) s.layers = std::min(512, s.layers * 2), s.dirty = true;
     if (key == GLFW_KEY_LEFT) s.azimuth -= 5;
@@ -89,13 +97,21 @@ void on_move(GLFWwindow* window, double x, double y) {
 int run(int argc, char** argv) {
     std::string model = "procedural:wavy:strands=3000", mesh_path, screenshot;
     long frames = -1;
+    state s;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--mesh" && i + 1 < argc) mesh_path = argv[++i];
         else if (a == "--frames" && i + 1 < argc) frames = std::stol(argv[++i]);
         else if (a == "--screenshot" && i + 1 < argc) screenshot = argv[++i];
+        else if (a == "--transparency" && i + 1 < argc) {
+            try {
+                s.hair = parse_transparency(argv[++i]);
+            } catch (const argument_error& e) {
+                return std::fprintf(stderr, "error: %s\n", e.what()), 2;
+            }
+        }
         else if (!a.starts_with("--")) model = a;
-        else return std::fprintf(stderr, "usage: 04-viewer [MODEL] [--mesh OBJ] [--frames N] [--screenshot FILE.png]\n"), 2;
+        else return std::fprintf(stderr, "usage: 04-viewer [MODEL] [--mesh OBJ] [--transparency none|occupancy|weighted|exact] [--frames N] [--screenshot FILE.png]\n"), 2;
     }
     scene sc;
     sc.hair = load_model(model);
@@ -111,7 +127,6 @@ int run(int argc, char** argv) {
     if (!window) return glfwTerminate(), std::fprintf(stderr, "error: cannot open a GL 4.3 core window\n"), 1;
     glfwMakeContextCurrent(window);
     if (!gladLoadGL(glfwGetProcAddress)) return std::fprintf(stderr, "error: cannot load GL\n"), 1;
-    state s;
     glfwSetWindowUserPointer(window, &s);
     glfwSetKeyCallback(window, on_key);
     glfwSetMouseButtonCallback(window, on_button);
@@ -144,6 +159,7 @@ int run(int argc, char** argv) {
             int fb_width = 0, fb_height = 0;
             glfwGetFramebufferSize(window, &fb_width, &fb_height);
             const auto cam = camera::framing(sc.bounds(), s.azimuth, s.elevation, std::max(fb_width, 1), std::max(fb_height, 1), 1.15f);
+            renderer.set_transparency(s.hair, s.hair_opacity);
             renderer.present(cam, 0);
             if (frame + 1 == frames && !screenshot.empty()) {
                 std::vector<std::uint8_t> rgba(std::size_t(4 * fb_width * fb_height)), rgb;
@@ -158,12 +174,17 @@ int run(int argc, char** argv) {
             const auto now = std::chrono::steady_clock::now();
             fps = 0.9 * fps + 0.1 / std::max(1e-6, std::chrono::duration<double>(now - last).count());
             last = now;
-            char title[160];
-            std::snprintf(title, sizeof title, "hairshadow viewer - %s (1-6 method, [ ] layers) - built in %.1f ms - %.1f fps", spec_of(s).c_str(),
-                          build_ms, fps);
+            const std::string hair = s.hair == transparency::none ? "opaque hair"
+                                     : s.hair == transparency::occupancy ? "occupancy-ordered hair"
+                                     : s.hair == transparency::weighted ? "weighted-average hair"
+                                                                        : "exact hair (" + std::to_string(renderer.peeled_layers()) + " layers peeled)";
+            char title[256];
+            std::snprintf(title, sizeof title, "hairshadow viewer - %s (1-6 method, [ ] layers) - built in %.1f ms - %s, opacity %.2f (T, - =) - %.1f fps",
+                          spec_of(s).c_str(), build_ms, hair.c_str(), s.hair_opacity, fps);
             glfwSetWindowTitle(window, title);
         }
-        std::printf("%s: %ld frames, last build %.1f ms\n", spec_of(s).c_str(), frames, build_ms);
+        const char* modes[] = {"none", "occupancy", "weighted", "exact"};
+        std::printf("%s: %ld frames, last build %.1f ms, transparency %s\n", spec_of(s).c_str(), frames, build_ms, modes[int(s.hair)]);
     }
     glfwDestroyWindow(window);
     glfwTerminate();

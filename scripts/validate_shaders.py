@@ -72,7 +72,8 @@ for layers, slabs in ((128, 4), (32, 1), (256, 8)):
     COMPOSITIONS[f"occupancy_slabs_{layers}_{slabs}"] = ("frag", targets, occupancy + ["passes/occupancy_slabs"], "")
     COMPOSITIONS[f"lookup_occupancy_{layers}_{slabs}"] = ("vert", targets, ["accumulation/emulated_8bit", "placement/common",
                                                                           "placement/per_pixel_depth", "texel_state/per_pixel_depth",
-                                                                          "reconstruction/occupancy_bitcount", "lookup/light", "lookup/occupancy"], LOOKUP_MAIN)
+                                                                          "reconstruction/occupancy_bitcount", "lookup/light", "lookup/occupancy_texels",
+                                                                          "lookup/occupancy"], LOOKUP_MAIN)
 
 
 for placement, defines in (("planar_slices", "#define HS_LAYERS 64\n#define HS_GAMMA_SPACING\n#define HS_CUMULATIVE\n"),
@@ -101,12 +102,29 @@ for clusters in (4, 6):
 DOM_LOOKUP = ["accumulation/float", "placement/common", "placement/per_pixel_depth", "texel_state/per_pixel_depth", "lookup/layers",
               "reconstruction/interpolation", "lookup/light", "lookup/interpolation"]
 DOM_DEFINES = "#define HS_LAYERS 3\n#define HS_CUMULATIVE\n"
-COMPOSITIONS["render_hair_vertex"] = ("vert", DOM_DEFINES, DOM_LOOKUP + ["render/light", "render/hair_vertex"], "")
+COMPOSITIONS["render_hair_vertex"] = ("vert", DOM_DEFINES, DOM_LOOKUP + ["render/light", "render/hair_shading", "render/hair_vertex"], "")
+COMPOSITIONS["render_hair_colour"] = ("vert", DOM_DEFINES, DOM_LOOKUP + ["render/light", "render/hair_shading", "render/hair_colour"], "")
+COMPOSITIONS["render_mesh_inv_w"] = ("frag", "", ["render/mesh_inv_w"], "")
 COMPOSITIONS["render_hair_fragment"] = ("frag", "", ["render/hair_fragment"], "")
 COMPOSITIONS["render_mesh_vertex"] = ("vert", "", ["render/mesh_vertex"], "")
 COMPOSITIONS["render_mesh_fragment"] = ("frag", DOM_DEFINES, DOM_LOOKUP + ["render/light", "render/mesh_fragment"], "")
 COMPOSITIONS["render_mesh_depth"] = ("frag", "", ["render/mesh_depth"], "")
 COMPOSITIONS["render_present"] = ("frag", "", ["render/present"], "")
+
+# Transparent hair (gl/transparent_hair.hpp): the camera's fragments through the occupancy passes,
+# and each mode's blend and resolve.
+CAMERA_OCCUPANCY = "#define HS_LAYERS 128\n#define HS_SLABS 4\n#define HS_BIT_TARGETS 1\n#define HS_SLAB_TARGETS 1\n"
+CAMERA_SNIPPETS = ["accumulation/float", "placement/common", "placement/depth_range", "texel_state/depth_range", "transparency/camera_fragment"]
+COMPOSITIONS["transparency_line_vertex"] = ("vert", "", ["transparency/line_vertex"], "")
+COMPOSITIONS["transparency_line_geometry"] = ("geom", "", ["transparency/line_geometry"], "")
+for name in ("depth_range", "occupancy_bits", "occupancy_slabs"):
+    COMPOSITIONS[f"transparency_{name}"] = ("frag", CAMERA_OCCUPANCY, CAMERA_SNIPPETS + [f"passes/{name}"], "")
+COMPOSITIONS["transparency_occupancy_order"] = ("frag", CAMERA_OCCUPANCY, CAMERA_SNIPPETS + [
+    "reconstruction/occupancy_bitcount", "lookup/occupancy_texels", "transparency/occupancy_order"], "")
+COMPOSITIONS["transparency_weighted_sum"] = ("frag", "", ["transparency/camera_fragment", "transparency/weighted_sum"], "")
+COMPOSITIONS["transparency_peel"] = ("frag", "", ["transparency/camera_fragment", "transparency/peel"], "")
+for mode in ("OCCUPANCY_ORDER", "WEIGHTED_AVERAGE", "EXACT"):
+    COMPOSITIONS[f"transparency_resolve_{mode.lower()}"] = ("frag", f"#define HS_{mode}\n", ["transparency/resolve"], "")
 
 
 def expand(text: str) -> str:

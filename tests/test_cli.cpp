@@ -212,7 +212,7 @@ TEST_CASE("render and figure blend transparent hair", "[cli][transparency]") {
     REQUIRE(fig.status == 0);
     CHECK(std::filesystem::file_size(dir.file("fig/transparency.png")) > 100);
     CHECK_THAT(test::read_text(dir.file("fig/transparency.md")), Catch::Contains("| occupancy order |"));
-    for (const char* bad : {"--transparency sorted", "--hair-opacity 0", "--transparency exact --backend gl", "--view light --size 64",
+    for (const char* bad : {"--transparency sorted", "--hair-opacity 0", "--view light --size 64",
                             "--view light --transparency exact"}) {
         CAPTURE(bad);
         const auto r = test::run_cli(std::string("render procedural:wavy:strands=30:segments=4 --res 32 --size 32 ") + bad + " --out " + dir.file("x.png"));

@@ -42,7 +42,7 @@ public:
     std::unique_ptr<any_shadow_map> to_cpu() override { return built().to_cpu(); }
     std::size_t memory_bytes() override { return built().memory_bytes(); }
     image render_scene(const scene& sc, const camera& cam, const method_spec& spec, const std::vector<light_space>& spaces,
-                       const raster_options& options) override {
+                       const raster_options& options, transparency mode, float hair_opacity) override {
         const gl::hair_mesh mesh(sc.hair);
         gl::scene_renderer renderer(sc);
         std::vector<std::unique_ptr<gl::any_gl_shadow_map>> maps;
@@ -51,8 +51,12 @@ public:
             maps.back()->build(mesh, spaces[i], options);
             renderer.add_light(sc.lights[i], *maps.back());
         }
-        return renderer.render(cam);
+        renderer.set_transparency(mode, hair_opacity);
+        auto picture = renderer.render(cam);
+        peeled_layers_ = renderer.peeled_layers();
+        return picture;
     }
+    int peeled_layers() const override { return peeled_layers_; }
 
 private:
     gl::any_gl_shadow_map& built() {
@@ -62,6 +66,7 @@ private:
     std::unique_ptr<gl::headless_context> context_;
     std::optional<gl::hair_mesh> mesh_;
     std::unique_ptr<gl::any_gl_shadow_map> maps_;
+    int peeled_layers_ = 0;
 };
 
 } // namespace

@@ -8,6 +8,7 @@
 #include <hairshadow/shading/camera.hpp>
 #include <hairshadow/shading/image.hpp>
 #include <hairshadow/shading/scene.hpp>
+#include <hairshadow/shading/transparency.hpp>
 
 #include <memory>
 #include <span>
@@ -33,9 +34,13 @@ public:
     /// Bytes of the last built maps' textures.
     virtual std::size_t memory_bytes() = 0;
     /// Renders `sc` from `cam` on GL: each light's maps (one per frustum in `spaces`) built there and
-    /// read by the GL renderer's passes.
+    /// read by the GL renderer's passes, the hair drawn with `mode` and `hair_opacity`
+    /// (gl::scene_renderer::set_transparency).
     virtual hairshadow::image render_scene(const hairshadow::scene& sc, const hairshadow::camera& cam, const hairshadow::method_spec& spec,
-                                           const std::vector<hairshadow::light_space>& spaces, const hairshadow::raster_options& options) = 0;
+                                           const std::vector<hairshadow::light_space>& spaces, const hairshadow::raster_options& options,
+                                           hairshadow::transparency mode, float hair_opacity) = 0;
+    /// Depth-peeling layers of the last render_scene with transparency::exact.
+    virtual int peeled_layers() const = 0;
     /// The last built maps read back for CPU queries.
     virtual std::unique_ptr<hairshadow::any_shadow_map> to_cpu() = 0;
 };

@@ -262,8 +262,7 @@ int run_shaded(const map_options& o, const render_view& v, const std::string& ou
     }
     if (o.on_gl() && o.wide > 0.0f) throw usage_error("--wide needs --backend cpu: core GL draws lines one pixel wide");
     const auto mode = parse_transparency(v.transparency);
-    if (o.on_gl() && mode != transparency::none) throw usage_error("--transparency is CPU-only so far; use --backend cpu");
-    if (mode == transparency::occupancy && v.size > 4096) throw usage_error("--transparency occupancy needs --size up to 4096");
+    if (!o.on_gl() && mode == transparency::occupancy && v.size > 4096) throw usage_error("--transparency occupancy needs --size up to 4096");
     std::fprintf(stderr, "render of %s with %s, %zu light(s), on the %s\n", o.model.c_str(), spec.text.c_str(), lights.size(), o.backend.c_str());
     const hairshadow::scene sc = cli::load_scene(o.model, v.mesh, lights);
     const auto cam = camera::framing(sc.bounds(), v.azimuth, v.elevation, v.size, v.size, 1.15f);
@@ -276,7 +275,9 @@ int run_shaded(const map_options& o, const render_view& v, const std::string& ou
     image picture;
     if (o.on_gl()) {
         const auto gl = cli::gl_backend::open(o.context);
-        picture = cli::step("building the maps and rendering on GL", [&] { return gl->render_scene(sc, cam, spec, spaces, ro); });
+        picture = cli::step("building the maps and rendering on GL (transparency " + v.transparency + ")",
+                            [&] { return gl->render_scene(sc, cam, spec, spaces, ro, mode, v.hair_opacity); });
+        if (mode == transparency::exact) std::fprintf(stderr, "depth peeling: %d layers\n", gl->peeled_layers());
     } else {
         std::vector<std::unique_ptr<any_shadow_map>> maps;
         std::vector<lit_light> lit;

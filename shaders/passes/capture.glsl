@@ -10,6 +10,6 @@ uniform int hs_resolution;
 void main() {
     uint i = atomicAdd(hs_captured, 1u);
     if (i < uint(hs_capture.length()))
-        hs_capture[i] = uvec4(uint(gl_FragCoord.y) * uint(hs_resolution) + uint(gl_FragCoord.x), floatBitsToUint(hs_v_depth),
+        hs_capture[i] = uvec4(uint(gl_FragCoord.y) * uint(hs_resolution) + uint(gl_FragCoord.x), floatBitsToUint(hs_fragment_depth()),
                               floatBitsToUint(hs_fragment_alpha()), uint(gl_PrimitiveID));
 }

@@ -12,12 +12,12 @@ void main() {
         centre[j] = hs_initial_centre(range, j);
         unused[j] = 0.0;
     }
-    int cluster = hs_nearest_cluster(centre, unused, true, hs_v_depth);
+    int cluster = hs_nearest_cluster(centre, unused, true, hs_fragment_depth());
     float b = hs_fragment_optical_depth();
     for (int t = 0; t < HS_STATE_TARGETS; ++t) {
         vec4 weight = vec4(0.0);
         if (cluster / 4 == t) weight[cluster % 4] = b;
         hs_cluster_out[t] = weight;
-        hs_cluster_out[HS_STATE_TARGETS + t] = weight * hs_v_depth;
+        hs_cluster_out[HS_STATE_TARGETS + t] = weight * hs_fragment_depth();
     }
 }

@@ -7,8 +7,9 @@ void main() {
     ivec2 texel = ivec2(gl_FragCoord.xy);
     float mean[HS_LAYERS], sigma[HS_LAYERS];
     hs_cluster_means(texel, texelFetch(hs_range_map, texel, 0), mean, sigma);
-    int cluster = hs_nearest_cluster(mean, sigma, false, hs_v_depth);
-    float b = hs_fragment_optical_depth(), d = hs_v_depth - mean[cluster];
+    float depth = hs_fragment_depth();
+    int cluster = hs_nearest_cluster(mean, sigma, false, depth);
+    float b = hs_fragment_optical_depth(), d = depth - mean[cluster];
     for (int t = 0; t < HS_STATE_TARGETS; ++t) {
         vec4 weight = vec4(0.0);
         if (cluster / 4 == t) weight[cluster % 4] = b;

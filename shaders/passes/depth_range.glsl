@@ -2,4 +2,7 @@
 // blending, alpha the furthest under MAX blending (glBlendEquationSeparate(GL_MIN, GL_MAX)).
 out vec4 hs_range_out;
 
-void main() { hs_range_out = vec4(hs_v_depth, 0.0, 0.0, hs_v_depth); }
+void main() {
+    float depth = hs_fragment_depth();
+    hs_range_out = vec4(depth, 0.0, 0.0, depth);
+}

@@ -8,7 +8,7 @@ layout(location = 0) out vec4 hs_layers_out[HS_LAYER_TARGETS];
 
 void main() {
     vec4 range = texelFetch(hs_range_map, ivec2(gl_FragCoord.xy), 0);
-    int k = hs_assign_from(ivec2(gl_FragCoord.xy), range, hs_v_depth);
+    int k = hs_assign_from(ivec2(gl_FragCoord.xy), range, hs_fragment_depth());
     float value = k < 0 ? 0.0 : hs_encode(hs_fragment_optical_depth());
     for (int t = 0; t < HS_LAYER_TARGETS; ++t) {
         vec4 v = vec4(0.0);

@@ -5,7 +5,7 @@ layout(location = 0) out uvec4 hs_bits_out[HS_BIT_TARGETS];
 
 void main() {
     vec4 range = texelFetch(hs_range_map, ivec2(gl_FragCoord.xy), 0);
-    int k = hs_assign_from(ivec2(gl_FragCoord.xy), range, hs_v_depth);
+    int k = hs_assign_from(ivec2(gl_FragCoord.xy), range, hs_fragment_depth());
     if (k < 0) discard;
     uvec4 word = uvec4(0u);
     word[(k % 128) / 32] = 1u << uint(k % 32);

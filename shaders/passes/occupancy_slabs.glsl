@@ -5,7 +5,7 @@ layout(location = 0) out vec4 hs_slabs_out[HS_SLAB_TARGETS];
 
 void main() {
     vec4 range = texelFetch(hs_range_map, ivec2(gl_FragCoord.xy), 0);
-    int k = hs_assign_from(ivec2(gl_FragCoord.xy), range, hs_v_depth);
+    int k = hs_assign_from(ivec2(gl_FragCoord.xy), range, hs_fragment_depth());
     if (k < 0) discard;
     int slab = k / (HS_LAYERS / HS_SLABS);
     vec4 value = vec4(0.0);

@@ -4,6 +4,9 @@ in float hs_v_depth;
 in float hs_v_thickness;
 in float hs_v_opacity;
 
+// The fragment's linear depth from the light, as every pass reads it.
+float hs_fragment_depth() { return hs_v_depth; }
+
 uniform bool hs_use_fixed_alpha;
 uniform float hs_fixed_alpha;
 // World width of a texel at linear depth d: hs_texel_size.x + hs_texel_size.y * d.

@@ -29,3 +29,18 @@ float hs_occupancy_optical_depth(hs_layer_position p, uint bits[HS_WORDS], float
     bool occupied = ((bits[p.index / 32] >> uint(p.index % 32)) & 1u) != 0u;
     return omega + per_bit * (float(hs_count_bits(bits, first, p.index)) + (occupied ? p.fraction : 0.0));
 }
+
+// The optical depth in front of a fragment assigned to slice k: the slabs in front, and the set bits
+// of its own slab before slice k, each worth the slab's mean (Sintorn & Assarsson 2009, section 3.4:
+// divided by one fragment's -ln(1 - alpha) it is the depth order o). Mirrors
+// occupancy_bitcount::optical_depth_in_front.
+float hs_occupancy_optical_depth_in_front(int k, uint bits[HS_WORDS], float slabs[HS_SLABS]) {
+    int slab = k < 0 ? HS_SLABS : k / HS_PER_SLAB; // a fragment the placement dropped: behind everything
+    float omega = 0.0;
+    for (int i = 0; i < min(slab, HS_SLABS); ++i) omega += hs_decode(slabs[i]);
+    if (k < 0) return omega;
+    int first = slab * HS_PER_SLAB;
+    int set = hs_count_bits(bits, first, first + HS_PER_SLAB);
+    if (set == 0) return omega;
+    return omega + hs_decode(slabs[slab]) / float(set) * float(hs_count_bits(bits, first, k));
+}

@@ -106,3 +106,19 @@ TEST_CASE("render draws the shaded scene on either back end, with fill lights", 
     CHECK(maps.status == 2);
     CHECK_THAT(maps.err, Catch::Contains("--view light"));
 }
+
+TEST_CASE("render blends transparent hair on GL, counting depth-peeling layers", "[gl][cli][transparency]") {
+    test::temp_dir dir("gl_cli_transparency");
+    for (const char* mode : {"occupancy", "weighted", "exact"}) {
+        CAPTURE(mode);
+        const auto r = test::run_cli(std::string("render procedural:wavy:strands=300:segments=10 --res 64 --size 64 --method occ:128:4 --backend gl ") +
+                                     "--hair-opacity 0.3 --transparency " + mode + " --out " + dir.file(std::string(mode) + ".png"));
+        REQUIRE(r.status == 0);
+        CHECK_THAT(r.err, Catch::Contains(std::string("transparency ") + mode));
+        CHECK(std::filesystem::file_size(dir.file(std::string(mode) + ".png")) > 100);
+        if (std::string(mode) == "exact") {
+            CHECK_THAT(r.err, Catch::Contains("depth peeling: "));
+            CHECK_THAT(r.err, !Catch::Contains("depth peeling: 0 layers"));
+        }
+    }
+}

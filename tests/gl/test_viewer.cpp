@@ -19,6 +19,7 @@ TEST_CASE("the viewer draws frames in a window under Xvfb", "[gl][viewer]") {
     CAPTURE(command, test::read_text(dir.file("log.txt")));
     REQUIRE(status == 0);
     CHECK_THAT(test::read_text(dir.file("log.txt")), Catch::Contains("osm:16: 4 frames"));
+    CHECK_THAT(test::read_text(dir.file("log.txt")), Catch::Contains("transparency none"));
     int w = 0, h = 0, channels = 0;
     unsigned char* pixels = stbi_load(shot.c_str(), &w, &h, &channels, 3);
     REQUIRE(pixels != nullptr);
@@ -32,4 +33,21 @@ TEST_CASE("the viewer draws frames in a window under Xvfb", "[gl][viewer]") {
     CHECK(w == 720);
     CHECK(not_background > w * h / 20); // the hair and its sphere cover a good part of the frame
     CHECK(dark > 100);                   // with shading and shadows, not a flat silhouette
+}
+
+TEST_CASE("the viewer draws transparent hair, and refuses an unknown mode", "[gl][viewer][transparency]") {
+    test::temp_dir dir("viewer_transparency");
+    const std::string viewer = "xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(HAIRSHADOW_VIEWER) + " procedural:wavy:strands=300:segments=8";
+    for (const char* mode : {"occupancy", "exact"}) {
+        const std::string command = viewer + " --transparency " + mode + " --frames 2 > " + dir.file("log.txt") + " 2>&1";
+        const int status = std::system(command.c_str());
+        CAPTURE(command, test::read_text(dir.file("log.txt")));
+        REQUIRE(status == 0);
+        CHECK_THAT(test::read_text(dir.file("log.txt")), Catch::Contains(std::string("transparency ") + mode));
+    }
+    const std::string bad = viewer + " --transparency sorted > " + dir.file("bad.txt") + " 2>&1";
+    const int status = std::system(bad.c_str());
+    CHECK(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 2);
+    CHECK_THAT(test::read_text(dir.file("bad.txt")), Catch::Contains("unknown transparency"));
 }

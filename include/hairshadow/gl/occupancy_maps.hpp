@@ -59,7 +59,7 @@ public:
     static std::string lookup_source() {
         std::string s = defines();
         for (auto piece : {accumulation_snippet(), shaders::placement_common, detail::placement_glsl<P>::snippet, detail::placement_glsl<P>::state,
-                           shaders::reconstruction_occupancy_bitcount, shaders::lookup_light, shaders::lookup_occupancy})
+                           shaders::reconstruction_occupancy_bitcount, shaders::lookup_light, shaders::lookup_occupancy_texels, shaders::lookup_occupancy})
             s += piece;
         return s;
     }

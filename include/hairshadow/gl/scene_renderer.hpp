@@ -4,18 +4,24 @@
 /// pass per light, added by blending: each pass's programs are composed from that light's method
 /// look-up (hs_transmittance) and the shading snippets (shaders/render/), so Kajiya-Kay hair (at
 /// the strand points) and Lambert mesh (per pixel) see the hair's transmittance and the mesh's depth
-/// shadow map, which is drawn on GL too.
+/// shadow map, which is drawn on GL too. Transparent hair (set_transparency) is blended over the
+/// mesh by gl::transparent_hair.
 
 #include <hairshadow/gl/depth_range_pass.hpp>
 #include <hairshadow/gl/hair_mesh.hpp>
 #include <hairshadow/gl/objects.hpp>
 #include <hairshadow/gl/shaders.generated.hpp>
+#include <hairshadow/gl/transparent_hair.hpp>
 #include <hairshadow/shading/camera.hpp>
 #include <hairshadow/shading/cpu_renderer.hpp>
 #include <hairshadow/shading/image.hpp>
 #include <hairshadow/shading/scene.hpp>
 
+#include <glm/vec4.hpp>
+
 #include <functional>
+#include <limits>
+#include <memory>
 #include <utility>
 #include <string>
 #include <vector>
@@ -64,8 +70,29 @@ public:
         add(light, space, no_hair, [space](GLuint prog) { set_lookup_frustum(prog, space); }, mesh_bias);
     }
 
-    /// Draws the scene from `cam` into the bound framebuffer (viewport and clearing are the caller's).
-    void draw(const camera& cam) const {
+    /// How render_into, render and present draw the hair. transparency::none (the default) draws it
+    /// opaque, anti-aliased by multisampling. The other modes give each strand alpha `opacity` over
+    /// the pixels its `line_width`-pixel line covers, blended by gl::transparent_hair over the mesh,
+    /// which is then single-sampled, as hairshadow::render_transparent draws it.
+    void set_transparency(transparency mode, float opacity = 0.4f, float line_width = 1.0f) {
+        if (!(opacity > 0.0f && opacity <= 1.0f)) throw argument_error("hair opacity must be in (0, 1]");
+        if (!(line_width > 0.0f && line_width <= 64.0f)) throw argument_error("hair line width must be in (0, 64] pixels");
+        if (mode != transparency::none) {
+            GLint blocks = 0;
+            glGetIntegerv(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, &blocks);
+            if (blocks < 1) throw feature_error("transparent hair needs shader storage blocks in vertex shaders; the context has none");
+        }
+        transparency_ = mode;
+        hair_opacity_ = opacity;
+        line_width_ = line_width;
+    }
+    transparency transparency_mode() const noexcept { return transparency_; }
+    /// Depth-peeling layers of the last render with transparency::exact (each two draws of the hair).
+    int peeled_layers() const noexcept { return peeled_layers_; }
+
+    /// Draws the scene from `cam` into the bound framebuffer (viewport and clearing are the caller's);
+    /// `with_hair` false draws the mesh alone (the hair still shadows it). Always opaque hair.
+    void draw(const camera& cam, bool with_hair = true) const {
         glEnable(GL_DEPTH_TEST);
         glEnable(GL_MULTISAMPLE);
         glDisable(GL_BLEND);
@@ -82,7 +109,7 @@ public:
                 glUseProgram(p->get());
                 set_pass_uniforms(p->get(), l, cam, i == 0);
                 if (p == &l.mesh_program) draw_elements(mesh_, GL_TRIANGLES, mesh_count_);
-                else draw_elements(hair_, GL_LINES, hair_count_);
+                else if (with_hair) draw_elements(hair_, GL_LINES, hair_count_);
             }
         }
         glDepthMask(GL_TRUE);
@@ -93,12 +120,14 @@ public:
 
     /// Draws the scene with `samples` multisamples off screen and resolves it (the samples' average:
     /// the lines' coverage) into framebuffer `target` (0: the window's), over the whole viewport.
+    /// With transparent hair (set_transparency), the passes of gl::transparent_hair draw it instead.
     void render_into(const camera& cam, GLuint target, int samples = 8) const {
         camera::check_image_size(cam.width, cam.height);
         // State a caller may have left that would keep the new buffers from being cleared.
         glDepthMask(GL_TRUE);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         glDisable(GL_SCISSOR_TEST);
+        if (transparency_ != transparency::none) return render_transparent_into(cam, target);
         GLint max_samples = 1;
         glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
         samples = std::clamp(samples, 1, int(max_samples));
@@ -183,17 +212,19 @@ private:
     struct light_entry {
         scene_light light;
         light_space space;
+        std::string lookup; ///< the method's look-up source
         std::function<void(GLuint)> bind_lookup;
         float mesh_bias;
         texture mesh_depth;
         program mesh_program, hair_program;
+        mutable program colour_program; ///< transparent hair's colours, compiled at the first use
     };
 
-    /// A single-sampled RGBA32F texture and a framebuffer drawing into it.
-    static std::pair<texture, framebuffer> linear_target(int width, int height) {
+    /// A single-sampled texture (RGBA32F unless told) and a framebuffer drawing into it.
+    static std::pair<texture, framebuffer> linear_target(int width, int height, GLenum format = GL_RGBA32F) {
         auto t = make_texture();
         glBindTexture(GL_TEXTURE_2D, t.get());
-        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, width, height);
+        glTexStorage2D(GL_TEXTURE_2D, 1, format, width, height);
         auto f = make_framebuffer();
         glBindFramebuffer(GL_FRAMEBUFFER, f.get());
         glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, t.get(), 0);
@@ -219,13 +250,11 @@ private:
         glBindVertexArray(0);
     }
     void add(const scene_light& light, const light_space& space, const std::string& lookup, std::function<void(GLuint)> bind, float bias) {
-        light_entry e{light, space, std::move(bind), bias, draw_mesh_depth(space), {}, {}};
-        const auto compile = [&](GLenum stage, std::string_view body, const char* name) {
-            return compile_shader(stage, {version, lookup, shaders::render_light, body}, name);
-        };
+        light_entry e{light, space, lookup, std::move(bind), bias, draw_mesh_depth(space), {}, {}, {}};
         const auto mesh_vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::render_mesh_vertex}, "render/mesh_vertex");
-        const auto mesh_fs = compile(GL_FRAGMENT_SHADER, shaders::render_mesh_fragment, "render/mesh_fragment");
-        const auto hair_vs = compile(GL_VERTEX_SHADER, shaders::render_hair_vertex, "render/hair_vertex");
+        const auto mesh_fs = compile_shader(GL_FRAGMENT_SHADER, {version, lookup, shaders::render_light, shaders::render_mesh_fragment}, "render/mesh_fragment");
+        const auto hair_vs = compile_shader(GL_VERTEX_SHADER, {version, lookup, shaders::render_light, shaders::render_hair_shading, shaders::render_hair_vertex},
+                                            "render/hair_vertex");
         const auto hair_fs = compile_shader(GL_FRAGMENT_SHADER, {version, shaders::render_hair_fragment}, "render/hair_fragment");
         e.mesh_program = link_program({&mesh_vs, &mesh_fs}, "mesh shading");
         e.hair_program = link_program({&hair_vs, &hair_fs}, "hair shading");
@@ -259,6 +288,77 @@ private:
         return t;
     }
 
+    /// Transparent hair: the mesh single-sampled and its 1/w, the hair's colours at its points, then
+    /// gl::transparent_hair's passes into `target`.
+    void render_transparent_into(const camera& cam, GLuint target) const {
+        const auto [base, base_fbo] = linear_target(cam.width, cam.height);
+        auto depth = make_renderbuffer();
+        glBindRenderbuffer(GL_RENDERBUFFER, depth.get());
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, cam.width, cam.height);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth.get());
+        const GLenum first = GL_COLOR_ATTACHMENT0;
+        glDrawBuffers(1, &first);
+        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) throw gl_error("scene renderer: incomplete framebuffer");
+        glViewport(0, 0, cam.width, cam.height);
+        const float background[4] = {scene_.background.r, scene_.background.g, scene_.background.b, 1.0f};
+        glClearBufferfv(GL_COLOR, 0, background);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        draw(cam, false);
+        const auto colours = hair_colours(cam); // drawn with base_fbo bound: nothing is rasterised
+
+        const auto [inv_w, inv_w_fbo] = linear_target(cam.width, cam.height, GL_R32F);
+        const float none[4] = {0, 0, 0, 0};
+        glClearBufferfv(GL_COLOR, 0, none);
+        glDisable(GL_DEPTH_TEST);
+        glEnable(GL_BLEND);
+        glBlendEquation(GL_MAX);
+        if (!inv_w_program_) {
+            const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::render_mesh_vertex}, "render/mesh_vertex");
+            const auto fs = compile_shader(GL_FRAGMENT_SHADER, {version, shaders::render_mesh_inv_w}, "render/mesh_inv_w");
+            inv_w_program_ = link_program({&vs, &fs}, "mesh 1/w");
+        }
+        glUseProgram(inv_w_program_.get());
+        const auto vp = cam.view_projection();
+        glUniformMatrix4fv(glGetUniformLocation(inv_w_program_.get(), "hs_camera_view_projection"), 1, GL_FALSE, &vp[0][0]);
+        draw_elements(mesh_, GL_TRIANGLES, mesh_count_);
+        glBlendEquation(GL_FUNC_ADD);
+        glDisable(GL_BLEND);
+
+        if (!transparent_) transparent_ = std::make_unique<transparent_hair>();
+        const camera_hair hair{[this] { draw_elements(hair_, GL_LINES, hair_count_); }, colours.get(), inv_w.get(), base.get()};
+        peeled_layers_ = transparent_->blend(transparency_, hair, cam, hair_opacity_, line_width_, target);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    }
+
+    /// Each hair point's radiance towards `cam` (a vec4 per point, in a shader storage buffer): the
+    /// ambient term, then each light's pass added by render/hair_colour.
+    buffer hair_colours(const camera& cam) const {
+        const std::size_t points = scene_.hair.point_count();
+        if (points > std::size_t(std::numeric_limits<GLsizei>::max())) throw argument_error("too many hair points for one GL draw");
+        const std::vector<glm::vec4> ambient(points, glm::vec4(scene_.material.ambient * scene_.material.colour, 0.0f));
+        auto colours = make_buffer();
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, colours.get());
+        glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(points * sizeof(glm::vec4)), ambient.data(), GL_DYNAMIC_COPY);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, colours.get());
+        glEnable(GL_RASTERIZER_DISCARD);
+        for (const auto& l : lights_) {
+            if (!l.colour_program) {
+                const auto vs = compile_shader(GL_VERTEX_SHADER, {version, l.lookup, shaders::render_light, shaders::render_hair_shading, shaders::render_hair_colour},
+                                               "render/hair_colour");
+                l.colour_program = link_program({&vs}, "hair colours");
+            }
+            glUseProgram(l.colour_program.get());
+            set_pass_uniforms(l.colour_program.get(), l, cam, false); // the ambient term is already in
+            glBindVertexArray(hair_.vao.get());
+            glDrawArrays(GL_POINTS, 0, GLsizei(points));
+            glBindVertexArray(0);
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); // the next light's pass, and the blend, read them
+        }
+        glDisable(GL_RASTERIZER_DISCARD);
+        check("hair colours");
+        return colours;
+    }
+
     void set_pass_uniforms(GLuint prog, const light_entry& l, const camera& cam, bool first) const {
         l.bind_lookup(prog); // texture units from 0: as many as the method's look-up reads (up to 5)
         glActiveTexture(GLenum(GL_TEXTURE0 + mesh_depth_unit));
@@ -289,6 +389,11 @@ private:
     geometry hair_, mesh_;
     GLsizei hair_count_ = 0, mesh_count_ = 0;
     program depth_program_, present_program_;
+    mutable program inv_w_program_;
+    transparency transparency_ = transparency::none;
+    float hair_opacity_ = 0.4f, line_width_ = 1.0f;
+    mutable std::unique_ptr<transparent_hair> transparent_;
+    mutable int peeled_layers_ = 0;
     vertex_array empty_vao_ = make_vertex_array();
     std::vector<light_entry> lights_;
 };

@@ -83,20 +83,28 @@ bool hs_lookup_locate(vec3 world_pos, out ivec2 texel, out float depth, out vec4
 
 /// shaders/lookup/occupancy.glsl
 inline constexpr std::string_view lookup_occupancy = R"hs_glsl(// float hs_transmittance(vec3 world_pos) for occupancy maps: any user shader can call it after the
-// placement, accumulation and reconstruction snippets.
-uniform usampler2D hs_bits_texture[HS_BIT_TARGETS];
-uniform sampler2D hs_slabs_texture[HS_SLAB_TARGETS];
-
+// placement, accumulation and reconstruction snippets and lookup/occupancy_texels.
 float hs_transmittance(vec3 world_pos) {
     ivec2 texel;
     float depth;
     vec4 range;
     if (!hs_lookup_locate(world_pos, texel, depth, range)) return 1.0;
     uint bits[HS_WORDS];
-    for (int w = 0; w < HS_WORDS; ++w) bits[w] = texelFetch(hs_bits_texture[w / 4], texel, 0)[w % 4];
     float slabs[HS_SLABS];
-    for (int s = 0; s < HS_SLABS; ++s) slabs[s] = texelFetch(hs_slabs_texture[s / 4], texel, 0)[s % 4];
+    hs_fetch_occupancy(texel, bits, slabs);
     return exp(-hs_occupancy_optical_depth(hs_locate_from(texel, range, depth), bits, slabs));
+}
+)hs_glsl";
+
+/// shaders/lookup/occupancy_texels.glsl
+inline constexpr std::string_view lookup_occupancy_texels = R"hs_glsl(// The occupancy maps' textures (HS_BIT_TARGETS of RGBA32UI words, HS_SLAB_TARGETS of 4 slabs each)
+// and one texel's words and slabs read from them.
+uniform usampler2D hs_bits_texture[HS_BIT_TARGETS];
+uniform sampler2D hs_slabs_texture[HS_SLAB_TARGETS];
+
+void hs_fetch_occupancy(ivec2 texel, out uint bits[HS_WORDS], out float slabs[HS_SLABS]) {
+    for (int w = 0; w < HS_WORDS; ++w) bits[w] = texelFetch(hs_bits_texture[w / 4], texel, 0)[w % 4];
+    for (int s = 0; s < HS_SLABS; ++s) slabs[s] = texelFetch(hs_slabs_texture[s / 4], texel, 0)[s % 4];
 }
 )hs_glsl";
 
@@ -113,7 +121,7 @@ uniform int hs_resolution;
 void main() {
     uint i = atomicAdd(hs_captured, 1u);
     if (i < uint(hs_capture.length()))
-        hs_capture[i] = uvec4(uint(gl_FragCoord.y) * uint(hs_resolution) + uint(gl_FragCoord.x), floatBitsToUint(hs_v_depth),
+        hs_capture[i] = uvec4(uint(gl_FragCoord.y) * uint(hs_resolution) + uint(gl_FragCoord.x), floatBitsToUint(hs_fragment_depth()),
                               floatBitsToUint(hs_fragment_alpha()), uint(gl_PrimitiveID));
 }
 )hs_glsl";
@@ -148,13 +156,13 @@ void main() {
         centre[j] = hs_initial_centre(range, j);
         unused[j] = 0.0;
     }
-    int cluster = hs_nearest_cluster(centre, unused, true, hs_v_depth);
+    int cluster = hs_nearest_cluster(centre, unused, true, hs_fragment_depth());
     float b = hs_fragment_optical_depth();
     for (int t = 0; t < HS_STATE_TARGETS; ++t) {
         vec4 weight = vec4(0.0);
         if (cluster / 4 == t) weight[cluster % 4] = b;
         hs_cluster_out[t] = weight;
-        hs_cluster_out[HS_STATE_TARGETS + t] = weight * hs_v_depth;
+        hs_cluster_out[HS_STATE_TARGETS + t] = weight * hs_fragment_depth();
     }
 }
 )hs_glsl";
@@ -197,8 +205,9 @@ void main() {
     ivec2 texel = ivec2(gl_FragCoord.xy);
     float mean[HS_LAYERS], sigma[HS_LAYERS];
     hs_cluster_means(texel, texelFetch(hs_range_map, texel, 0), mean, sigma);
-    int cluster = hs_nearest_cluster(mean, sigma, false, hs_v_depth);
-    float b = hs_fragment_optical_depth(), d = hs_v_depth - mean[cluster];
+    float depth = hs_fragment_depth();
+    int cluster = hs_nearest_cluster(mean, sigma, false, depth);
+    float b = hs_fragment_optical_depth(), d = depth - mean[cluster];
     for (int t = 0; t < HS_STATE_TARGETS; ++t) {
         vec4 weight = vec4(0.0);
         if (cluster / 4 == t) weight[cluster % 4] = b;
@@ -213,7 +222,10 @@ inline constexpr std::string_view passes_depth_range = R"hs_glsl(// Depth-range 
 // blending, alpha the furthest under MAX blending (glBlendEquationSeparate(GL_MIN, GL_MAX)).
 out vec4 hs_range_out;
 
-void main() { hs_range_out = vec4(hs_v_depth, 0.0, 0.0, hs_v_depth); }
+void main() {
+    float depth = hs_fragment_depth();
+    hs_range_out = vec4(depth, 0.0, 0.0, depth);
+}
 )hs_glsl";
 
 /// shaders/passes/fullscreen_vertex.glsl
@@ -235,7 +247,7 @@ layout(location = 0) out vec4 hs_layers_out[HS_LAYER_TARGETS];
 
 void main() {
     vec4 range = texelFetch(hs_range_map, ivec2(gl_FragCoord.xy), 0);
-    int k = hs_assign_from(ivec2(gl_FragCoord.xy), range, hs_v_depth);
+    int k = hs_assign_from(ivec2(gl_FragCoord.xy), range, hs_fragment_depth());
     float value = k < 0 ? 0.0 : hs_encode(hs_fragment_optical_depth());
     for (int t = 0; t < HS_LAYER_TARGETS; ++t) {
         vec4 v = vec4(0.0);
@@ -260,7 +272,7 @@ layout(location = 0) out uvec4 hs_bits_out[HS_BIT_TARGETS];
 
 void main() {
     vec4 range = texelFetch(hs_range_map, ivec2(gl_FragCoord.xy), 0);
-    int k = hs_assign_from(ivec2(gl_FragCoord.xy), range, hs_v_depth);
+    int k = hs_assign_from(ivec2(gl_FragCoord.xy), range, hs_fragment_depth());
     if (k < 0) discard;
     uvec4 word = uvec4(0u);
     word[(k % 128) / 32] = 1u << uint(k % 32);
@@ -276,7 +288,7 @@ layout(location = 0) out vec4 hs_slabs_out[HS_SLAB_TARGETS];
 
 void main() {
     vec4 range = texelFetch(hs_range_map, ivec2(gl_FragCoord.xy), 0);
-    int k = hs_assign_from(ivec2(gl_FragCoord.xy), range, hs_v_depth);
+    int k = hs_assign_from(ivec2(gl_FragCoord.xy), range, hs_fragment_depth());
     if (k < 0) discard;
     int slab = k / (HS_LAYERS / HS_SLABS);
     vec4 value = vec4(0.0);
@@ -502,6 +514,9 @@ in float hs_v_depth;
 in float hs_v_thickness;
 in float hs_v_opacity;
 
+// The fragment's linear depth from the light, as every pass reads it.
+float hs_fragment_depth() { return hs_v_depth; }
+
 uniform bool hs_use_fixed_alpha;
 uniform float hs_fixed_alpha;
 // World width of a texel at linear depth d: hs_texel_size.x + hs_texel_size.y * d.
@@ -593,6 +608,35 @@ float hs_occupancy_optical_depth(hs_layer_position p, uint bits[HS_WORDS], float
     bool occupied = ((bits[p.index / 32] >> uint(p.index % 32)) & 1u) != 0u;
     return omega + per_bit * (float(hs_count_bits(bits, first, p.index)) + (occupied ? p.fraction : 0.0));
 }
+
+// The optical depth in front of a fragment assigned to slice k: the slabs in front, and the set bits
+// of its own slab before slice k, each worth the slab's mean (Sintorn & Assarsson 2009, section 3.4:
+// divided by one fragment's -ln(1 - alpha) it is the depth order o). Mirrors
+// occupancy_bitcount::optical_depth_in_front.
+float hs_occupancy_optical_depth_in_front(int k, uint bits[HS_WORDS], float slabs[HS_SLABS]) {
+    int slab = k < 0 ? HS_SLABS : k / HS_PER_SLAB; // a fragment the placement dropped: behind everything
+    float omega = 0.0;
+    for (int i = 0; i < min(slab, HS_SLABS); ++i) omega += hs_decode(slabs[i]);
+    if (k < 0) return omega;
+    int first = slab * HS_PER_SLAB;
+    int set = hs_count_bits(bits, first, first + HS_PER_SLAB);
+    if (set == 0) return omega;
+    return omega + hs_decode(slabs[slab]) / float(set) * float(hs_count_bits(bits, first, k));
+}
+)hs_glsl";
+
+/// shaders/render/hair_colour.glsl
+inline constexpr std::string_view render_hair_colour = R"hs_glsl(// Hair colours for transparent hair: each strand point's radiance from one light (render/hair_shading)
+// added to its entry of a storage buffer, one light's pass at a time, nothing rasterised. The
+// buffer starts at the ambient term, so that a scene without lights still shows it.
+layout(location = 0) in vec3 hs_position;
+layout(location = 1) in vec3 hs_tangent;
+layout(std430, binding = 2) buffer hs_hair_colours_buffer { vec4 hs_hair_colours[]; };
+
+void main() {
+    hs_hair_colours[gl_VertexID] += vec4(hs_hair_radiance(hs_position, hs_tangent), 0.0);
+    gl_Position = vec4(0.0);
+}
 )hs_glsl";
 
 /// shaders/render/hair_fragment.glsl
@@ -602,26 +646,35 @@ layout(location = 0) out vec4 hs_out;
 void main() { hs_out = vec4(hs_colour, 1.0); }
 )hs_glsl";
 
-/// shaders/render/hair_vertex.glsl
-inline constexpr std::string_view render_hair_vertex = R"hs_glsl(// Hair, vertex stage: Kajiya-Kay shading at each strand point (as hairshadow::shade_hair_points),
-// the light scaled by its visibility; lines interpolate the colour.
-layout(location = 0) in vec3 hs_position;
-layout(location = 1) in vec3 hs_tangent;
-uniform mat4 hs_camera_view_projection;
-invariant gl_Position; // the same depth in every light's pass (GL_LEQUAL)
+/// shaders/render/hair_shading.glsl
+inline constexpr std::string_view render_hair_shading = R"hs_glsl(// Kajiya-Kay radiance of a strand point towards the eye from one light, scaled by the light's
+// visibility there (as hairshadow::shade_hair_points), plus the ambient term in the first pass.
 uniform vec3 hs_eye;
 uniform vec3 hs_hair_colour;
 uniform vec3 hs_hair_specular;
 uniform float hs_hair_shininess;
 uniform float hs_hair_ambient;
+
+vec3 hs_hair_radiance(vec3 position, vec3 tangent) {
+    vec3 l = hs_to_light(position), e = normalize(hs_eye - position);
+    float tl = dot(tangent, l), te = dot(tangent, e);
+    float sin_tl = sqrt(max(0.0, 1.0 - tl * tl)), sin_te = sqrt(max(0.0, 1.0 - te * te));
+    vec3 reflected = hs_hair_colour * sin_tl + hs_hair_specular * pow(max(0.0, sin_tl * sin_te - tl * te), hs_hair_shininess);
+    return hs_ambient_weight * hs_hair_ambient * hs_hair_colour + hs_light_colour * hs_light_visibility(position) * reflected;
+}
+)hs_glsl";
+
+/// shaders/render/hair_vertex.glsl
+inline constexpr std::string_view render_hair_vertex = R"hs_glsl(// Hair, vertex stage: Kajiya-Kay shading at each strand point (render/hair_shading); lines
+// interpolate the colour.
+layout(location = 0) in vec3 hs_position;
+layout(location = 1) in vec3 hs_tangent;
+uniform mat4 hs_camera_view_projection;
+invariant gl_Position; // the same depth in every light's pass (GL_LEQUAL)
 out vec3 hs_colour;
 
 void main() {
-    vec3 l = hs_to_light(hs_position), e = normalize(hs_eye - hs_position);
-    float tl = dot(hs_tangent, l), te = dot(hs_tangent, e);
-    float sin_tl = sqrt(max(0.0, 1.0 - tl * tl)), sin_te = sqrt(max(0.0, 1.0 - te * te));
-    vec3 reflected = hs_hair_colour * sin_tl + hs_hair_specular * pow(max(0.0, sin_tl * sin_te - tl * te), hs_hair_shininess);
-    hs_colour = hs_ambient_weight * hs_hair_ambient * hs_hair_colour + hs_light_colour * hs_light_visibility(hs_position) * reflected;
+    hs_colour = hs_hair_radiance(hs_position, hs_tangent);
     gl_Position = hs_camera_view_projection * vec4(hs_position, 1.0);
 }
 )hs_glsl";
@@ -682,6 +735,13 @@ void main() {
     float lit = max(0.0, dot(n, hs_to_light(hs_world))) * hs_light_visibility(hs_world);
     hs_out = vec4(hs_ambient_weight * hs_mesh_ambient * hs_mesh_colour + hs_light_colour * hs_mesh_colour * lit, 1.0);
 }
+)hs_glsl";
+
+/// shaders/render/mesh_inv_w.glsl
+inline constexpr std::string_view render_mesh_inv_w = R"hs_glsl(// The opaque mesh's 1/w at each pixel centre (the nearest surface under MAX blending, 0 where there
+// is none), which hides the hair behind it as hairshadow::collect_camera_fragments does.
+layout(location = 0) out float hs_inv_w_out;
+void main() { hs_inv_w_out = gl_FragCoord.w; }
 )hs_glsl";
 
 /// shaders/render/mesh_vertex.glsl
@@ -760,6 +820,202 @@ int hs_assign_from(ivec2 texel, vec4 range, float depth) { return hs_assign(dept
 hs_layer_position hs_locate_from(ivec2 texel, vec4 range, float depth) { return hs_locate(depth); }
 )hs_glsl";
 
+/// shaders/transparency/camera_fragment.glsl
+inline constexpr std::string_view transparency_camera_fragment = R"hs_glsl(// A hair fragment seen from the camera, as hairshadow::collect_camera_fragments makes it: the pixel
+// centre's coverage by the line (the distance to the segment against hs_line_reach), 1/w and colour
+// interpolated along the segment, alpha = coverage x opacity, hidden where the mesh is nearer. Also
+// hs_fragment_depth() and hs_fragment_optical_depth(), so that the shadow maps' passes build
+// occupancy maps from the camera's fragments unchanged.
+flat in vec2 hs_line_a;
+flat in vec2 hs_line_b;
+flat in vec2 hs_line_inv_w;
+flat in vec3 hs_line_colour_a;
+flat in vec3 hs_line_colour_b;
+uniform float hs_line_reach;
+uniform float hs_hair_opacity;
+uniform float hs_camera_near;
+uniform float hs_camera_far;
+uniform sampler2D hs_surface_inv_w; // the mesh's 1/w (render/mesh_inv_w)
+
+struct hs_camera_fragment {
+    bool visible;
+    float depth; // view distance, 0 at the near plane and 1 at the far one
+    float alpha;
+    vec3 colour;
+};
+
+hs_camera_fragment hs_this_fragment() {
+    vec2 p = gl_FragCoord.xy, d = hs_line_b - hs_line_a;
+    float length2 = dot(d, d);
+    float t = length2 > 0.0 ? clamp(dot(p - hs_line_a, d) / length2, 0.0, 1.0) : 0.0;
+    float coverage = clamp(hs_line_reach - length(p - (hs_line_a + t * d)), 0.0, 1.0);
+    // precise: every pass, and both halves of a depth-peeling pass, must agree on the depth.
+    precise float inv_w = hs_line_inv_w.x + t * (hs_line_inv_w.y - hs_line_inv_w.x);
+    precise float depth = (1.0 / inv_w - hs_camera_near) / (hs_camera_far - hs_camera_near);
+    hs_camera_fragment f;
+    f.visible = coverage > 0.0 && inv_w > texelFetch(hs_surface_inv_w, ivec2(p), 0).r;
+    f.depth = depth;
+    f.alpha = min(coverage * hs_hair_opacity, HS_ALPHA_MAX);
+    f.colour = hs_line_colour_a + t * (hs_line_colour_b - hs_line_colour_a);
+    return f;
+}
+
+// Discards the fragments that are not drawn.
+float hs_fragment_depth() {
+    hs_camera_fragment f = hs_this_fragment();
+    if (!f.visible) discard;
+    return f.depth;
+}
+float hs_fragment_optical_depth() { return -log(1.0 - hs_this_fragment().alpha); }
+)hs_glsl";
+
+/// shaders/transparency/line_geometry.glsl
+inline constexpr std::string_view transparency_line_geometry = R"hs_glsl(// Transparent hair, geometry stage: each segment as the window rectangle its anti-aliased line can
+// touch, the segment widened by hs_line_reach (half the line width plus half a pixel) on every side.
+// The ends go to the fragment stage flat, which measures each pixel's coverage as
+// hairshadow::detail::for_each_line_pixel does; segments with an end behind the camera are dropped there too.
+layout(lines) in;
+layout(triangle_strip, max_vertices = 4) out;
+in vec3 hs_point_colour[];
+uniform vec2 hs_viewport;
+uniform float hs_line_reach;
+flat out vec2 hs_line_a;
+flat out vec2 hs_line_b;
+flat out vec2 hs_line_inv_w;
+flat out vec3 hs_line_colour_a;
+flat out vec3 hs_line_colour_b;
+
+void main() {
+    vec4 a = gl_in[0].gl_Position, b = gl_in[1].gl_Position;
+    if (!(a.w > 1e-6) || !(b.w > 1e-6)) return;
+    vec2 wa = (a.xy / a.w + 1.0) * 0.5 * hs_viewport, wb = (b.xy / b.w + 1.0) * 0.5 * hs_viewport;
+    float len = length(wb - wa);
+    vec2 along = (len > 0.0 ? (wb - wa) / len : vec2(1.0, 0.0)) * hs_line_reach;
+    vec2 across = vec2(-along.y, along.x);
+    vec2 corners[4] = vec2[4](wa - along - across, wa - along + across, wb + along - across, wb + along + across);
+    for (int i = 0; i < 4; ++i) {
+        hs_line_a = wa;
+        hs_line_b = wb;
+        hs_line_inv_w = vec2(1.0 / a.w, 1.0 / b.w);
+        hs_line_colour_a = hs_point_colour[0];
+        hs_line_colour_b = hs_point_colour[1];
+        gl_Position = vec4(corners[i] / hs_viewport * 2.0 - 1.0, 0.0, 1.0);
+        EmitVertex();
+    }
+    EndPrimitive();
+}
+)hs_glsl";
+
+/// shaders/transparency/line_vertex.glsl
+inline constexpr std::string_view transparency_line_vertex = R"hs_glsl(// Transparent hair, vertex stage: each strand point in clip space with its colour (render/hair_colour).
+layout(location = 0) in vec3 hs_position;
+layout(std430, binding = 2) readonly buffer hs_hair_colours_buffer { vec4 hs_hair_colours[]; };
+uniform mat4 hs_camera_view_projection;
+out vec3 hs_point_colour;
+
+void main() {
+    gl_Position = hs_camera_view_projection * vec4(hs_position, 1.0);
+    hs_point_colour = hs_hair_colours[gl_VertexID].rgb;
+}
+)hs_glsl";
+
+/// shaders/transparency/occupancy_order.glsl
+inline constexpr std::string_view transparency_occupancy_order = R"hs_glsl(// Occupancy-ordered blending, the blend pass (Sintorn & Assarsson 2009, section 3.4): every visible
+// fragment, unsorted, adds (1 - alpha)^o alpha (colour, 1) with o its depth order from the camera's
+// occupancy and slab maps, (1 - alpha)^o = exp(-optical depth in front of its slice); and its own
+// -ln(1 - alpha), for the alpha correction of transparency/resolve. Additive blending.
+uniform sampler2D hs_range_map;
+layout(location = 0) out vec4 hs_sum_out;   // rgb: weight x colour, a: weight
+layout(location = 1) out vec4 hs_total_out; // r: -ln(1 - alpha)
+
+void main() {
+    hs_camera_fragment f = hs_this_fragment();
+    if (!f.visible) discard;
+    ivec2 texel = ivec2(gl_FragCoord.xy);
+    uint bits[HS_WORDS];
+    float slabs[HS_SLABS];
+    hs_fetch_occupancy(texel, bits, slabs);
+    int k = hs_assign_from(texel, texelFetch(hs_range_map, texel, 0), f.depth);
+    float weight = exp(-hs_occupancy_optical_depth_in_front(k, bits, slabs)) * f.alpha;
+    hs_sum_out = vec4(weight * f.colour, weight);
+    hs_total_out = vec4(-log(1.0 - f.alpha), 0.0, 0.0, 0.0);
+}
+)hs_glsl";
+
+/// shaders/transparency/peel.glsl
+inline constexpr std::string_view transparency_peel = R"hs_glsl(// Depth peeling (Everitt 2001), front to back, for exact blending. Each layer takes two draws of
+// the hair: the first keeps each pixel's nearest depth beyond the last layer's (MIN blending); the
+// second under-blends every fragment at exactly that depth, so that fragments of equal depth (where
+// a strand's segments meet) are all blended, in drawing order, none lost. Under-blending keeps
+// rgb += T alpha colour and T *= (1 - alpha) in alpha: glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE,
+// GL_ZERO, GL_ONE_MINUS_SRC_ALPHA) over a target cleared to (0, 0, 0, 1).
+uniform bool hs_find_layer;
+uniform sampler2D hs_peeled_depth; // the last layer's depth (-3e38 before the first)
+uniform sampler2D hs_layer_depth;  // this layer's (the second draw)
+layout(location = 0) out vec4 hs_out;
+
+void main() {
+    hs_camera_fragment f = hs_this_fragment();
+    if (!f.visible) discard;
+    ivec2 texel = ivec2(gl_FragCoord.xy);
+    if (hs_find_layer) {
+        if (!(f.depth > texelFetch(hs_peeled_depth, texel, 0).r)) discard;
+        hs_out = vec4(f.depth);
+    } else {
+        if (f.depth != texelFetch(hs_layer_depth, texel, 0).r) discard;
+        hs_out = vec4(f.alpha * f.colour, f.alpha);
+    }
+}
+)hs_glsl";
+
+/// shaders/transparency/resolve.glsl
+inline constexpr std::string_view transparency_resolve = R"hs_glsl(// Transparent hair over the opaque image (full screen): one mode of HS_OCCUPANCY_ORDER,
+// HS_WEIGHTED_AVERAGE and HS_EXACT, each as hairshadow::blend_fragments composes it.
+uniform sampler2D hs_base;  // the mesh and background, linear
+uniform sampler2D hs_sum;   // the blend pass's first target
+uniform sampler2D hs_total; // its second (red), unused by HS_EXACT
+layout(location = 0) out vec4 hs_out;
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec3 base = texelFetch(hs_base, p, 0).rgb;
+    vec4 sum = texelFetch(hs_sum, p, 0);
+    float total = texelFetch(hs_total, p, 0).r;
+#if defined(HS_OCCUPANCY_ORDER)
+    // The alpha correction of section 3.4: the hair's colour rescaled so that its alpha is the exact
+    // Lambda = 1 - prod(1 - alpha_i) = 1 - exp(-sum of -ln(1 - alpha_i)).
+    if (sum.a > 0.0) {
+        float lambda = 1.0 - exp(-total);
+        base = sum.rgb * (lambda / sum.a) + (1.0 - lambda) * base;
+    }
+#elif defined(HS_WEIGHTED_AVERAGE)
+    // The average colour, and the average alpha applied as often as there are fragments.
+    if (sum.a > 0.0) {
+        float behind = pow(1.0 - sum.a / total, total);
+        base = sum.rgb / sum.a * (1.0 - behind) + behind * base;
+    }
+#elif defined(HS_EXACT)
+    base = sum.rgb + sum.a * base; // what the peeled layers let through of the base
+#endif
+    hs_out = vec4(base, 1.0);
+}
+)hs_glsl";
+
+/// shaders/transparency/weighted_sum.glsl
+inline constexpr std::string_view transparency_weighted_sum = R"hs_glsl(// Weighted-average blending (Bavoil & Myers 2008), the blend pass: every visible fragment adds
+// (alpha x colour, alpha) and a count of 1, unsorted, by additive blending; transparency/resolve
+// averages them.
+layout(location = 0) out vec4 hs_sum_out;   // rgb: alpha x colour, a: alpha
+layout(location = 1) out vec4 hs_total_out; // r: the number of fragments
+
+void main() {
+    hs_camera_fragment f = hs_this_fragment();
+    if (!f.visible) discard;
+    hs_sum_out = vec4(f.alpha * f.colour, f.alpha);
+    hs_total_out = vec4(1.0, 0.0, 0.0, 0.0);
+}
+)hs_glsl";
+
 /// A shader snippet and its name (its path under shaders/ without .glsl).
 struct entry {
     std::string_view name;
@@ -767,13 +1023,14 @@ struct entry {
 };
 
 /// Every snippet, sorted by name.
-inline constexpr std::array<entry, 36> all{{
+inline constexpr std::array<entry, 47> all{{
     {"accumulation/emulated_8bit", accumulation_emulated_8bit},
     {"accumulation/float", accumulation_float},
     {"lookup/interpolation", lookup_interpolation},
     {"lookup/layers", lookup_layers},
     {"lookup/light", lookup_light},
     {"lookup/occupancy", lookup_occupancy},
+    {"lookup/occupancy_texels", lookup_occupancy_texels},
     {"passes/capture", passes_capture},
     {"passes/cluster_common", passes_cluster_common},
     {"passes/cluster_means", passes_cluster_means},
@@ -793,17 +1050,27 @@ inline constexpr std::array<entry, 36> all{{
     {"raster/vertex", raster_vertex},
     {"reconstruction/interpolation", reconstruction_interpolation},
     {"reconstruction/occupancy_bitcount", reconstruction_occupancy_bitcount},
+    {"render/hair_colour", render_hair_colour},
     {"render/hair_fragment", render_hair_fragment},
+    {"render/hair_shading", render_hair_shading},
     {"render/hair_vertex", render_hair_vertex},
     {"render/light", render_light},
     {"render/mesh_depth", render_mesh_depth},
     {"render/mesh_fragment", render_mesh_fragment},
+    {"render/mesh_inv_w", render_mesh_inv_w},
     {"render/mesh_vertex", render_mesh_vertex},
     {"render/present", render_present},
     {"texel_state/clustered", texel_state_clustered},
     {"texel_state/depth_range", texel_state_depth_range},
     {"texel_state/per_pixel_depth", texel_state_per_pixel_depth},
     {"texel_state/planar_slices", texel_state_planar_slices},
+    {"transparency/camera_fragment", transparency_camera_fragment},
+    {"transparency/line_geometry", transparency_line_geometry},
+    {"transparency/line_vertex", transparency_line_vertex},
+    {"transparency/occupancy_order", transparency_occupancy_order},
+    {"transparency/peel", transparency_peel},
+    {"transparency/resolve", transparency_resolve},
+    {"transparency/weighted_sum", transparency_weighted_sum},
 }};
 
 } // namespace hairshadow::gl::shaders

@@ -124,10 +124,12 @@ inline void blend_fragments(image& base, const camera_fragments& f, transparency
             break;
         }
         case transparency::exact: {
+            // Nearest first; of equal depths (where a strand's segments meet) the first drawn is in
+            // front, as under GL's depth peeling, and as transparency::none picks.
             thread_local std::vector<camera_fragment> sorted; // reused: no allocation per pixel
             sorted.assign(frags.begin(), frags.end());
-            std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.depth > b.depth; });
-            for (const auto& g : sorted) out = g.alpha * g.colour + (1.0f - g.alpha) * out; // back to front
+            std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.depth < b.depth; });
+            for (auto g = sorted.rbegin(); g != sorted.rend(); ++g) out = g->alpha * g->colour + (1.0f - g->alpha) * out; // back to front
             break;
         }
         case transparency::weighted: { // Bavoil & Myers: the average colour and alpha, n times

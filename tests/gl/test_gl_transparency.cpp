@@ -1,0 +1,139 @@
+// Transparent hair on GL (Sintorn & Assarsson 3.4) against the CPU's: the same camera fragments,
+// blended by depth peeling, occupancy order and weighted averages.
+#include "gl_test_context.hpp"
+
+#include <hairshadow/gl/scene_renderer.hpp>
+#include <hairshadow/shading/transparency.hpp>
+
+#include "../test_support.hpp"
+
+#include <algorithm>
+
+using namespace hairshadow;
+
+namespace {
+/// A lit head of hair over a sphere; the hair casts no shadow, so that both back ends shade each
+/// strand point alike and only the blending differs.
+struct transparent_scene {
+    scene sc;
+    std::vector<light_space> spaces;
+    std::vector<lit_light> cpu_lights;
+
+    explicit transparent_scene(std::size_t strands) {
+        sc.hair = make_procedural({.style = hair_style::wavy, .strands = strands, .segments = 16});
+        sc.mesh = make_sphere({0, 0, 0}, 0.1f, 32);
+        sc.lights = {{light_spec::directional({-0.6f, -1.0f, -0.4f}), glm::vec3(1.0f)}, {light_spec::point({0.4f, 0.1f, 0.5f}), glm::vec3(0.3f, 0.35f, 0.5f)}};
+        for (const auto& light : sc.lights) {
+            spaces.push_back(light_space::fit(light.spec, sc.bounds(), 256));
+            cpu_lights.push_back({light, {}, depth_shadow_map(sc.mesh, spaces.back())});
+        }
+    }
+    void add_lights(gl::scene_renderer& renderer) const {
+        for (std::size_t i = 0; i < sc.lights.size(); ++i) renderer.add_unshadowed_light(sc.lights[i], spaces[i]);
+    }
+};
+
+double mean_difference_linear(const image& a, const image& b) {
+    double sum = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) sum += double(glm::dot(glm::abs(a.pixels[i] - b.pixels[i]), glm::vec3(1.0f / 3.0f)));
+    return sum / double(a.pixels.size());
+}
+} // namespace
+
+TEST_CASE("GL transparent hair blends the CPU's camera fragments", "[gl][transparency]") {
+    test::gl_context();
+    const transparent_scene s(1500);
+    const auto cam = camera::framing(s.sc.bounds(), 20.0f, 10.0f, 128, 128);
+    gl::scene_renderer renderer(s.sc);
+    s.add_lights(renderer);
+    const float opacity = 0.4f;
+    std::array<image, 4> on_gl, on_cpu;
+    for (auto mode : {transparency::none, transparency::occupancy, transparency::weighted, transparency::exact}) {
+        renderer.set_transparency(mode, opacity);
+        on_gl[std::size_t(mode)] = renderer.render(cam);
+        on_cpu[std::size_t(mode)] = render_transparent(s.sc, cam, s.cpu_lights, mode, opacity);
+    }
+    const auto& exact = on_gl[std::size_t(transparency::exact)];
+    CHECK(mean_difference_linear(exact, image(128, 128, s.sc.background)) > 0.02); // the scene is there
+
+    SECTION("each mode agrees with the CPU's") {
+        for (auto mode : {transparency::occupancy, transparency::weighted, transparency::exact}) {
+            const double difference = mean_difference_linear(on_gl[std::size_t(mode)], on_cpu[std::size_t(mode)]);
+            CAPTURE(int(mode), difference);
+            CHECK(difference < 2e-5);
+        }
+    }
+    SECTION("depth peeling takes one layer per fragment of the deepest pixel") {
+        renderer.set_transparency(transparency::exact, opacity);
+        renderer.render(cam);
+        const auto surface = hairshadow::detail::rasterise_mesh(s.sc.mesh, cam, {});
+        const auto colours = shade_hair_points(s.sc, cam, s.cpu_lights);
+        const auto fragments = collect_camera_fragments(s.sc.hair, colours, cam, surface.inv_w, opacity);
+        // One layer per distinct depth of the deepest pixel: equal depths (where a strand's segments
+        // meet) peel together.
+        std::size_t layers = 0, deepest = 0;
+        for (std::size_t i = 0; i + 1 < fragments.offsets.size(); ++i) {
+            std::vector<float> depths;
+            for (const auto& f : fragments.pixel(i)) depths.push_back(f.depth);
+            std::sort(depths.begin(), depths.end());
+            layers = std::max(layers, std::size_t(std::unique(depths.begin(), depths.end()) - depths.begin()));
+            deepest = std::max(deepest, depths.size());
+        }
+        CAPTURE(layers, deepest, renderer.peeled_layers());
+        CHECK(layers > 10);
+        CHECK(renderer.peeled_layers() == int(layers));
+    }
+    SECTION("occupancy order is closer to exact blending than weighted averages are") {
+        const double occupancy_error = mean_difference_linear(on_gl[std::size_t(transparency::occupancy)], exact);
+        const double weighted_error = mean_difference_linear(on_gl[std::size_t(transparency::weighted)], exact);
+        CAPTURE(occupancy_error, weighted_error);
+        CHECK(occupancy_error < 0.5 * weighted_error);
+        CHECK(weighted_error > 1e-3); // the modes differ here
+    }
+}
+
+TEST_CASE("GL transparent hair follows the blending equation on uniform strands", "[gl][transparency]") {
+    test::gl_context();
+    // Unlit hair shows its ambient colour alone: every fragment has the same colour, so a pixel shows
+    // colour (1 - T) + background T, T = prod(1 - alpha_i) for exact and occupancy-ordered blending
+    // (whose correction restores the exact alpha), (1 - mean alpha)^n for weighted averages.
+    scene sc;
+    sc.hair = make_procedural({.style = hair_style::straight, .strands = 60, .segments = 4});
+    sc.material.ambient = 1.0f;
+    sc.material.colour = glm::vec3(0.9f, 0.6f, 0.3f);
+    sc.background = glm::vec3(0.1f, 0.2f, 0.4f);
+    const auto cam = camera::framing(sc.bounds(), 30.0f, 20.0f, 64, 64);
+    gl::scene_renderer renderer(sc);
+    const float opacity = 0.5f;
+    for (auto mode : {transparency::occupancy, transparency::weighted, transparency::exact}) {
+        renderer.set_transparency(mode, opacity);
+        const auto out = renderer.render(cam);
+        const auto fragments = collect_camera_fragments(sc.hair, std::vector<glm::vec3>(sc.hair.point_count(), sc.material.colour), cam, {}, opacity);
+        int checked = 0;
+        for (std::size_t i = 0; i < out.pixels.size(); ++i) {
+            const auto frags = fragments.pixel(i);
+            float through = 1.0f, alpha_sum = 0.0f;
+            for (const auto& f : frags) through *= 1.0f - f.alpha, alpha_sum += f.alpha;
+            // Weighted averages let the mean alpha through n times instead.
+            if (mode == transparency::weighted && !frags.empty()) through = std::pow(1.0f - alpha_sum / float(frags.size()), float(frags.size()));
+            const glm::vec3 expected = sc.material.colour * (1.0f - through) + sc.background * through;
+            // A fragment of almost no coverage may fall on either side of a line's edge on the two
+            // back ends; weighted averages count it as a whole fragment.
+            const double margin = mode == transparency::weighted ? 5e-3 : 1e-3;
+            for (int c = 0; c < 3; ++c) CHECK(out.pixels[i][c] == Approx(expected[c]).margin(margin));
+            checked += frags.size() > 1;
+        }
+        CAPTURE(int(mode));
+        CHECK(checked > 50);
+    }
+}
+
+TEST_CASE("GL transparent hair refuses bad settings", "[gl][transparency]") {
+    test::gl_context();
+    const transparent_scene s(50);
+    gl::scene_renderer renderer(s.sc);
+    CHECK_THROWS_AS(renderer.set_transparency(transparency::exact, 0.0f), argument_error);
+    CHECK_THROWS_AS(renderer.set_transparency(transparency::exact, std::nanf("")), argument_error);
+    CHECK_THROWS_AS(renderer.set_transparency(transparency::exact, 0.5f, 0.0f), argument_error);
+    CHECK(renderer.transparency_mode() == transparency::none);
+}
