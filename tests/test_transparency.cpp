@@ -41,6 +41,12 @@ TEST_CASE("exact blending follows the blending equation, back to front", "[trans
     const glm::vec3 mean = (0.3f * r + 0.5f * g + 0.2f * b) / 1.0f;
     const float behind = std::pow(1.0f - 1.0f / 3.0f, 3.0f);
     for (int c = 0; c < 3; ++c) CHECK(weighted.pixels[0][c] == Approx(mean[c] * (1 - behind) + behind * background[c]).margin(1e-6));
+    // Of equal depths (where a strand's segments meet) the first drawn is in front, as opaque hair
+    // shows it and as GL's depth peeling blends it.
+    image tied(1, 1, background);
+    blend_fragments(tied, row_of({{{0.4f, 0.5f, r}, {0.4f, 0.5f, g}}}), transparency::exact);
+    const glm::vec3 r_in_front = 0.5f * r + 0.5f * (0.5f * g + 0.5f * background);
+    for (int c = 0; c < 3; ++c) CHECK(tied.pixels[0][c] == Approx(r_in_front[c]).margin(1e-6));
 }
 
 TEST_CASE("occupancy-ordered blending is exact where each fragment has a slice of its own", "[transparency]") {
@@ -67,6 +73,13 @@ TEST_CASE("occupancy-ordered blending is exact where each fragment has a slice o
     blend_fragments(ordered, f, transparency::occupancy);
     for (std::size_t i = 0; i < pixels.size(); ++i)
         for (int c = 0; c < 3; ++c) CHECK(ordered.pixels[i][c] == Approx(exact.pixels[i][c]).margin(2e-5));
+    // The same pixels as an image one row high: the maps are square, the image need not be.
+    camera_fragments row = f;
+    row.height = 1;
+    row.offsets.resize(pixels.size() + 1);
+    image wide(row.width, 1, glm::vec3(0.2f));
+    blend_fragments(wide, row, transparency::occupancy);
+    for (std::size_t i = 0; i < pixels.size(); ++i) CHECK(wide.pixels[i] == ordered.pixels[i]);
     // And they are not trivially equal: drawing order alone would differ.
     image weighted(f.width, f.height, glm::vec3(0.2f));
     blend_fragments(weighted, f, transparency::weighted);

@@ -106,12 +106,19 @@ inline void blend_fragments(image& base, const camera_fragments& f, transparency
     const std::size_t pixels = std::size_t(f.width) * std::size_t(f.height);
     occupancy_maps<128, 4> order;
     if (mode == transparency::occupancy) {
-        if (f.width != f.height) throw argument_error("occupancy-ordered blending needs a square image");
+        // The maps are square: the image sits in the corner of a square of its longer side. Both
+        // are row by row, so the fragments keep their order.
+        const int side = std::max(f.width, f.height);
+        std::vector<std::uint64_t> offsets(std::size_t(side) * std::size_t(side) + 1, 0);
+        for (std::size_t y = 0; y < std::size_t(f.height); ++y)
+            for (std::size_t x = 0; x < std::size_t(f.width); ++x)
+                offsets[y * std::size_t(side) + x + 1] = f.offsets[y * std::size_t(f.width) + x + 1] - f.offsets[y * std::size_t(f.width) + x];
+        for (std::size_t i = 1; i < offsets.size(); ++i) offsets[i] += offsets[i - 1];
         std::vector<fragment> plain(f.fragments.size());
         for (std::size_t i = 0; i < plain.size(); ++i) plain[i] = {f.fragments[i].depth, f.fragments[i].alpha};
-        const fragment_buffer buffer(f.width, f.offsets, std::move(plain));
-        // The maps are read by pixel and depth only: any light of the image's resolution will do.
-        order.build(buffer, light_space::fit(light_spec::directional({0, 0, -1}), detail::unit_box(), f.width), exec);
+        const fragment_buffer buffer(side, std::move(offsets), std::move(plain));
+        // The maps are read by pixel and depth only: any light of that resolution will do.
+        order.build(buffer, light_space::fit(light_spec::directional({0, 0, -1}), detail::unit_box(), side), exec);
     }
     parallel_for(pixels, exec, [&](std::size_t i) {
         const auto frags = f.pixel(i);
