@@ -140,14 +140,7 @@ public:
         glBindFramebuffer(GL_FRAMEBUFFER, fbo.get());
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour.get());
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth.get());
-        const GLenum first = GL_COLOR_ATTACHMENT0;
-        glDrawBuffers(1, &first);
-        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) throw gl_error("scene renderer: incomplete framebuffer");
-        glViewport(0, 0, cam.width, cam.height);
-        const float background[4] = {scene_.background.r, scene_.background.g, scene_.background.b, 1.0f};
-        glClearBufferfv(GL_COLOR, 0, background);
-        glClear(GL_DEPTH_BUFFER_BIT);
-        draw(cam);
+        clear_and_draw(cam, true);
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target);
         glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo.get());
         glBlitFramebuffer(0, 0, cam.width, cam.height, 0, 0, cam.width, cam.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
@@ -288,6 +281,18 @@ private:
         return t;
     }
 
+    /// Clears the bound framebuffer (colour attachment 0 and depth) to the background and draws the scene.
+    void clear_and_draw(const camera& cam, bool with_hair) const {
+        const GLenum first = GL_COLOR_ATTACHMENT0;
+        glDrawBuffers(1, &first);
+        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) throw gl_error("scene renderer: incomplete framebuffer");
+        glViewport(0, 0, cam.width, cam.height);
+        const float background[4] = {scene_.background.r, scene_.background.g, scene_.background.b, 1.0f};
+        glClearBufferfv(GL_COLOR, 0, background);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        draw(cam, with_hair);
+    }
+
     /// Transparent hair: the mesh single-sampled and its 1/w, the hair's colours at its points, then
     /// gl::transparent_hair's passes into `target`.
     void render_transparent_into(const camera& cam, GLuint target) const {
@@ -296,14 +301,7 @@ private:
         glBindRenderbuffer(GL_RENDERBUFFER, depth.get());
         glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, cam.width, cam.height);
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth.get());
-        const GLenum first = GL_COLOR_ATTACHMENT0;
-        glDrawBuffers(1, &first);
-        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) throw gl_error("scene renderer: incomplete framebuffer");
-        glViewport(0, 0, cam.width, cam.height);
-        const float background[4] = {scene_.background.r, scene_.background.g, scene_.background.b, 1.0f};
-        glClearBufferfv(GL_COLOR, 0, background);
-        glClear(GL_DEPTH_BUFFER_BIT);
-        draw(cam, false);
+        clear_and_draw(cam, false);
         const auto colours = hair_colours(cam); // drawn with base_fbo bound: nothing is rasterised
 
         const auto [inv_w, inv_w_fbo] = linear_target(cam.width, cam.height, GL_R32F);
