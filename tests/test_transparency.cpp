@@ -73,13 +73,18 @@ TEST_CASE("occupancy-ordered blending is exact where each fragment has a slice o
     blend_fragments(ordered, f, transparency::occupancy);
     for (std::size_t i = 0; i < pixels.size(); ++i)
         for (int c = 0; c < 3; ++c) CHECK(ordered.pixels[i][c] == Approx(exact.pixels[i][c]).margin(2e-5));
-    // The same pixels as an image one row high: the maps are square, the image need not be.
-    camera_fragments row = f;
-    row.height = 1;
-    row.offsets.resize(pixels.size() + 1);
-    image wide(row.width, 1, glm::vec3(0.2f));
-    blend_fragments(wide, row, transparency::occupancy);
-    for (std::size_t i = 0; i < pixels.size(); ++i) CHECK(wide.pixels[i] == ordered.pixels[i]);
+    // The same pixels as wide and tall images (each pixel's maps are its own, so each pixel blends
+    // alike): the maps are square, the image need not be.
+    for (const auto& [w, h] : {std::pair(24, 1), std::pair(6, 4), std::pair(4, 6), std::pair(1, 24)}) {
+        CAPTURE(w, h);
+        camera_fragments shaped = f;
+        shaped.width = w;
+        shaped.height = h;
+        shaped.offsets.resize(pixels.size() + 1);
+        image out(w, h, glm::vec3(0.2f));
+        blend_fragments(out, shaped, transparency::occupancy);
+        for (std::size_t i = 0; i < pixels.size(); ++i) CHECK(out.pixels[i] == ordered.pixels[i]);
+    }
     // And they are not trivially equal: drawing order alone would differ.
     image weighted(f.width, f.height, glm::vec3(0.2f));
     blend_fragments(weighted, f, transparency::weighted);

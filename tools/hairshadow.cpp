@@ -262,7 +262,7 @@ int run_shaded(const map_options& o, const render_view& v, const std::string& ou
     }
     if (o.on_gl() && o.wide > 0.0f) throw usage_error("--wide needs --backend cpu: core GL draws lines one pixel wide");
     const auto mode = parse_transparency(v.transparency);
-    if (!o.on_gl() && mode == transparency::occupancy && v.size > 4096) throw usage_error("--transparency occupancy needs --size up to 4096");
+    if (mode != transparency::none && v.size > 4096) throw usage_error("--transparency needs --size up to 4096");
     std::fprintf(stderr, "render of %s with %s, %zu light(s), on the %s\n", o.model.c_str(), spec.text.c_str(), lights.size(), o.backend.c_str());
     const hairshadow::scene sc = cli::load_scene(o.model, v.mesh, lights);
     const auto cam = camera::framing(sc.bounds(), v.azimuth, v.elevation, v.size, v.size, 1.15f);

@@ -5,7 +5,7 @@
 // rgb += T alpha colour and T *= (1 - alpha) in alpha: glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE,
 // GL_ZERO, GL_ONE_MINUS_SRC_ALPHA) over a target cleared to (0, 0, 0, 1).
 uniform bool hs_find_layer;
-uniform sampler2D hs_peeled_depth; // the last layer's depth (-3e38 before the first)
+uniform sampler2D hs_peeled_depth; // the last layer's depth (-infinity before the first)
 uniform sampler2D hs_layer_depth;  // this layer's (the second draw)
 layout(location = 0) out vec4 hs_out;
 

@@ -3761,6 +3761,7 @@ inline void blend_fragments(image& base, const camera_fragments& f, transparency
         // The maps are square: the image sits in the corner of a square of its longer side. Both
         // are row by row, so the fragments keep their order.
         const int side = std::max(f.width, f.height);
+        if (side > 4096) throw argument_error("occupancy-ordered blending builds maps of the image's longer side squared: at most 4096 pixels");
         std::vector<std::uint64_t> offsets(std::size_t(side) * std::size_t(side) + 1, 0);
         for (std::size_t y = 0; y < std::size_t(f.height); ++y)
             for (std::size_t x = 0; x < std::size_t(f.width); ++x)

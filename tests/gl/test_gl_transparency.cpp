@@ -57,21 +57,18 @@ TEST_CASE("GL transparent hair blends the CPU's camera fragments", "[gl][transpa
     const auto& exact = on_gl[std::size_t(transparency::exact)];
     CHECK(mean_difference_linear(exact, image(128, 128, s.sc.background)) > 0.02); // the scene is there
 
-    SECTION("each mode agrees with the CPU's") {
+    { // each mode agrees with the CPU's
         for (auto mode : {transparency::occupancy, transparency::weighted, transparency::exact}) {
             const double difference = mean_difference_linear(on_gl[std::size_t(mode)], on_cpu[std::size_t(mode)]);
             CAPTURE(int(mode), difference);
             CHECK(difference < 2e-5);
         }
     }
-    SECTION("depth peeling takes one layer per fragment of the deepest pixel") {
-        renderer.set_transparency(transparency::exact, opacity);
-        renderer.render(cam);
+    { // depth peeling (the last render) takes one layer per distinct depth of the deepest pixel:
+      // equal depths (where a strand's segments meet) peel together
         const auto surface = hairshadow::detail::rasterise_mesh(s.sc.mesh, cam, {});
         const auto colours = shade_hair_points(s.sc, cam, s.cpu_lights);
         const auto fragments = collect_camera_fragments(s.sc.hair, colours, cam, surface.inv_w, opacity);
-        // One layer per distinct depth of the deepest pixel: equal depths (where a strand's segments
-        // meet) peel together.
         std::size_t layers = 0, deepest = 0;
         for (std::size_t i = 0; i + 1 < fragments.offsets.size(); ++i) {
             std::vector<float> depths;
@@ -84,7 +81,11 @@ TEST_CASE("GL transparent hair blends the CPU's camera fragments", "[gl][transpa
         CHECK(layers > 10);
         CHECK(renderer.peeled_layers() == int(layers));
     }
-    SECTION("occupancy order is closer to exact blending than weighted averages are") {
+    { // opaque hair after transparent hair is drawn as before
+        renderer.set_transparency(transparency::none);
+        CHECK(mean_difference_linear(renderer.render(cam), on_gl[std::size_t(transparency::none)]) == 0.0);
+    }
+    { // occupancy order is closer to exact blending than weighted averages are
         const double occupancy_error = mean_difference_linear(on_gl[std::size_t(transparency::occupancy)], exact);
         const double weighted_error = mean_difference_linear(on_gl[std::size_t(transparency::weighted)], exact);
         CAPTURE(occupancy_error, weighted_error);
@@ -166,4 +167,47 @@ TEST_CASE("on the Sintel model GL occupancy-ordered blending is closer to depth 
     CHECK(occupancy_error < 0.01);
     CHECK(occupancy_error < 0.5 * weighted_error);
     CHECK(occupancy_error < 0.5 * opaque_error);
+}
+
+TEST_CASE("GL transparent hair is shadowed by the GL maps as the CPU's is by their read-back", "[gl][transparency]") {
+    test::gl_context();
+    transparent_scene s(1500);
+    const gl::hair_mesh mesh(s.sc.hair);
+    gl::scene_renderer renderer(s.sc);
+    std::vector<std::unique_ptr<gl::maps<deep_opacity_maps<3>>>> maps;
+    std::vector<deep_opacity_maps<3>> read_back;
+    for (std::size_t i = 0; i < s.sc.lights.size(); ++i) {
+        maps.push_back(std::make_unique<gl::maps<deep_opacity_maps<3>>>());
+        maps.back()->build(mesh, s.spaces[i]);
+        renderer.add_light(s.sc.lights[i], *maps.back());
+        read_back.push_back(maps.back()->to_cpu());
+    }
+    for (std::size_t i = 0; i < s.sc.lights.size(); ++i) s.cpu_lights[i].hair = query_of(read_back[i]);
+    const auto cam = camera::framing(s.sc.bounds(), 20.0f, 10.0f, 128, 128);
+    for (auto mode : {transparency::occupancy, transparency::exact}) {
+        renderer.set_transparency(mode, 0.4f);
+        const double difference = mean_difference_linear(renderer.render(cam), render_transparent(s.sc, cam, s.cpu_lights, mode, 0.4f));
+        CAPTURE(int(mode), difference);
+        CHECK(difference < 2e-5);
+    }
+    // And the shadows are there: without them the hair is brighter.
+    const transparent_scene unshadowed(1500);
+    const double shadowing = mean_difference_linear(render_transparent(s.sc, cam, s.cpu_lights, transparency::exact, 0.4f),
+                                                    render_transparent(unshadowed.sc, cam, unshadowed.cpu_lights, transparency::exact, 0.4f));
+    CAPTURE(shadowing);
+    CHECK(shadowing > 1e-3);
+}
+
+TEST_CASE("GL renders without lights show the ambient terms, as on the CPU", "[gl][transparency]") {
+    test::gl_context();
+    scene sc;
+    sc.hair = make_procedural({.style = hair_style::wavy, .strands = 400, .segments = 8});
+    sc.mesh = make_sphere({0, 0, 0}, 0.1f, 32);
+    const auto cam = camera::framing(sc.bounds(), 20.0f, 10.0f, 96, 96);
+    gl::scene_renderer renderer(sc);
+    renderer.set_transparency(transparency::exact, 0.5f);
+    const double difference = mean_difference_linear(renderer.render(cam), render_transparent(sc, cam, {}, transparency::exact, 0.5f));
+    CAPTURE(difference);
+    CHECK(mean_difference_linear(render_transparent(sc, cam, {}, transparency::exact, 0.5f), image(96, 96, sc.background)) > 0.01);
+    CHECK(difference < 2e-5);
 }

@@ -61,13 +61,11 @@ public:
     /// caller) seen from `light`'s frustum: maps.light(). The mesh's depth map is drawn now.
     template <class Maps>
     void add_light(const scene_light& light, const Maps& maps, float mesh_bias = default_mesh_bias) {
-        add(light, maps.light(), maps.lookup_source(), [&maps](GLuint prog) { maps.bind_lookup(prog, 0); }, mesh_bias);
+        lights_.push_back(make_entry(light, maps.light(), maps.lookup_source(), [&maps](GLuint prog) { maps.bind_lookup(prog, 0); }, mesh_bias));
     }
     /// Adds a light whose hair casts no shadow (the mesh still does), with `space` its frustum.
     void add_unshadowed_light(const scene_light& light, const light_space& space, float mesh_bias = default_mesh_bias) {
-        // The light's frustum (lookup/light.glsl, which the mesh's depth test reads) and no hair.
-        const std::string no_hair = std::string(shaders::lookup_light) + "float hs_transmittance(vec3 world_pos) { return 1.0; }\n";
-        add(light, space, no_hair, [space](GLuint prog) { set_lookup_frustum(prog, space); }, mesh_bias);
+        lights_.push_back(unshadowed_entry(light, space, mesh_bias));
     }
 
     /// How render_into, render and present draw the hair. transparency::none (the default) draws it
@@ -77,11 +75,7 @@ public:
     void set_transparency(transparency mode, float opacity = 0.4f, float line_width = 1.0f) {
         if (!(opacity > 0.0f && opacity <= 1.0f)) throw argument_error("hair opacity must be in (0, 1]");
         if (!(line_width > 0.0f && line_width <= 64.0f)) throw argument_error("hair line width must be in (0, 64] pixels");
-        if (mode != transparency::none) {
-            GLint blocks = 0;
-            glGetIntegerv(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, &blocks);
-            if (blocks < 1) throw feature_error("transparent hair needs shader storage blocks in vertex shaders; the context has none");
-        }
+        if (mode != transparency::none) transparent_hair::check_support();
         transparency_ = mode;
         hair_opacity_ = opacity;
         line_width_ = line_width;
@@ -92,12 +86,17 @@ public:
 
     /// Draws the scene from `cam` into the bound framebuffer (viewport and clearing are the caller's);
     /// `with_hair` false draws the mesh alone (the hair still shadows it). Always opaque hair.
+    /// Without lights, the mesh and hair show their ambient terms, as on the CPU.
     void draw(const camera& cam, bool with_hair = true) const {
+        const auto& lights = passes();
         glEnable(GL_DEPTH_TEST);
         glEnable(GL_MULTISAMPLE);
         glDisable(GL_BLEND);
-        for (std::size_t i = 0; i < lights_.size(); ++i) {
-            const auto& l = lights_[i];
+        glDisable(GL_RASTERIZER_DISCARD);
+        glDisable(GL_COLOR_LOGIC_OP);
+        glBlendEquation(GL_FUNC_ADD);
+        for (std::size_t i = 0; i < lights.size(); ++i) {
+            const auto& l = lights[i];
             // Later passes add their light where the first pass left the nearest surface.
             glDepthFunc(i == 0 ? GL_LESS : GL_LEQUAL);
             if (i == 1) {
@@ -190,7 +189,8 @@ public:
         check("scene renderer present");
     }
 
-    /// Removes every light (to add them again after the maps or the lights change).
+    /// Removes every light (to add them again after the maps or the lights change); the scene is
+    /// then drawn with its ambient terms alone.
     void clear_lights() { lights_.clear(); }
 
 private:
@@ -242,7 +242,8 @@ private:
         glDrawElements(mode, count, GL_UNSIGNED_INT, nullptr);
         glBindVertexArray(0);
     }
-    void add(const scene_light& light, const light_space& space, const std::string& lookup, std::function<void(GLuint)> bind, float bias) {
+    light_entry make_entry(const scene_light& light, const light_space& space, const std::string& lookup, std::function<void(GLuint)> bind,
+                           float bias) const {
         light_entry e{light, space, lookup, std::move(bind), bias, draw_mesh_depth(space), {}, {}, {}};
         const auto mesh_vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::render_mesh_vertex}, "render/mesh_vertex");
         const auto mesh_fs = compile_shader(GL_FRAGMENT_SHADER, {version, lookup, shaders::render_light, shaders::render_mesh_fragment}, "render/mesh_fragment");
@@ -251,11 +252,30 @@ private:
         const auto hair_fs = compile_shader(GL_FRAGMENT_SHADER, {version, shaders::render_hair_fragment}, "render/hair_fragment");
         e.mesh_program = link_program({&mesh_vs, &mesh_fs}, "mesh shading");
         e.hair_program = link_program({&hair_vs, &hair_fs}, "hair shading");
-        lights_.push_back(std::move(e));
+        return e;
+    }
+    light_entry unshadowed_entry(const scene_light& light, const light_space& space, float bias) const {
+        // The light's frustum (lookup/light.glsl, which the mesh's depth test reads) and no hair.
+        const std::string no_hair = std::string(shaders::lookup_light) + "float hs_transmittance(vec3 world_pos) { return 1.0; }\n";
+        return make_entry(light, space, no_hair, [space](GLuint prog) { set_lookup_frustum(prog, space); }, bias);
+    }
+
+    /// The lights' passes; without lights, one of a black light, for the ambient terms.
+    const std::vector<light_entry>& passes() const {
+        if (!lights_.empty()) return lights_;
+        if (ambient_only_.empty()) {
+            const scene_light dark{light_spec::directional({0.0f, 0.0f, -1.0f}), glm::vec3(0.0f)};
+            ambient_only_.push_back(unshadowed_entry(dark, light_space::fit(dark.spec, hairshadow::detail::unit_box(), 1), default_mesh_bias));
+        }
+        return ambient_only_;
     }
 
     /// The mesh's linear depth from `space`, nearest by MIN blending into R32F.
+    /// Leaves the bound framebuffer and the viewport as it found them (draw() may make its light here).
     texture draw_mesh_depth(const light_space& space) const {
+        GLint bound = 0, viewport[4] = {0, 0, 0, 0};
+        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
+        glGetIntegerv(GL_VIEWPORT, viewport);
         const int res = space.resolution();
         auto t = make_texture();
         glBindTexture(GL_TEXTURE_2D, t.get());
@@ -276,7 +296,8 @@ private:
         draw_elements(mesh_, GL_TRIANGLES, mesh_count_);
         glBlendEquation(GL_FUNC_ADD);
         glDisable(GL_BLEND);
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glBindFramebuffer(GL_FRAMEBUFFER, GLuint(bound));
+        glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
         check("mesh depth map");
         return t;
     }
@@ -296,6 +317,12 @@ private:
     /// Transparent hair: the mesh single-sampled and its 1/w, the hair's colours at its points, then
     /// gl::transparent_hair's passes into `target`.
     void render_transparent_into(const camera& cam, GLuint target) const {
+        if (!inv_w_program_) {
+            const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::render_mesh_vertex}, "render/mesh_vertex");
+            const auto fs = compile_shader(GL_FRAGMENT_SHADER, {version, shaders::render_mesh_inv_w}, "render/mesh_inv_w");
+            inv_w_program_ = link_program({&vs, &fs}, "mesh 1/w");
+        }
+        if (!transparent_) transparent_ = std::make_unique<transparent_hair>();
         const auto [base, base_fbo] = linear_target(cam.width, cam.height);
         auto depth = make_renderbuffer();
         glBindRenderbuffer(GL_RENDERBUFFER, depth.get());
@@ -310,11 +337,6 @@ private:
         glDisable(GL_DEPTH_TEST);
         glEnable(GL_BLEND);
         glBlendEquation(GL_MAX);
-        if (!inv_w_program_) {
-            const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::render_mesh_vertex}, "render/mesh_vertex");
-            const auto fs = compile_shader(GL_FRAGMENT_SHADER, {version, shaders::render_mesh_inv_w}, "render/mesh_inv_w");
-            inv_w_program_ = link_program({&vs, &fs}, "mesh 1/w");
-        }
         glUseProgram(inv_w_program_.get());
         const auto vp = cam.view_projection();
         glUniformMatrix4fv(glGetUniformLocation(inv_w_program_.get(), "hs_camera_view_projection"), 1, GL_FALSE, &vp[0][0]);
@@ -322,37 +344,46 @@ private:
         glBlendEquation(GL_FUNC_ADD);
         glDisable(GL_BLEND);
 
-        if (!transparent_) transparent_ = std::make_unique<transparent_hair>();
-        const camera_hair hair{[this] { draw_elements(hair_, GL_LINES, hair_count_); }, colours.get(), inv_w.get(), base.get()};
+        const camera_hair hair{[this] { draw_elements(hair_, GL_LINES, hair_count_); },
+                               colours.get(),
+                               int(lights_.size()),
+                               int(scene_.hair.point_count()),
+                               scene_.material.ambient * scene_.material.colour,
+                               inv_w.get(),
+                               base.get()};
         peeled_layers_ = transparent_->blend(transparency_, hair, cam, hair_opacity_, line_width_, target);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
     }
 
-    /// Each hair point's radiance towards `cam` (a vec4 per point, in a shader storage buffer): the
-    /// ambient term, then each light's pass added by render/hair_colour.
+    /// Each light's radiance of each hair point towards `cam`, in a shader storage buffer: light k's
+    /// of point i at vec4 k * points + i (render/hair_colour); the ambient term is the blend's.
     buffer hair_colours(const camera& cam) const {
         const std::size_t points = scene_.hair.point_count();
-        if (points > std::size_t(std::numeric_limits<GLsizei>::max())) throw argument_error("too many hair points for one GL draw");
-        const std::vector<glm::vec4> ambient(points, glm::vec4(scene_.material.ambient * scene_.material.colour, 0.0f));
-        auto colours = make_buffer();
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, colours.get());
-        glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(points * sizeof(glm::vec4)), ambient.data(), GL_DYNAMIC_COPY);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, colours.get());
-        glEnable(GL_RASTERIZER_DISCARD);
-        for (const auto& l : lights_) {
+        if (points > std::size_t(std::numeric_limits<GLsizei>::max()) || lights_.size() * points > std::size_t(std::numeric_limits<GLint>::max()))
+            throw argument_error("too many hair points for one GL draw");
+        for (const auto& l : lights_) // compiled before any state changes
             if (!l.colour_program) {
                 const auto vs = compile_shader(GL_VERTEX_SHADER, {version, l.lookup, shaders::render_light, shaders::render_hair_shading, shaders::render_hair_colour},
                                                "render/hair_colour");
                 l.colour_program = link_program({&vs}, "hair colours");
             }
-            glUseProgram(l.colour_program.get());
-            set_pass_uniforms(l.colour_program.get(), l, cam, false); // the ambient term is already in
+        auto colours = make_buffer();
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, colours.get());
+        glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(std::max<std::size_t>(1, lights_.size() * points) * sizeof(glm::vec4)), nullptr, GL_DYNAMIC_COPY);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, colours.get());
+        glEnable(GL_RASTERIZER_DISCARD);
+        for (std::size_t k = 0; k < lights_.size(); ++k) {
+            const GLuint prog = lights_[k].colour_program.get();
+            glUseProgram(prog);
+            set_pass_uniforms(prog, lights_[k], cam, false); // the ambient term is added once, by the blend
+            glUniform1i(glGetUniformLocation(prog, "hs_light_index"), GLint(k));
+            glUniform1i(glGetUniformLocation(prog, "hs_point_count"), GLint(points));
             glBindVertexArray(hair_.vao.get());
             glDrawArrays(GL_POINTS, 0, GLsizei(points));
             glBindVertexArray(0);
-            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); // the next light's pass, and the blend, read them
         }
         glDisable(GL_RASTERIZER_DISCARD);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); // the blend's vertex stage reads them
         check("hair colours");
         return colours;
     }
@@ -394,6 +425,7 @@ private:
     mutable int peeled_layers_ = 0;
     vertex_array empty_vao_ = make_vertex_array();
     std::vector<light_entry> lights_;
+    mutable std::vector<light_entry> ambient_only_;
 };
 
 } // namespace hairshadow::gl

@@ -626,15 +626,17 @@ float hs_occupancy_optical_depth_in_front(int k, uint bits[HS_WORDS], float slab
 )hs_glsl";
 
 /// shaders/render/hair_colour.glsl
-inline constexpr std::string_view render_hair_colour = R"hs_glsl(// Hair colours for transparent hair: each strand point's radiance from one light (render/hair_shading)
-// added to its entry of a storage buffer, one light's pass at a time, nothing rasterised. The
-// buffer starts at the ambient term, so that a scene without lights still shows it.
+inline constexpr std::string_view render_hair_colour = R"hs_glsl(// Hair colours for transparent hair: each strand point's radiance from one light (render/hair_shading),
+// nothing rasterised, written to that light's slice of a storage buffer (light k's radiance of point
+// i at k * hs_point_count + i). Written, not added: a vertex shader may run more than once per vertex.
 layout(location = 0) in vec3 hs_position;
 layout(location = 1) in vec3 hs_tangent;
-layout(std430, binding = 2) buffer hs_hair_colours_buffer { vec4 hs_hair_colours[]; };
+layout(std430, binding = 2) writeonly buffer hs_hair_colours_buffer { vec4 hs_hair_colours[]; };
+uniform int hs_light_index;
+uniform int hs_point_count;
 
 void main() {
-    hs_hair_colours[gl_VertexID] += vec4(hs_hair_radiance(hs_position, hs_tangent), 0.0);
+    hs_hair_colours[hs_light_index * hs_point_count + gl_VertexID] = vec4(hs_hair_radiance(hs_position, hs_tangent), 0.0);
     gl_Position = vec4(0.0);
 }
 )hs_glsl";
@@ -870,8 +872,9 @@ float hs_fragment_optical_depth() { return -log(1.0 - hs_this_fragment().alpha);
 )hs_glsl";
 
 /// shaders/transparency/line_geometry.glsl
-inline constexpr std::string_view transparency_line_geometry = R"hs_glsl(// Transparent hair, geometry stage: each segment as the window rectangle its anti-aliased line can
-// touch, the segment widened by hs_line_reach (half the line width plus half a pixel) on every side.
+inline constexpr std::string_view transparency_line_geometry = R"hs_glsl(// Transparent hair, geometry stage: each segment as a window rectangle holding every pixel centre its
+// anti-aliased line can touch: the segment widened by hs_line_reach (half the line width plus half a
+// pixel) and one pixel more on every side, so that no centre is lost to the corners' snapping.
 // The ends go to the fragment stage flat, which measures each pixel's coverage as
 // hairshadow::detail::for_each_line_pixel does; segments with an end behind the camera are dropped there too.
 layout(lines) in;
@@ -888,15 +891,16 @@ flat out vec3 hs_line_colour_b;
 void main() {
     vec4 a = gl_in[0].gl_Position, b = gl_in[1].gl_Position;
     if (!(a.w > 1e-6) || !(b.w > 1e-6)) return;
-    vec2 wa = (a.xy / a.w + 1.0) * 0.5 * hs_viewport, wb = (b.xy / b.w + 1.0) * 0.5 * hs_viewport;
+    precise vec2 wa = (a.xy / a.w + 1.0) * 0.5 * hs_viewport, wb = (b.xy / b.w + 1.0) * 0.5 * hs_viewport;
     float len = length(wb - wa);
-    vec2 along = (len > 0.0 ? (wb - wa) / len : vec2(1.0, 0.0)) * hs_line_reach;
+    vec2 along = (len > 0.0 ? (wb - wa) / len : vec2(1.0, 0.0)) * (hs_line_reach + 1.0);
     vec2 across = vec2(-along.y, along.x);
     vec2 corners[4] = vec2[4](wa - along - across, wa - along + across, wb + along - across, wb + along + across);
     for (int i = 0; i < 4; ++i) {
         hs_line_a = wa;
         hs_line_b = wb;
-        hs_line_inv_w = vec2(1.0 / a.w, 1.0 / b.w);
+        precise vec2 inv_w = vec2(1.0 / a.w, 1.0 / b.w);
+        hs_line_inv_w = inv_w;
         hs_line_colour_a = hs_point_colour[0];
         hs_line_colour_b = hs_point_colour[1];
         gl_Position = vec4(corners[i] / hs_viewport * 2.0 - 1.0, 0.0, 1.0);
@@ -907,15 +911,21 @@ void main() {
 )hs_glsl";
 
 /// shaders/transparency/line_vertex.glsl
-inline constexpr std::string_view transparency_line_vertex = R"hs_glsl(// Transparent hair, vertex stage: each strand point in clip space with its colour (render/hair_colour).
+inline constexpr std::string_view transparency_line_vertex = R"hs_glsl(// Transparent hair, vertex stage: each strand point in clip space with its colour, the ambient term
+// plus every light's radiance (render/hair_colour).
 layout(location = 0) in vec3 hs_position;
 layout(std430, binding = 2) readonly buffer hs_hair_colours_buffer { vec4 hs_hair_colours[]; };
 uniform mat4 hs_camera_view_projection;
+uniform vec3 hs_hair_ambient_colour;
+uniform int hs_light_count;
+uniform int hs_point_count;
+invariant gl_Position; // every pass must see the same fragments at the same depths
 out vec3 hs_point_colour;
 
 void main() {
     gl_Position = hs_camera_view_projection * vec4(hs_position, 1.0);
-    hs_point_colour = hs_hair_colours[gl_VertexID].rgb;
+    hs_point_colour = hs_hair_ambient_colour;
+    for (int k = 0; k < hs_light_count; ++k) hs_point_colour += hs_hair_colours[k * hs_point_count + gl_VertexID].rgb;
 }
 )hs_glsl";
 
@@ -950,7 +960,7 @@ inline constexpr std::string_view transparency_peel = R"hs_glsl(// Depth peeling
 // rgb += T alpha colour and T *= (1 - alpha) in alpha: glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE,
 // GL_ZERO, GL_ONE_MINUS_SRC_ALPHA) over a target cleared to (0, 0, 0, 1).
 uniform bool hs_find_layer;
-uniform sampler2D hs_peeled_depth; // the last layer's depth (-3e38 before the first)
+uniform sampler2D hs_peeled_depth; // the last layer's depth (-infinity before the first)
 uniform sampler2D hs_layer_depth;  // this layer's (the second draw)
 layout(location = 0) out vec4 hs_out;
 

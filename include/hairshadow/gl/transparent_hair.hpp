@@ -13,8 +13,12 @@
 #include <hairshadow/shading/camera.hpp>
 #include <hairshadow/shading/transparency.hpp>
 
+#include <glm/vec3.hpp>
+
 #include <array>
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <string>
 #include <tuple>
@@ -25,7 +29,9 @@ namespace hairshadow::gl {
 /// What the blend draws and draws over, all at the camera's image size.
 struct camera_hair {
     std::function<void()> draw_lines; ///< draws every hair segment (GL_LINES, positions at attribute 0, indices = point indices)
-    GLuint colours = 0;               ///< shader storage buffer: each hair point's linear colour (vec4)
+    GLuint colours = 0;               ///< shader storage buffer: light k's radiance of point i at vec4 k * point_count + i
+    int light_count = 0, point_count = 0;
+    glm::vec3 ambient{0.0f};          ///< added to every point's colour
     GLuint surface_inv_w = 0;         ///< R32F texture: the mesh's 1/w at each pixel (0 where there is none)
     GLuint base = 0;                  ///< RGBA32F texture: the mesh and background, linear
 };
@@ -33,7 +39,20 @@ struct camera_hair {
 /// The passes of every transparency mode, compiled at their first use.
 class transparent_hair {
 public:
-    transparent_hair() { require_version(4, 3, "transparent hair"); }
+    transparent_hair() { check_support(); }
+
+    /// Throws feature_error unless the current context can draw transparent hair: GL 4.3, and shader
+    /// storage in vertex shaders (which GL 4.3 allows an implementation to lack).
+    static void check_support() {
+        require_version(4, 3, "transparent hair");
+        GLint blocks = 0;
+        glGetIntegerv(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, &blocks);
+        if (blocks < 1) throw feature_error("transparent hair needs shader storage blocks in vertex shaders; the context has none");
+    }
+
+    /// Depth peeling stops with an error beyond this many layers (it ends by itself: each layer is
+    /// strictly deeper than the last, in every pixel).
+    static constexpr int max_layers = 1 << 16;
 
     /// Blends `hair` over its base image by `mode` (not transparency::none) into colour attachment 0
     /// of framebuffer `target` (linear RGB), each strand of `opacity` and `line_width` pixels.
@@ -41,7 +60,16 @@ public:
     /// hair), else 0.
     int blend(transparency mode, const camera_hair& hair, const camera& cam, float opacity, float line_width, GLuint target) {
         if (mode == transparency::none) throw argument_error("transparent_hair::blend needs a transparency mode");
+        if (!(opacity > 0.0f && opacity <= 1.0f)) throw argument_error("hair opacity must be in (0, 1]");
+        if (!(line_width > 0.0f && line_width <= 64.0f)) throw argument_error("hair line width must be in (0, 64] pixels");
+        if (!hair.draw_lines || !hair.colours || !hair.surface_inv_w || !hair.base || hair.light_count < 0 || hair.point_count < 0)
+            throw argument_error("transparent_hair::blend needs the hair's lines, colours, the surface's 1/w and the base image");
         camera::check_image_size(cam.width, cam.height);
+        GLint max_size = 0;
+        glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+        if (cam.width > max_size || cam.height > max_size)
+            throw feature_error("transparent hair at " + std::to_string(cam.width) + "x" + std::to_string(cam.height) + " needs textures that large; the context allows " +
+                                std::to_string(max_size));
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_CULL_FACE);
         glDisable(GL_SCISSOR_TEST);
@@ -141,6 +169,9 @@ private:
         glUniform1f(glGetUniformLocation(prog, "hs_hair_opacity"), f.opacity);
         glUniform1f(glGetUniformLocation(prog, "hs_camera_near"), f.cam.near_plane);
         glUniform1f(glGetUniformLocation(prog, "hs_camera_far"), f.cam.far_plane);
+        glUniform3fv(glGetUniformLocation(prog, "hs_hair_ambient_colour"), 1, &f.hair.ambient[0]);
+        glUniform1i(glGetUniformLocation(prog, "hs_light_count"), f.hair.light_count);
+        glUniform1i(glGetUniformLocation(prog, "hs_point_count"), f.hair.point_count);
         bind_texture(prog, "hs_surface_inv_w", 3, f.hair.surface_inv_w);
         f.hair.draw_lines();
     }
@@ -159,6 +190,14 @@ private:
     /// Occupancy-ordered blending: the camera's depth range, occupancy and slab maps, then one
     /// unsorted pass of (1 - alpha)^o alpha (colour, 1) and the sum of -ln(1 - alpha).
     std::pair<texture, texture> occupancy_order(const frame& f) {
+        // Compiled before any state changes, so that a compile error leaves the context as it was.
+        const auto& range_pass = cached("range", [] { return line_program({shaders::passes_depth_range}, "transparency: depth range"); });
+        const auto& bits_pass = cached("bits", [] { return line_program({shaders::passes_occupancy_bits}, "transparency: occupancy bits"); });
+        const auto& slabs_pass = cached("slabs", [] { return line_program({shaders::passes_occupancy_slabs}, "transparency: slabs"); });
+        const auto& order_pass = cached("order", [] {
+            return line_program({shaders::reconstruction_occupancy_bitcount, shaders::lookup_occupancy_texels, shaders::transparency_occupancy_order},
+                                "transparency: occupancy order");
+        });
         auto range = target_texture(GL_RGBA32F, f.cam), bits = target_texture(GL_RGBA32UI, f.cam), slab = target_texture(GL_RGBA32F, f.cam);
         // 1. Each pixel's nearest and furthest fragment (Sintorn & Assarsson 3.1).
         {
@@ -167,7 +206,7 @@ private:
             glEnable(GL_BLEND);
             glBlendEquationSeparate(GL_MIN, GL_MAX);
             glBlendFunc(GL_ONE, GL_ONE);
-            draw_fragments(cached("range", [] { return line_program({shaders::passes_depth_range}, "transparency: depth range"); }), f);
+            draw_fragments(range_pass, f);
             glBlendEquation(GL_FUNC_ADD);
             glDisable(GL_BLEND);
         }
@@ -178,20 +217,18 @@ private:
             glClearBufferuiv(GL_COLOR, 0, zero);
             glEnable(GL_COLOR_LOGIC_OP);
             glLogicOp(GL_OR);
-            const auto& p = cached("bits", [] { return line_program({shaders::passes_occupancy_bits}, "transparency: occupancy bits"); });
-            glUseProgram(p.get());
-            bind_texture(p.get(), "hs_range_map", 0, range.get());
-            draw_fragments(p, f);
+            glUseProgram(bits_pass.get());
+            bind_texture(bits_pass.get(), "hs_range_map", 0, range.get());
+            draw_fragments(bits_pass, f);
             glDisable(GL_COLOR_LOGIC_OP);
         }
         {
             const auto fbo = draw_into({slab.get()});
             clear(0, 0.0f, 0.0f, 0.0f, 0.0f);
             additive();
-            const auto& p = cached("slabs", [] { return line_program({shaders::passes_occupancy_slabs}, "transparency: slabs"); });
-            glUseProgram(p.get());
-            bind_texture(p.get(), "hs_range_map", 0, range.get());
-            draw_fragments(p, f);
+            glUseProgram(slabs_pass.get());
+            bind_texture(slabs_pass.get(), "hs_range_map", 0, range.get());
+            draw_fragments(slabs_pass, f);
             glDisable(GL_BLEND);
         }
         // 4. The blend pass, in drawing order: each fragment's weight from its slice's depth order.
@@ -200,29 +237,24 @@ private:
         clear(0, 0.0f, 0.0f, 0.0f, 0.0f);
         clear(1, 0.0f, 0.0f, 0.0f, 0.0f);
         additive();
-        const auto& p = cached("order", [] {
-            return line_program({shaders::reconstruction_occupancy_bitcount, shaders::lookup_occupancy_texels, shaders::transparency_occupancy_order},
-                                "transparency: occupancy order");
-        });
-        glUseProgram(p.get());
-        bind_texture(p.get(), "hs_range_map", 0, range.get());
-        glActiveTexture(GL_TEXTURE1);
-        glBindTexture(GL_TEXTURE_2D, bits.get());
-        glUniform1i(glGetUniformLocation(p.get(), "hs_bits_texture[0]"), 1);
-        bind_texture(p.get(), "hs_slabs_texture[0]", 2, slab.get());
-        draw_fragments(p, f);
+        glUseProgram(order_pass.get());
+        bind_texture(order_pass.get(), "hs_range_map", 0, range.get());
+        bind_texture(order_pass.get(), "hs_bits_texture[0]", 1, bits.get());
+        bind_texture(order_pass.get(), "hs_slabs_texture[0]", 2, slab.get());
+        draw_fragments(order_pass, f);
         glDisable(GL_BLEND);
         return {std::move(sum), std::move(total)};
     }
 
     /// Weighted averages: one unsorted additive pass of (alpha colour, alpha) and the fragment count.
     std::pair<texture, texture> weighted_sums(const frame& f) {
+        const auto& p = cached("weighted", [] { return line_program({shaders::transparency_weighted_sum}, "transparency: weighted sums"); });
         auto sum = target_texture(GL_RGBA32F, f.cam), count = target_texture(GL_R32F, f.cam);
         const auto fbo = draw_into({sum.get(), count.get()});
         clear(0, 0.0f, 0.0f, 0.0f, 0.0f);
         clear(1, 0.0f, 0.0f, 0.0f, 0.0f);
         additive();
-        draw_fragments(cached("weighted", [] { return line_program({shaders::transparency_weighted_sum}, "transparency: weighted sums"); }), f);
+        draw_fragments(p, f);
         glDisable(GL_BLEND);
         return {std::move(sum), std::move(count)};
     }
@@ -230,22 +262,27 @@ private:
     /// Exact blending by depth peeling, front to back, until a layer finds no fragment (an
     /// occlusion query). Returns the under-blended colour and transmittance, and the layer count.
     std::pair<texture, int> peel(const frame& f) {
+        const auto& p = cached("peel", [] { return line_program({shaders::transparency_peel}, "transparency: depth peeling"); });
         auto accumulated = target_texture(GL_RGBA32F, f.cam);
         std::array<texture, 2> depth{target_texture(GL_R32F, f.cam), target_texture(GL_R32F, f.cam)};
         std::array<framebuffer, 2> depth_fbo{draw_into({depth[0].get()}), draw_into({depth[1].get()})};
         glBindFramebuffer(GL_FRAMEBUFFER, depth_fbo[1].get());
-        clear(0, -3.0e38f, 0.0f, 0.0f, 0.0f); // "the last layer" before the first
+        clear(0, -std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f); // "the last layer" before the first
         const auto accumulated_fbo = draw_into({accumulated.get()});
         clear(0, 0.0f, 0.0f, 0.0f, 1.0f);
-        const auto& p = cached("peel", [] { return line_program({shaders::transparency_peel}, "transparency: depth peeling"); });
         GLuint query_name = 0;
         glGenQueries(1, &query_name);
         const query any_left(query_name);
         int layers = 0;
         for (int current = 0;; current = 1 - current, ++layers) {
             // The nearest depth beyond the last layer.
+            if (layers == max_layers) {
+                glDisable(GL_BLEND);
+                throw gl_error("depth peeling found more than " + std::to_string(max_layers) + " layers");
+            }
             glBindFramebuffer(GL_FRAMEBUFFER, depth_fbo[std::size_t(current)].get());
-            clear(0, 3.0e38f, 0.0f, 0.0f, 0.0f);
+            // Infinity, so that fragments at infinite depth (1/w = 0) are found, blended and passed.
+            clear(0, std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f);
             glEnable(GL_BLEND);
             glBlendEquation(GL_MIN);
             glUseProgram(p.get());
