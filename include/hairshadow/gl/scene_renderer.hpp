@@ -81,7 +81,7 @@ public:
         line_width_ = line_width;
     }
     transparency transparency_mode() const noexcept { return transparency_; }
-    /// Depth-peeling layers of the last render with transparency::exact (each two draws of the hair).
+    /// Depth-peeling layers of the last render with transparency::exact (a draw of the hair each, and two more).
     int peeled_layers() const noexcept { return peeled_layers_; }
 
     /// Draws the scene from `cam` into the bound framebuffer (viewport and clearing are the caller's);

@@ -56,8 +56,8 @@ public:
 
     /// Blends `hair` over its base image by `mode` (not transparency::none) into colour attachment 0
     /// of framebuffer `target` (linear RGB), each strand of `opacity` and `line_width` pixels.
-    /// Returns the number of depth-peeling layers (transparency::exact; each is two draws of the
-    /// hair), else 0.
+    /// Returns the number of depth-peeling layers (transparency::exact; one draw of the hair each,
+    /// and two more), else 0.
     int blend(transparency mode, const camera_hair& hair, const camera& cam, float opacity, float line_width, GLuint target) {
         if (mode == transparency::none) throw argument_error("transparent_hair::blend needs a transparency mode");
         if (!(opacity > 0.0f && opacity <= 1.0f)) throw argument_error("hair opacity must be in (0, 1]");
@@ -259,52 +259,54 @@ private:
         return {std::move(sum), std::move(count)};
     }
 
-    /// Exact blending by depth peeling, front to back, until a layer finds no fragment (an
-    /// occlusion query). Returns the under-blended colour and transmittance, and the layer count.
+    /// Exact blending by depth peeling, front to back: a first draw finds each pixel's nearest
+    /// depth, then each draw blends one layer and finds the next (transparency/peel), until an
+    /// occlusion query sees no fragment left. Returns the under-blended colour and transmittance,
+    /// and the number of layers (the draws less two: the first finds, the last finds nothing).
     std::pair<texture, int> peel(const frame& f) {
         const auto& p = cached("peel", [] { return line_program({shaders::transparency_peel}, "transparency: depth peeling"); });
         auto accumulated = target_texture(GL_RGBA32F, f.cam);
-        std::array<texture, 2> depth{target_texture(GL_R32F, f.cam), target_texture(GL_R32F, f.cam)};
-        std::array<framebuffer, 2> depth_fbo{draw_into({depth[0].get()}), draw_into({depth[1].get()})};
-        glBindFramebuffer(GL_FRAMEBUFFER, depth_fbo[1].get());
-        clear(0, -std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f); // "the last layer" before the first
-        const auto accumulated_fbo = draw_into({accumulated.get()});
+        std::array<texture, 2> layer{target_texture(GL_RGBA32F, f.cam), target_texture(GL_RGBA32F, f.cam)};
+        // Draw k reads layer[k % 2] and finds the next layer into layer[(k + 1) % 2].
+        std::array<framebuffer, 2> fbo{draw_into({accumulated.get(), layer[1].get()}), draw_into({accumulated.get(), layer[0].get()})};
         clear(0, 0.0f, 0.0f, 0.0f, 1.0f);
         GLuint query_name = 0;
         glGenQueries(1, &query_name);
         const query any_left(query_name);
-        int layers = 0;
-        for (int current = 0;; current = 1 - current, ++layers) {
-            // The nearest depth beyond the last layer.
-            if (layers == max_layers) {
-                glDisable(GL_BLEND);
+        glUseProgram(p.get());
+        glEnablei(GL_BLEND, 0);
+        glEnablei(GL_BLEND, 1);
+        glBlendEquationi(0, GL_FUNC_ADD);
+        glBlendFuncSeparatei(0, GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
+        glBlendEquationSeparatei(1, GL_MIN, GL_MAX);
+        int draws = 0;
+        for (;; ++draws) {
+            if (draws == max_layers + 2) {
+                reset_blending();
                 throw gl_error("depth peeling found more than " + std::to_string(max_layers) + " layers");
             }
-            glBindFramebuffer(GL_FRAMEBUFFER, depth_fbo[std::size_t(current)].get());
+            const std::size_t current = std::size_t(draws % 2);
+            glBindFramebuffer(GL_FRAMEBUFFER, fbo[current].get());
             // Infinity, so that fragments at infinite depth (1/w = 0) are found, blended and passed.
-            clear(0, std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f);
-            glEnable(GL_BLEND);
-            glBlendEquation(GL_MIN);
-            glUseProgram(p.get());
-            glUniform1i(glGetUniformLocation(p.get(), "hs_find_layer"), 1);
-            bind_texture(p.get(), "hs_peeled_depth", 0, depth[std::size_t(1 - current)].get());
+            clear(1, std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f);
+            glUniform1i(glGetUniformLocation(p.get(), "hs_first_layer"), draws == 0);
+            bind_texture(p.get(), "hs_layer_depth", 0, layer[current].get());
             glBeginQuery(GL_ANY_SAMPLES_PASSED, any_left.get());
             draw_fragments(p, f);
             glEndQuery(GL_ANY_SAMPLES_PASSED);
-            glBlendEquation(GL_FUNC_ADD);
-            GLuint found = 0;
-            glGetQueryObjectuiv(any_left.get(), GL_QUERY_RESULT, &found);
-            if (!found) break;
-            // Every fragment at that depth, under what is in front.
-            glBindFramebuffer(GL_FRAMEBUFFER, accumulated_fbo.get());
-            glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
-            glUniform1i(glGetUniformLocation(p.get(), "hs_find_layer"), 0);
-            bind_texture(p.get(), "hs_layer_depth", 1, depth[std::size_t(current)].get());
-            draw_fragments(p, f);
-            glBlendFunc(GL_ONE, GL_ONE);
+            GLuint left = 0;
+            glGetQueryObjectuiv(any_left.get(), GL_QUERY_RESULT, &left);
+            if (!left) break;
         }
+        reset_blending();
+        return {std::move(accumulated), std::max(0, draws - 1)};
+    }
+
+    /// GL's default blending, for every draw buffer.
+    static void reset_blending() {
         glDisable(GL_BLEND);
-        return {std::move(accumulated), layers};
+        glBlendEquation(GL_FUNC_ADD);
+        glBlendFunc(GL_ONE, GL_ZERO);
     }
 
     void resolve(transparency mode, const frame& f, const texture& sum, const texture& total, GLuint target) {
