@@ -3745,15 +3745,6 @@ inline camera_fragments collect_camera_fragments(const hair_model& hair, std::sp
 /// slice) = (1 - alpha)^o, then rescales the hair's colour so that its alpha is the exact
 /// 1 - prod(1 - alpha_i) (the paper's correction; we scale by Lambda / alpha_sum, which is what
 /// makes the alpha right, where the paper's text reads alpha_sum / Lambda).
-namespace detail {
-inline aabb unit_box() {
-    aabb box;
-    box.add({0, 0, 0});
-    box.add({1, 1, 1});
-    return box;
-}
-} // namespace detail
-
 inline void blend_fragments(image& base, const camera_fragments& f, transparency mode, const execution& exec = {}) {
     const std::size_t pixels = std::size_t(f.width) * std::size_t(f.height);
     occupancy_maps<128, 4> order;
@@ -3771,7 +3762,7 @@ inline void blend_fragments(image& base, const camera_fragments& f, transparency
         for (std::size_t i = 0; i < plain.size(); ++i) plain[i] = {f.fragments[i].depth, f.fragments[i].alpha};
         const fragment_buffer buffer(side, std::move(offsets), std::move(plain));
         // The maps are read by pixel and depth only: any light of that resolution will do.
-        order.build(buffer, light_space::fit(light_spec::directional({0, 0, -1}), detail::unit_box(), side), exec);
+        order.build(buffer, light_space::fit(light_spec::directional({0, 0, -1}), aabb{glm::vec3(0.0f), glm::vec3(1.0f)}, side), exec);
     }
     parallel_for(pixels, exec, [&](std::size_t i) {
         const auto frags = f.pixel(i);

@@ -67,6 +67,16 @@ inline texture make_texture() {
     glGenTextures(1, &n);
     return texture(n);
 }
+/// A 2D texture of one level, `format` and size, read texel by texel: nearest filtering, which
+/// integer formats need to be complete.
+inline texture make_texture_2d(GLenum format, int width, int height) {
+    auto t = make_texture();
+    glBindTexture(GL_TEXTURE_2D, t.get());
+    glTexStorage2D(GL_TEXTURE_2D, 1, format, width, height);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return t;
+}
 inline framebuffer make_framebuffer() {
     GLuint n = 0;
     glGenFramebuffers(1, &n);

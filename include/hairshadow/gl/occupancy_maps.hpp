@@ -172,14 +172,7 @@ private:
 
     void allocate(int res) {
         if (res == allocated_) return;
-        auto make = [&](GLenum format) {
-            auto t = make_texture();
-            glBindTexture(GL_TEXTURE_2D, t.get());
-            glTexStorage2D(GL_TEXTURE_2D, 1, format, res, res);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-            return t;
-        };
+        auto make = [&](GLenum format) { return make_texture_2d(format, res, res); };
         bits_.clear();
         slabs_.clear();
         for (int t = 0; t < bit_targets; ++t) bits_.push_back(make(GL_RGBA32UI));

@@ -215,9 +215,7 @@ private:
 
     /// A single-sampled texture (RGBA32F unless told) and a framebuffer drawing into it.
     static std::pair<texture, framebuffer> linear_target(int width, int height, GLenum format = GL_RGBA32F) {
-        auto t = make_texture();
-        glBindTexture(GL_TEXTURE_2D, t.get());
-        glTexStorage2D(GL_TEXTURE_2D, 1, format, width, height);
+        auto t = make_texture_2d(format, width, height);
         auto f = make_framebuffer();
         glBindFramebuffer(GL_FRAMEBUFFER, f.get());
         glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, t.get(), 0);
@@ -265,7 +263,7 @@ private:
         if (!lights_.empty()) return lights_;
         if (ambient_only_.empty()) {
             const scene_light dark{light_spec::directional({0.0f, 0.0f, -1.0f}), glm::vec3(0.0f)};
-            ambient_only_.push_back(unshadowed_entry(dark, light_space::fit(dark.spec, hairshadow::detail::unit_box(), 1), default_mesh_bias));
+            ambient_only_.push_back(unshadowed_entry(dark, light_space::fit(dark.spec, aabb{glm::vec3(0.0f), glm::vec3(1.0f)}, 1), default_mesh_bias));
         }
         return ambient_only_;
     }
@@ -277,12 +275,7 @@ private:
         glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
         glGetIntegerv(GL_VIEWPORT, viewport);
         const int res = space.resolution();
-        auto t = make_texture();
-        glBindTexture(GL_TEXTURE_2D, t.get());
-        glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, res, res);
-        auto fbo = make_framebuffer();
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo.get());
-        glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, t.get(), 0);
+        auto [map, fbo] = linear_target(res, res, GL_R32F);
         const GLenum first = GL_COLOR_ATTACHMENT0;
         glDrawBuffers(1, &first);
         glViewport(0, 0, res, res);
@@ -299,7 +292,7 @@ private:
         glBindFramebuffer(GL_FRAMEBUFFER, GLuint(bound));
         glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
         check("mesh depth map");
-        return t;
+        return std::move(map);
     }
 
     /// Clears the bound framebuffer (colour attachment 0 and depth) to the background and draws the scene.

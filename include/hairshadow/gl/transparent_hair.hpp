@@ -127,14 +127,7 @@ private:
         return found->second;
     }
 
-    static texture target_texture(GLenum format, const camera& cam) {
-        auto t = make_texture();
-        glBindTexture(GL_TEXTURE_2D, t.get());
-        glTexStorage2D(GL_TEXTURE_2D, 1, format, cam.width, cam.height);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST); // integer textures must not filter
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        return t;
-    }
+    static texture target_texture(GLenum format, const camera& cam) { return make_texture_2d(format, cam.width, cam.height); }
 
     /// Binds a framebuffer drawing into `textures` (colour attachments 0, 1, ...).
     static framebuffer draw_into(std::initializer_list<GLuint> textures) {
