@@ -34,8 +34,12 @@ public:
         if (!mesh_) throw argument_error("no model to draw");
         maps_ = gl::make_gl_shadow_map(spec);
         maps_->build(*mesh_, light, options); // drivers compile shader variants at the first draw: time the second build
+        return rebuild(light, options);
+    }
+    double rebuild(const light_space& light, const raster_options& options) override {
+        if (!mesh_) throw argument_error("no model to draw");
         const auto start = std::chrono::steady_clock::now();
-        maps_->build(*mesh_, light, options);
+        built().build(*mesh_, light, options);
         return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     }
     std::vector<float> transmittance(std::span<const glm::vec3> points) override { return built().transmittance(points); }

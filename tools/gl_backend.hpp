@@ -29,6 +29,8 @@ public:
     /// Builds a method's maps on the GPU; returns the wall time in milliseconds of a second build (the
     /// first compiles the driver's shader variants), until the GPU finished.
     virtual double build(const hairshadow::method_spec& spec, const hairshadow::light_space& light, const hairshadow::raster_options& options) = 0;
+    /// Builds the last built maps again; returns the wall time in milliseconds, until the GPU finished.
+    virtual double rebuild(const hairshadow::light_space& light, const hairshadow::raster_options& options) = 0;
     /// Transmittance at each point through the last built maps' GLSL look-up.
     virtual std::vector<float> transmittance(std::span<const glm::vec3> points) = 0;
     /// Bytes of the last built maps' textures.

@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bench_command.hpp"
 #include "compare_table.hpp"
 #include "figure.hpp"
 #include "gl_backend.hpp"
@@ -85,8 +86,8 @@ double milliseconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// A model seen from one light (rasterised on the CPU unless only GL draws it), ready for any number
-/// of methods.
+/// A model seen from one light, ready for any number of methods; rasterised into a fragment buffer
+/// only where the exact reference of `compare` needs one.
 struct lit_model {
     hair_model model;
     light_space light;
@@ -96,8 +97,8 @@ struct lit_model {
     std::unique_ptr<cli::gl_backend> gl; ///< with --backend gl
 };
 
-/// Loads the model and fits the light; rasterises on the CPU where `cpu_fragments` (the CPU methods,
-/// and the exact reference of `compare`); opens the GL context with --backend gl.
+/// Loads the model and fits the light; rasterises on the CPU where `cpu_fragments` (the exact
+/// reference of `compare`); opens the GL context with --backend gl.
 lit_model prepare_scene(const map_options& o, bool cpu_fragments) {
     const auto light = parse_light(o.light);
     check_resolution(o.resolution);
@@ -121,12 +122,18 @@ lit_model prepare_scene(const map_options& o, bool cpu_fragments) {
     return s;
 }
 
-/// Builds a method's maps on the CPU, for CPU queries.
-std::unique_ptr<any_shadow_map> build_map(const method_spec& spec, const lit_model& s, const execution& exec, double* build_ms = nullptr) {
+/// Builds a method's maps on the CPU straight from the model (tile by tile; the exact reference
+/// through a fragment buffer), for CPU queries. With `rebuild_ms`, builds twice and gives the time of
+/// the second build, with the maps and working memory in place, as a renderer rebuilding every frame
+/// sees it.
+std::unique_ptr<any_shadow_map> build_map(const method_spec& spec, const lit_model& s, double* rebuild_ms = nullptr) {
     auto map = make_shadow_map(spec);
-    const auto start = std::chrono::steady_clock::now();
-    map->build(s.fragments, s.light, exec);
-    if (build_ms) *build_ms = milliseconds_since(start);
+    map->build(s.model, s.light, s.raster);
+    if (rebuild_ms) {
+        const auto start = std::chrono::steady_clock::now();
+        map->build(s.model, s.light, s.raster);
+        *rebuild_ms = milliseconds_since(start);
+    }
     return map;
 }
 
@@ -203,7 +210,7 @@ method_result evaluate(const method_spec& spec, lit_model& s, const map_options&
         r.bytes = s.gl->memory_bytes();
         r.layers = spec.layers;
     } else {
-        const auto map = build_map(spec, s, o.exec(), &r.build_ms);
+        const auto map = build_map(spec, s, &r.build_ms);
         map->transmittance(points, r.transmittance, o.query(), o.exec());
         r.bytes = map->memory_bytes();
         r.layers = map->layer_count();
@@ -221,7 +228,7 @@ method_spec parse_method_for(const std::string& text, const map_options& o) {
 int run_query(const map_options& o, const std::string& points_file) {
     const auto spec = parse_method_for(o.method, o);
     const auto points = read_points(points_file);
-    auto s = prepare_scene(o, !o.on_gl());
+    auto s = prepare_scene(o, false);
     const auto t = evaluate(spec, s, o, points).transmittance;
     std::string out;
     char buf[32];
@@ -283,9 +290,8 @@ int run_shaded(const map_options& o, const render_view& v, const std::string& ou
         std::vector<lit_light> lit;
         for (std::size_t i = 0; i < spaces.size(); ++i) {
             const auto n = std::to_string(i + 1);
-            const auto fragments = cli::step("light " + n + ": rasterising the hair", [&] { return rasterize(sc.hair, spaces[i], ro); });
             maps.push_back(make_shadow_map(spec));
-            cli::step("light " + n + ": building " + spec.text, [&] { maps.back()->build(fragments, spaces[i], o.exec()); });
+            cli::step("light " + n + ": building " + spec.text + " from the hair", [&] { maps.back()->build(sc.hair, spaces[i], ro); });
             auto mesh_map = cli::step("light " + n + ": the mesh's depth map", [&] { return depth_shadow_map(sc.mesh, spaces[i], default_mesh_bias, o.exec()); });
             lit.push_back({sc.lights[i], query_of(*maps.back(), o.exec()), std::move(mesh_map)});
         }
@@ -306,13 +312,13 @@ int run_render(const map_options& o, const render_view& v, const std::string& ou
     }
     if (!v.camera_only.empty()) throw usage_error(v.camera_only + " needs --view camera");
     const auto spec = parse_method_for(o.method, o);
-    auto s = prepare_scene(o, !o.on_gl());
+    auto s = prepare_scene(o, false);
     std::unique_ptr<any_shadow_map> map;
     if (s.gl) {
         s.gl->build(spec, s.light, s.raster);
         map = s.gl->to_cpu(); // the maps GL built, read back
     } else {
-        map = build_map(spec, s, o.exec());
+        map = build_map(spec, s);
     }
     const int res = o.resolution;
     // The light's view: the transmittance behind the whole model (depth 1).
@@ -340,8 +346,8 @@ int run_memory(const map_options& o) {
         std::printf("%s at %dx%d: %zu bytes (%.2f MiB)\n", spec.text.c_str(), o.resolution, o.resolution, *bytes, double(*bytes) / 1048576.0);
         return 0;
     }
-    const auto s = prepare_scene(o, true);
-    const auto map = build_map(spec, s, o.exec());
+    const auto s = prepare_scene(o, false);
+    const auto map = build_map(spec, s);
     std::printf("%s at %dx%d for %s: %zu bytes (%.2f MiB)\n", spec.text.c_str(), o.resolution, o.resolution, o.model.c_str(), map->memory_bytes(),
                 double(map->memory_bytes()) / 1048576.0);
     return 0;
@@ -353,7 +359,8 @@ int run_compare(const map_options& o, const std::string& methods, const std::str
     auto s = prepare_scene(o, true); // the exact reference is built on the CPU for either back end
     const auto exec = o.exec();
     const auto query = o.query();
-    const auto exact = build_map(parse_method("dsm"), s, exec);
+    const auto exact = make_shadow_map(parse_method("dsm"));
+    exact->build(s.fragments, s.light, exec);
     std::vector<float> reference(s.model.point_count());
     exact->transmittance(s.model.points, reference, query, exec);
     std::vector<cli::compare_row> rows;
@@ -368,11 +375,23 @@ int run_compare(const map_options& o, const std::string& methods, const std::str
              << " points, " << s.fragments.size() << " fragments (rasterised in " << std::lround(s.raster_ms) << " ms), " << exec.resolved()
              << " threads. ";
     if (s.gl) preamble << "Methods built on " << s.gl->description() << " and queried by their GLSL look-up; the reference on the CPU. ";
+    else preamble << "Build times are CPU rebuilds straight from the model (rasterise and build, tile by tile), the second of two builds. ";
     preamble << "Errors are |T - T_exact| at the model's points.";
     const auto [md, csv] = cli::format_table(rows, preamble.str());
     std::fputs(md.c_str(), stdout);
     if (!out_dir.empty()) cli::write_table(out_dir, md, csv);
     return 0;
+}
+
+int run_bench(const map_options& o, const std::string& methods, int repeat) {
+    cli::bench_options b;
+    for (auto part : detail::split(methods, ',')) b.specs.push_back(parse_method_for(std::string(part), o));
+    auto s = prepare_scene(o, false);
+    b.model_name = o.model;
+    b.light_name = o.light;
+    b.repeat = repeat;
+    b.raster = s.raster;
+    return cli::run_bench(s.model, s.light, b, s.gl.get());
 }
 
 void add_model(CLI::App* cmd, map_options& o, bool required = true) {
@@ -455,6 +474,16 @@ int main(int argc, char** argv) {
     compare->add_option("--methods", methods, "comma-separated method specs");
     compare->add_option("--out", out_dir, "also write compare.md and compare.csv into this folder");
 
+    std::string bench_methods = "osm:16,osm:64,dom:3,dc:4,occ:128:4,dsm";
+    int repeat = 10;
+    auto* bench = app.add_subcommand("bench", "time full rebuilds (rasterise and build) of each method's maps on a model: a Markdown table");
+    add_model(bench, o);
+    add_map_options(bench, o, false);
+    add_backend_options(bench, o);
+    bench->add_option("--methods", bench_methods, "comma-separated method specs");
+    bench->add_option("--repeat", repeat, "rebuilds timed after the cold one, 1 to 10000")->check(CLI::Range(1, 10000));
+    bench->add_option("--threads", o.threads, "worker threads; 0 = all cores");
+
     cli::figure_options fig;
     auto* figure = app.add_subcommand("figure", "the comparison figure: shaded hair with each method, crops, error heat maps, ray plots, table");
     figure->add_option("--model", fig.model, "a model file or " + std::string(procedural_grammar) + " (procedural models stand on their sphere)");
@@ -484,6 +513,7 @@ int main(int argc, char** argv) {
         if (*render) return run_render(o, view, out_path, maps_dir);
         if (*memory) return run_memory(o);
         if (*compare) return run_compare(o, methods, out_dir);
+        if (*bench) return run_bench(o, bench_methods, repeat);
         if (*figure) {
             try { // everything a usage error can be, before any work
                 check_resolution(fig.resolution);

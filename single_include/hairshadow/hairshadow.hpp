@@ -478,12 +478,15 @@ public:
     float distance_of_depth(float depth) const noexcept { return near_ + depth * (far_ - near_); }
 
     /// Projects a world point (no clipping): window coordinates, linear depth and clip w.
-    light_point project(const glm::vec3& world) const noexcept {
-        const glm::vec4 clip = view_projection_ * glm::vec4(world, 1.0f);
-        const float distance = -(view_ * glm::vec4(world, 1.0f)).z;
+    HAIRSHADOW_ALWAYS_INLINE light_point project(const glm::vec3& world) const noexcept { return project(world, distance_of(world)); }
+    /// The same, given the point's distance_of(world).
+    HAIRSHADOW_ALWAYS_INLINE light_point project(const glm::vec3& world, float distance) const noexcept {
+        const float x = row(view_projection_, 0, world), y = row(view_projection_, 1, world), w = row(view_projection_, 3, world);
         const float half_res = 0.5f * float(resolution_);
-        return {glm::vec2((clip.x / clip.w + 1.0f) * half_res, (clip.y / clip.w + 1.0f) * half_res), depth_of_distance(distance), clip.w};
+        return {glm::vec2((x / w + 1.0f) * half_res, (y / w + 1.0f) * half_res), depth_of_distance(distance), w};
     }
+    /// Distance of a world point in front of the light, along its axis (view space -z).
+    HAIRSHADOW_ALWAYS_INLINE float distance_of(const glm::vec3& world) const noexcept { return -row(view_, 2, world); }
 
     /// The texel holding a world point and its depth, or nothing when the point is outside the map.
     std::optional<texel_depth> locate(const glm::vec3& world) const noexcept {
@@ -501,6 +504,12 @@ public:
     }
 
 private:
+    /// Row i of m * (p, 1), summed in the order of GLM's matrix-vector product, inlined: the
+    /// rasteriser projects every point of the model.
+    HAIRSHADOW_ALWAYS_INLINE static float row(const glm::mat4& m, int i, const glm::vec3& p) noexcept {
+        return (m[0][i] * p.x + m[1][i] * p.y) + (m[2][i] * p.z + m[3][i]);
+    }
+
     int resolution_ = 1;
     light_type type_ = light_type::directional;
     glm::mat4 view_{1.0f}, projection_{1.0f}, view_projection_{1.0f};
@@ -512,23 +521,120 @@ private:
 // ---- end hairshadow/core/light.hpp
 // ---- begin hairshadow/core/parallel.hpp
 /// @file
-/// A minimal fork-join loop. Work items are handed out dynamically, but every kernel writes its result
-/// to a place fixed by the item's index, so results never depend on the thread count.
+/// A minimal fork-join loop on persistent workers. Work items are handed out dynamically, but every
+/// kernel writes its result to a place fixed by the item's index, so results never depend on the
+/// thread count.
+
+// ---- begin hairshadow/core/thread_pool.hpp
+/// @file
+/// The persistent worker threads behind parallel_for. Starting threads for every parallel loop cost
+/// about 0.3 ms a loop on the 2-core test machine, more than a whole tile pass of a small map; these
+/// workers start once, at the first loop that wants them, and sleep between loops.
+
+#include <algorithm>
+#include <condition_variable>
+#include <cstddef>
+#include <mutex>
+#include <system_error>
+#include <thread>
+
+namespace hairshadow::detail {
+
+/// Runs one job at a time on the calling thread plus up to `threads - 1` sleeping workers. A call
+/// made while a job runs (a nested loop, or another user thread) is refused, and its caller runs the
+/// job alone: that never deadlocks, and results never depend on which threads run a job.
+class thread_pool {
+public:
+    /// The process's pool. It is never destroyed: workers sleep until the process exits, so that no
+    /// loop can race the destruction of static objects at exit.
+    static thread_pool& instance() {
+        static thread_pool* pool = new thread_pool();
+        return *pool;
+    }
+
+    thread_pool(const thread_pool&) = delete;
+    thread_pool& operator=(const thread_pool&) = delete;
+
+    /// Calls job() on this thread and on up to `threads - 1` workers, and returns when every call has
+    /// returned. Returns false, having called nothing, when the pool is busy with another job.
+    template <class Job>
+    bool run(unsigned threads, Job& job) {
+        std::unique_lock lock(mutex_);
+        if (busy_) return false;
+        busy_ = true;
+        grow(threads - 1);
+        job_ = [](void* context) { (*static_cast<Job*>(context))(); };
+        context_ = &job;
+        seats_ = std::min<std::size_t>(threads - 1, workers_);
+        ++generation_;
+        lock.unlock();
+        wake_.notify_all();
+        job();
+        lock.lock();
+        seats_ = 0; // workers that have not woken yet stay asleep
+        done_.wait(lock, [&] { return running_ == 0; });
+        busy_ = false;
+        return true;
+    }
+
+private:
+    thread_pool() = default;
+
+    /// Starts workers up to `count` (under the lock). A refused thread leaves fewer seats; the job's
+    /// own loop hands out every item anyway.
+    void grow(std::size_t count) {
+        while (workers_ < count) {
+            try {
+                // It has seen every job before the one about to start, which it may join.
+                std::thread([this, seen = generation_] { work(seen); }).detach();
+            } catch (const std::system_error&) {
+                return;
+            }
+            ++workers_;
+        }
+    }
+
+    void work(std::size_t seen) {
+        std::unique_lock lock(mutex_);
+        for (;;) {
+            wake_.wait(lock, [&] { return generation_ != seen; });
+            seen = generation_;
+            if (seats_ == 0) continue;
+            --seats_;
+            ++running_;
+            void (*job)(void*) = job_;
+            void* context = context_;
+            lock.unlock();
+            job(context); // the job catches its own exceptions (parallel_for)
+            lock.lock();
+            if (--running_ == 0) done_.notify_one();
+        }
+    }
+
+    std::mutex mutex_;
+    std::condition_variable wake_, done_;
+    void (*job_)(void*) = nullptr;
+    void* context_ = nullptr;
+    std::size_t workers_ = 0, generation_ = 0, seats_ = 0, running_ = 0;
+    bool busy_ = false;
+};
+
+} // namespace hairshadow::detail
+// ---- end hairshadow/core/thread_pool.hpp
 
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <exception>
 #include <mutex>
-#include <system_error>
 #include <thread>
-#include <vector>
 
 namespace hairshadow {
 
 /// Thread count for the CPU kernels: 0 means every hardware thread.
 struct execution {
     unsigned threads = 0;
+    friend bool operator==(const execution&, const execution&) = default;
 
     unsigned resolved() const noexcept {
         if (threads != 0) return threads;
@@ -537,28 +643,41 @@ struct execution {
     }
 };
 
-/// Calls body(i) for every i in [0, count) on up to exec.resolved() threads, in chunks of `grain`.
+/// Threads a loop of `count` items in chunks of `grain` runs on: at most exec.resolved(), the chunk
+/// count and four per core (more only cost start-up time). Per-thread scratch memory for
+/// parallel_for_slots needs this many slots.
+inline unsigned parallel_slots(std::size_t count, const execution& exec, std::size_t grain = 1) noexcept {
+    if (count == 0) return 1;
+    grain = std::max<std::size_t>(grain, 1);
+    const std::size_t chunks = (count + grain - 1) / grain;
+    const std::size_t useful = 4 * std::size_t(std::max(1u, std::thread::hardware_concurrency()));
+    return static_cast<unsigned>(std::max<std::size_t>(1, std::min({std::size_t(exec.resolved()), chunks, useful})));
+}
+
+/// Calls body(slot, i) for every i in [0, count) on up to parallel_slots(count, exec, grain)
+/// threads, in chunks of `grain`; `slot`, below that count, tells apart the threads running at the
+/// same time, for per-thread scratch memory. What a slot runs depends on timing: results must not.
 /// The first exception thrown by any call is rethrown after all threads have stopped.
 template <class Body>
-void parallel_for(std::size_t count, const execution& exec, Body&& body, std::size_t grain = 1) {
+void parallel_for_slots(std::size_t count, const execution& exec, Body&& body, std::size_t grain = 1) {
     if (count == 0) return;
     grain = std::max<std::size_t>(grain, 1);
     const std::size_t chunks = (count + grain - 1) / grain;
-    // More threads than items, or than a few per core, only cost start-up time.
-    const std::size_t useful = std::max<std::size_t>(4 * std::max(1u, std::thread::hardware_concurrency()), 1);
-    const unsigned threads = static_cast<unsigned>(std::min({std::size_t(exec.resolved()), chunks, useful}));
+    const unsigned threads = parallel_slots(count, exec, grain);
     if (threads <= 1) {
-        for (std::size_t i = 0; i < count; ++i) body(i);
+        for (std::size_t i = 0; i < count; ++i) body(0u, i);
         return;
     }
     std::atomic<std::size_t> next{0};
+    std::atomic<unsigned> next_slot{0};
     std::exception_ptr failure;
     std::mutex failure_mutex;
     auto worker = [&] {
+        const unsigned slot = next_slot.fetch_add(1);
         try {
             for (std::size_t c = next.fetch_add(1); c < chunks; c = next.fetch_add(1)) {
                 const std::size_t end = std::min(count, (c + 1) * grain);
-                for (std::size_t i = c * grain; i < end; ++i) body(i);
+                for (std::size_t i = c * grain; i < end; ++i) body(slot, i);
             }
         } catch (...) {
             std::lock_guard lock(failure_mutex);
@@ -566,16 +685,15 @@ void parallel_for(std::size_t count, const execution& exec, Body&& body, std::si
             next.store(chunks);
         }
     };
-    std::vector<std::thread> pool;
-    pool.reserve(threads - 1);
-    try {
-        for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
-    } catch (const std::system_error&) {
-        // The system refused another thread: the ones started (and this one) drain every chunk anyway.
-    }
-    worker();
-    for (auto& t : pool) t.join();
+    if (!detail::thread_pool::instance().run(threads, worker)) worker(); // the pool is busy: this thread alone
     if (failure) std::rethrow_exception(failure);
+}
+
+/// Calls body(i) for every i in [0, count) on up to exec.resolved() threads, in chunks of `grain`.
+/// The first exception thrown by any call is rethrown after all threads have stopped.
+template <class Body>
+void parallel_for(std::size_t count, const execution& exec, Body&& body, std::size_t grain = 1) {
+    parallel_for_slots(count, exec, [&body](unsigned, std::size_t i) { body(i); }, grain);
 }
 
 } // namespace hairshadow
@@ -1225,6 +1343,7 @@ inline hair_model read_tfx(const std::string& path) {
 /// @file
 /// Light-space fragments and the per-texel buffer that holds them.
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -1239,6 +1358,22 @@ struct fragment {
     float alpha;
     friend bool operator==(const fragment&, const fragment&) = default;
 };
+
+/// A fragment's optical depth b = -ln(1 - alpha): what it adds to the optical depth behind it. Every
+/// method sums it from this one function, so a fragment's b is the same in every build path.
+inline float optical_depth_of(float alpha) noexcept { return -std::log1p(-alpha); }
+
+/// A fragment whose optical depth is already known: what the tiled build keeps per fragment, having
+/// computed b once per segment wherever the segment's alpha is constant.
+struct optical_fragment {
+    float depth;
+    float optical_depth; ///< optical_depth_of(alpha)
+    friend bool operator==(const optical_fragment&, const optical_fragment&) = default;
+};
+
+/// The optical depth of either kind of fragment; the policies read fragments through this.
+inline float fragment_optical_depth(const fragment& f) noexcept { return optical_depth_of(f.alpha); }
+inline float fragment_optical_depth(const optical_fragment& f) noexcept { return f.optical_depth; }
 
 /// Every texel's fragments, stored texel after texel (row-major, y then x). Within a texel, fragments
 /// keep the order of the segments that produced them, whatever the thread count.
@@ -1280,6 +1415,7 @@ private:
 
 #include <cstdint>
 #include <cstdlib>
+#include <limits>
 
 namespace hairshadow {
 
@@ -1368,22 +1504,89 @@ HAIRSHADOW_ALWAYS_INLINE inline void rasterize_line(const fixed_point& a, const 
 }
 
 } // namespace hairshadow
+
+namespace hairshadow {
+
+/// The fragments of rasterize_line, in the same order, walked for speed: the tiled build calls it for
+/// every segment of every tile. Each texel centre on the segment's major axis inside `clip` is passed
+/// to emit(x, y, keep), with `keep` false where rasterize_line makes no fragment (the minor coordinate
+/// outside the clip, or the end's own diamond), so that the caller can store every candidate and
+/// advance by `keep`, with no branch to mispredict; then the start fragment, if there is one, with
+/// keep true. No division runs per texel, and only one per call. Coordinates as for rasterize_line.
+template <class Emit>
+HAIRSHADOW_ALWAYS_INLINE inline void walk_line(const fixed_point& a, const fixed_point& b, const texel_rect& clip, Emit&& emit) {
+    using detail::ceil_div;
+    using detail::floor_div;
+    using detail::inside_diamond;
+    constexpr std::int64_t S = subpixel_scale, H = subpixel_scale / 2;
+    const std::int64_t dx = b.x - a.x, dy = b.y - a.y;
+    if (dx == 0 && dy == 0) return;
+    const bool x_major = std::llabs(dx) >= std::llabs(dy);
+    const std::int64_t major_a = x_major ? a.x : a.y, major_b = x_major ? b.x : b.y;
+    const std::int64_t d_major = x_major ? dx : dy, d_minor = x_major ? dy : dx;
+    const std::int64_t minor_a = x_major ? a.y : a.x;
+    const std::int64_t lo_end = d_major > 0 ? major_a : major_b, hi_end = d_major > 0 ? major_b : major_a;
+    const std::int64_t first = ceil_div(lo_end - H, S), last = ceil_div(hi_end - H, S) - 1;
+    const std::int64_t clip_lo = x_major ? clip.x0 : clip.y0, clip_hi = x_major ? clip.x1 : clip.y1;
+    const std::int64_t minor_lo = x_major ? clip.y0 : clip.x0, minor_span = (x_major ? clip.y1 : clip.x1) - minor_lo;
+    const std::int64_t denom = (d_major > 0 ? d_major : -d_major) * S;
+    const std::int64_t sign = d_major > 0 ? 1 : -1;
+    const std::int64_t tie = (!x_major || dy == 0 || (dx > 0) != (dy > 0)) ? 1 : 0;
+    // The one texel whose diamond holds the end, if any (the open diamonds are disjoint, and the
+    // boundary rule gives a shared point to one of them): it makes no fragment.
+    std::int64_t end_major = std::numeric_limits<std::int64_t>::min(), end_minor = 0;
+    for (const std::int64_t cx : {floor_div(b.x - 1, S), floor_div(b.x, S)})
+        for (const std::int64_t cy : {floor_div(b.y - 1, S), floor_div(b.y, S)})
+            if (inside_diamond(b, cx, cy)) end_major = x_major ? cx : cy, end_minor = x_major ? cy : cx;
+    const std::int64_t m_begin = std::max(first, clip_lo), m_end = std::min(last, clip_hi - 1);
+    if (m_begin <= m_end) {
+        const std::int64_t num0 = sign * (minor_a * d_major + (m_begin * S + H - major_a) * d_minor);
+        std::int64_t n = floor_div(num0, denom), rem = num0 - n * denom;
+        // |d_minor| <= |d_major|: the step is within [-denom, denom], so its quotient needs no division.
+        const std::int64_t step = sign * d_minor * S;
+        const std::int64_t step_q = step == denom ? 1 : (step < 0 ? -1 : 0);
+        const std::int64_t step_r = step - step_q * denom;
+        for (std::int64_t m = m_begin; m <= m_end; ++m) {
+            const std::int64_t minor = n - (tie & std::int64_t(rem == 0));
+            const bool keep = std::uint64_t(minor - minor_lo) < std::uint64_t(minor_span) && !(m == end_major && minor == end_minor);
+            emit(int(x_major ? m : minor), int(x_major ? minor : m), keep);
+            rem += step_r;
+            const std::int64_t carry = rem >= denom;
+            rem -= carry * denom;
+            n += step_q + carry;
+        }
+    }
+    const std::int64_t ax = floor_div(a.x - 1, S), ay = floor_div(a.y - 1, S);
+    const std::int64_t a_major = x_major ? ax : ay;
+    if (inside_diamond(a, ax, ay) && (a_major < first || a_major > last) && !inside_diamond(b, ax, ay) && clip.contains(ax, ay))
+        emit(int(ax), int(ay), true);
+}
+
+} // namespace hairshadow
 // ---- end hairshadow/raster/line_rule.hpp
 // ---- begin hairshadow/raster/rasterizer.hpp
 /// @file
-/// Rasterises a hair model's segments into light-space fragments (texel, depth, alpha), in parallel
-/// tiles, with per-texel output identical for any thread count.
+/// Rasterises a hair model's segments into one buffer of light-space fragments (texel, depth, alpha),
+/// in parallel tiles, with per-texel output identical for any thread count. The exact reference and
+/// users who want the fragments themselves need it; the methods build tile by tile without it
+/// (methods/tiled_build.hpp).
+
+// ---- begin hairshadow/raster/raster_options.hpp
+/// @file
+/// How segments become fragments: the options shared by the rasteriser and the tiled build.
 
 
-#include <glm/geometric.hpp>
-
-#include <algorithm>
-#include <cmath>
-#include <limits>
-#include <numbers>
 #include <optional>
 
 namespace hairshadow {
+
+/// The instructions the tiled build walks its lines with. Every choice gives the same fragments, bit
+/// for bit; only the time differs.
+enum class instruction_set {
+    automatic, ///< the best this CPU runs: AVX-512 where it has AVX-512F (x86-64, GCC or Clang), else scalar
+    scalar,    ///< portable C++
+    avx512,    ///< AVX-512F; argument_error where the CPU or the compiler has none
+};
 
 /// How segments become fragments.
 struct raster_options {
@@ -1397,55 +1600,188 @@ struct raster_options {
     /// Perspective lights: weight coverage by reciprocal depth (Mertens et al. 2004, section 3.4), i.e.
     /// divide the thickness by the texel's footprint at the fragment's depth rather than at mid-range.
     bool depth_weighting = true;
-    /// Side of the square tiles that are rasterised in parallel, in texels.
-    int tile_size = 32;
+    /// Side of the square tiles that are rasterised (and built) in parallel, in texels. 64 keeps a
+    /// tile's fragments in cache while making fewer segment-tile pairs than 32 or 16 (PERFORMANCE.md).
+    int tile_size = 64;
+    /// The tiled build's line walk (the fragment_buffer rasteriser is scalar).
+    instruction_set instructions = instruction_set::automatic;
+
+    /// Throws argument_error for a bad alpha, wide-line width or tile size.
+    void check() const {
+        if (fixed_alpha && !(*fixed_alpha >= 0.0f && *fixed_alpha <= 1.0f)) throw argument_error("fixed alpha must be in [0, 1]");
+        if (!(wide_line_width == 0.0f || (wide_line_width >= 2.0f && wide_line_width <= 64.0f)))
+            throw argument_error("wide line width must be 0 (off) or in [2, 64] texels");
+        if (tile_size < 8 || tile_size > 1024) throw argument_error("tile size must be in [8, 1024]");
+    }
+    friend bool operator==(const raster_options&, const raster_options&) = default;
 };
+
+} // namespace hairshadow
+// ---- end hairshadow/raster/raster_options.hpp
+// ---- begin hairshadow/raster/segment_bins.hpp
+/// @file
+/// The first two steps of every CPU build: each segment of a model projected and snapped once, then
+/// binned into the square tiles of the light's map that it may touch. Every tile's list is in segment
+/// order, whatever the thread count, so a texel's fragments always come in segment order.
+
+// ---- begin hairshadow/placement/layer_position.hpp
+/// @file
+/// Where a depth falls among a texel's layers, and the depth extent of a fragment buffer.
+
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace hairshadow {
+
+/// A query depth's place among `layer_count` layers: index -1 is in front of the first layer,
+/// index layer_count behind the last; otherwise `fraction` in [0, 1] says how far into layer `index`.
+struct layer_position {
+    int index;
+    float fraction;
+};
+
+/// Nearest and furthest fragment depth of a whole buffer (a global pre-pass); {0, 0} when empty.
+struct depth_extent {
+    float nearest = 0.0f;
+    float furthest = 0.0f;
+};
+
+inline depth_extent extent_of(const fragment_buffer& fragments) noexcept {
+    if (fragments.size() == 0) return {};
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (const auto& f : fragments.fragments()) {
+        lo = std::min(lo, f.depth);
+        hi = std::max(hi, f.depth);
+    }
+    return {lo, hi};
+}
 
 namespace detail {
+/// Moves an estimated layer index to the k in [0, last] with boundary(k) <= depth < boundary(k + 1).
+/// Closed forms for the layer of a depth can miss by one where rounding meets a boundary; settling
+/// against the boundary depths themselves makes fragments and queries agree exactly.
+template <class Boundary>
+int settle_layer(float estimate, int last, float depth, Boundary boundary) noexcept {
+    int k = estimate > 0.0f ? int(std::min(estimate, float(last))) : 0; // NaN and negatives give 0
+    while (k > 0 && depth < boundary(k)) --k;
+    while (k < last && depth >= boundary(k + 1)) ++k;
+    return k;
+}
 
-/// A segment ready for the line rule: snapped endpoints and the attributes to interpolate.
+/// Layer k's position for a depth between its boundaries lo and hi.
+inline layer_position position_in(int k, float depth, float lo, float hi) noexcept {
+    return {k, hi > lo ? std::clamp((depth - lo) / (hi - lo), 0.0f, 1.0f) : 0.0f};
+}
+
+/// The smallest float above `hi`, so that a half-open range [lo, end) holds a fragment at hi.
+inline float just_above(float hi) noexcept { return std::nextafter(hi, std::numeric_limits<float>::infinity()); }
+} // namespace detail
+
+} // namespace hairshadow
+// ---- end hairshadow/placement/layer_position.hpp
+// ---- begin hairshadow/raster/prepared_segment.hpp
+/// @file
+/// Segments ready for the line rule (clipped to the light's depth range and a guard band, projected,
+/// snapped to sub-pixel fixed point), and the shading of their fragments: depth and alpha at a texel.
+
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+
+namespace hairshadow::detail {
+
+/// A segment ready for the line rule, in 32 bytes: a map of millions of segments is read from memory
+/// once per tile pass, so its size is time.
 struct prepared_segment {
-    fixed_point a, b;
-    float depth_a, depth_b;      // linear depth
-    float inv_w_a, inv_w_b;      // 1/w for perspective-correct interpolation (1 for orthographic)
-    float thickness_a, thickness_b;
-    float opacity_a, opacity_b;
+    std::int32_t ax, ay, bx, by; ///< snapped window coordinates (1/subpixel_scale texels), inside the guard band
+    float depth_a, depth_b;      ///< linear depth
+    float inv_w_a, inv_w_b;      ///< 1/w, for perspective-correct interpolation (1 for orthographic lights)
+
+    fixed_point a() const noexcept { return {ax, ay}; }
+    fixed_point b() const noexcept { return {bx, by}; }
+    /// Nothing to draw: clipped away, or of zero length.
+    bool empty() const noexcept { return ax == bx && ay == by; }
 };
 
-inline std::int64_t snap(float window) noexcept { return std::llround(double(window) * double(subpixel_scale)); }
+/// Thickness and opacity at a segment's two ends.
+struct segment_attributes {
+    float thickness_a, thickness_b, opacity_a, opacity_b;
+};
 
-/// Clips the segment p0 -> p1 to the light's near and far planes (linear in view space) and projects it.
-/// Returns false, leaving out.a == out.b, when nothing of it is left to draw.
-inline bool prepare_segment(const light_space& ls, glm::vec3 p0, glm::vec3 p1, float t0, float t1, float o0, float o1,
-                            prepared_segment& out) {
-    const glm::mat4& view = ls.view();
-    float d0 = -(view * glm::vec4(p0, 1.0f)).z, d1 = -(view * glm::vec4(p1, 1.0f)).z;
+/// Window coordinates of the guard band: +-2^20 texels keeps every product of the fixed-point line
+/// rule below 2^63 and every snapped coordinate inside 32 bits.
+inline constexpr float guard_band = float(1 << 20);
+
+/// Window coordinate to sub-pixel fixed point, rounding half away from zero (std::llround, without
+/// its call into libm). x = window S is a float's 24 bits times a power of two, within the guard band,
+/// so x +- 1/2 is exact in a double, and truncating it rounds x half away from zero.
+HAIRSHADOW_ALWAYS_INLINE inline std::int32_t snap(float window) noexcept {
+    const double x = double(window) * double(subpixel_scale);
+    return std::int32_t(x + std::copysign(0.5, x));
+}
+
+/// A point seen from the light: its distance along the light's axis (for clipping) and projection.
+struct projected_point {
+    float distance;
+    light_point projected;
+};
+HAIRSHADOW_ALWAYS_INLINE inline projected_point project_point(const light_space& ls, const glm::vec3& p) noexcept {
+    const float distance = ls.distance_of(p);
+    return {distance, ls.project(p, distance)};
+}
+
+/// x itself, as a rounded float: a fence that keeps the compiler from fusing the multiplication that
+/// made x with a later addition. A fused multiply-add rounds once, not twice, so fusing would make
+/// the vector and scalar walks, or builds with and without -mfma, give different depths.
+HAIRSHADOW_ALWAYS_INLINE inline float rounded(float x) noexcept {
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+    __asm__("" : "+x"(x));
+#endif
+    return x;
+}
+
+/// a + (b - a) s: exact at s = 0, and exactly a wherever a == b, so that a strand of constant
+/// thickness and opacity gives every fragment the same alpha.
+HAIRSHADOW_ALWAYS_INLINE inline float lerp_exact(float a, float b, float s) noexcept { return a + rounded((b - a) * s); }
+
+/// Clips the segment p0 -> p1 to the light's near and far planes (linear in view space) and to the
+/// guard band, and projects it; `attributes` are updated to the clipped ends. `pp0` and `pp1` are the
+/// ends' project_point, which a strand shares between its segments. Returns false, leaving `out`
+/// empty, when nothing of it is left to draw.
+HAIRSHADOW_ALWAYS_INLINE inline bool prepare_segment(const light_space& ls, glm::vec3 p0, glm::vec3 p1, const projected_point& pp0,
+                                                     const projected_point& pp1, segment_attributes& attributes, prepared_segment& out) {
+    out = {};
+    const float d0 = pp0.distance, d1 = pp1.distance;
     const float lo = ls.near_plane(), hi = ls.far_plane();
     float s0 = 0.0f, s1 = 1.0f; // kept part of the segment, as parameters
     auto clip = [&](float f0, float f1) { // keep f >= 0
-        if (f0 < 0 && f1 < 0) return false;
+        if (!(f0 >= 0 || f1 >= 0)) return false; // both behind, or NaN
         if (f0 < 0) s0 = std::max(s0, f0 / (f0 - f1));
         if (f1 < 0) s1 = std::min(s1, f0 / (f0 - f1));
         return s0 <= s1;
     };
-    out.a = out.b = fixed_point{0, 0}; // marks the segment empty until it is known to have length
     if (!clip(d0 - lo, d1 - lo) || !clip(hi - d0, hi - d1)) return false;
-    if (s0 > 0.0f || s1 < 1.0f) {
+    segment_attributes& at = attributes;
+    light_point a = pp0.projected, b = pp1.projected;
+    if (s0 > 0.0f || s1 < 1.0f) [[unlikely]] {
         const glm::vec3 q0 = p0 + (p1 - p0) * s0, q1 = p0 + (p1 - p0) * s1;
-        const float u0 = t0 + (t1 - t0) * s0, u1 = t0 + (t1 - t0) * s1;
-        const float v0 = o0 + (o1 - o0) * s0, v1 = o0 + (o1 - o0) * s1;
-        p0 = q0, p1 = q1, t0 = u0, t1 = u1, o0 = v0, o1 = v1;
+        at = {lerp_exact(at.thickness_a, at.thickness_b, s0), lerp_exact(at.thickness_a, at.thickness_b, s1),
+              lerp_exact(at.opacity_a, at.opacity_b, s0), lerp_exact(at.opacity_a, at.opacity_b, s1)};
+        a = ls.project(q0), b = ls.project(q1);
     }
-    light_point a = ls.project(p0), b = ls.project(p1);
-    // Clip to a guard band of +-2^20 texels in window space (perspective lights can throw points
-    // near the near plane far off the map), keeping the fixed-point line rule free of overflow.
-    // Attributes at a clipped end are interpolated perspective-correctly, as GL would.
-    const float guard = float(1 << 20);
-    if (!(std::abs(a.window.x) <= guard && std::abs(a.window.y) <= guard && std::abs(b.window.x) <= guard && std::abs(b.window.y) <= guard)) {
+    // Perspective lights can throw points near the near plane far off the map: clip to the guard
+    // band in window space, with the attributes at a clipped end interpolated perspective-correctly,
+    // as GL would.
+    if (!(std::abs(a.window.x) <= guard_band && std::abs(a.window.y) <= guard_band && std::abs(b.window.x) <= guard_band &&
+          std::abs(b.window.y) <= guard_band)) [[unlikely]] {
         double lo_s = 0.0, hi_s = 1.0;
         for (int axis = 0; axis < 2; ++axis) {
             const double from = a.window[axis], delta = double(b.window[axis]) - from;
-            for (const double limit : {-double(guard), double(guard)}) {
+            for (const double limit : {-double(guard_band), double(guard_band)}) {
                 const bool upper = limit > 0;
                 if (delta == 0.0) {
                     if (upper ? from > limit : from < limit) return false;
@@ -1458,58 +1794,105 @@ inline bool prepare_segment(const light_space& ls, glm::vec3 p0, glm::vec3 p1, f
         }
         if (!(lo_s < hi_s)) return false;
         const light_point a0 = a, b0 = b;
-        auto at = [&](double s, float fa, float fb) {
-            const double ia = 1.0 / a0.w, ib = 1.0 / b0.w, inv = (1.0 - s) * ia + s * ib;
-            return float(((1.0 - s) * fa * ia + s * fb * ib) / inv);
-        };
+        const double ia = 1.0 / a0.w, ib = 1.0 / b0.w;
+        auto perspective = [&](double s) { return float(s * ib / ((1.0 - s) * ia + s * ib)); }; // window -> attribute parameter
         auto end = [&](double s) {
-            const double ia = 1.0 / a0.w, ib = 1.0 / b0.w;
             return light_point{glm::vec2(float(a0.window.x + s * (double(b0.window.x) - a0.window.x)),
                                          float(a0.window.y + s * (double(b0.window.y) - a0.window.y))),
-                               at(s, a0.depth, b0.depth), float(1.0 / ((1.0 - s) * ia + s * ib))};
+                               lerp_exact(a0.depth, b0.depth, perspective(s)), float(1.0 / ((1.0 - s) * ia + s * ib))};
         };
-        const float t_lo = at(lo_s, t0, t1), t_hi = at(hi_s, t0, t1), o_lo = at(lo_s, o0, o1), o_hi = at(hi_s, o0, o1);
+        const float u_lo = perspective(lo_s), u_hi = perspective(hi_s);
+        at = {lerp_exact(at.thickness_a, at.thickness_b, u_lo), lerp_exact(at.thickness_a, at.thickness_b, u_hi),
+              lerp_exact(at.opacity_a, at.opacity_b, u_lo), lerp_exact(at.opacity_a, at.opacity_b, u_hi)};
         a = end(lo_s), b = end(hi_s);
-        t0 = t_lo, t1 = t_hi, o0 = o_lo, o1 = o_hi;
     }
-    out = {{snap(a.window.x), snap(a.window.y)}, {snap(b.window.x), snap(b.window.y)}, a.depth, b.depth, 1.0f / a.w, 1.0f / b.w,
-           t0, t1, o0, o1};
-    return !(out.a == out.b);
+    // Only finite ends inside the guard band reach the fixed-point rule (NaN fails every comparison).
+    if (!(std::abs(a.window.x) <= guard_band && std::abs(a.window.y) <= guard_band && std::abs(b.window.x) <= guard_band &&
+          std::abs(b.window.y) <= guard_band && std::abs(a.depth) <= 2.0f && std::abs(b.depth) <= 2.0f && a.w > 0.0f && b.w > 0.0f))
+        return false;
+    out = {snap(a.window.x), snap(a.window.y), snap(b.window.x), snap(b.window.y), a.depth, b.depth, 1.0f / a.w, 1.0f / b.w};
+    return !out.empty();
 }
 
-/// Interpolates the segment's attributes at window-space parameter t (perspective-correct, as GL does
-/// for line varyings) and returns the fragment.
-HAIRSHADOW_ALWAYS_INLINE inline fragment shade_fragment(const light_space& ls, const raster_options& opt, const prepared_segment& s, float t, float weight) {
-    const float wa = (1.0f - t) * s.inv_w_a, wb = t * s.inv_w_b;
-    const float k = 1.0f / (wa + wb);
-    const float depth = (wa * s.depth_a + wb * s.depth_b) * k;
-    float alpha;
-    if (opt.fixed_alpha) {
-        alpha = *opt.fixed_alpha * weight;
-    } else {
-        const float thickness = (wa * s.thickness_a + wb * s.thickness_b) * k;
-        const float opacity = (wa * s.opacity_a + wb * s.opacity_b) * k;
-        const float footprint = ls.texel_size(opt.depth_weighting ? depth : 0.5f);
-        alpha = opacity * std::min(1.0f, thickness / footprint) * weight;
-    }
-    return {depth, alpha > 0.0f ? std::min(alpha, HAIRSHADOW_ALPHA_MAX) : 0.0f}; // NaN gives 0
-}
+/// The fragments of one segment: the parameter of a texel centre along it, and a fragment's depth and
+/// alpha there. Every value is a function of the segment and the texel alone, so the tile a fragment
+/// is made in cannot change it. A fragment's alpha is the strand's opacity times the share of the
+/// texel its thickness covers (thickness / texel footprint, at most 1), or the fixed alpha; either is
+/// clamped to HAIRSHADOW_ALPHA_MAX.
+class segment_shader {
+public:
+    segment_shader(const light_space& light, const raster_options& options, const prepared_segment& s, const segment_attributes& at) noexcept
+        : light_(&light), s_(s), at_(at), fixed_alpha_(options.fixed_alpha.value_or(-1.0f)),
+          dx_(std::int64_t(s.bx) - s.ax), dy_(std::int64_t(s.by) - s.ay),
+          inv_length2_(1.0 / double(dx_ * dx_ + dy_ * dy_)), perspective_(s.inv_w_a != s.inv_w_b),
+          depth_varies_(light.perspective() && options.depth_weighting), footprint_(light.texel_size(0.5f)) {}
 
-/// Window-space parameter of the texel centre (x, y) along a -> b, as in GL's line interpolation.
-HAIRSHADOW_ALWAYS_INLINE inline float line_parameter(const prepared_segment& s, int x, int y) {
-    const double ax = double(s.a.x) / subpixel_scale, ay = double(s.a.y) / subpixel_scale;
-    const double dx = double(s.b.x - s.a.x) / subpixel_scale, dy = double(s.b.y - s.a.y) / subpixel_scale;
-    const double t = ((x + 0.5 - ax) * dx + (y + 0.5 - ay) * dy) / (dx * dx + dy * dy);
-    return float(std::clamp(t, 0.0, 1.0));
-}
+    /// Window-space parameter of the texel centre (x, y) along a -> b, clamped to [0, 1], as in GL's
+    /// line interpolation. The numerator is an exact integer: one rounding, in the product.
+    HAIRSHADOW_ALWAYS_INLINE float parameter(int x, int y) const noexcept {
+        constexpr std::int64_t S = subpixel_scale, H = subpixel_scale / 2;
+        const std::int64_t px = std::int64_t(x) * S + H - s_.ax, py = std::int64_t(y) * S + H - s_.ay;
+        return float(std::clamp(double(px * dx_ + py * dy_) * inv_length2_, 0.0, 1.0));
+    }
+
+    /// The fragment's linear depth at window parameter t (the depth of shade(t)).
+    HAIRSHADOW_ALWAYS_INLINE float depth(float t) const noexcept { return lerp_exact(s_.depth_a, s_.depth_b, attribute_parameter(t)); }
+
+    /// The fragment at window parameter t, its alpha scaled by `weight` (wide lines' profile).
+    HAIRSHADOW_ALWAYS_INLINE fragment shade(float t, float weight = 1.0f) const noexcept {
+        const float s = attribute_parameter(t);
+        const float depth = lerp_exact(s_.depth_a, s_.depth_b, s);
+        float alpha;
+        if (fixed_alpha_ >= 0.0f) {
+            alpha = fixed_alpha_ * weight;
+        } else {
+            const float thickness = lerp_exact(at_.thickness_a, at_.thickness_b, s);
+            const float opacity = lerp_exact(at_.opacity_a, at_.opacity_b, s);
+            const float footprint = depth_varies_ ? light_->texel_size(depth) : footprint_;
+            alpha = opacity * std::min(1.0f, thickness / footprint) * weight;
+        }
+        return {depth, alpha > 0.0f ? std::min(alpha, HAIRSHADOW_ALPHA_MAX) : 0.0f}; // NaN gives 0
+    }
+
+    /// Every fragment of the thin line has the alpha of shade(0): a fixed alpha, or constant thickness
+    /// and opacity with a footprint that does not change with depth. (lerp_exact keeps equal ends
+    /// exactly equal, so this is exact, not approximate.)
+    bool constant_alpha() const noexcept {
+        return fixed_alpha_ >= 0.0f || (!depth_varies_ && at_.thickness_a == at_.thickness_b && at_.opacity_a == at_.opacity_b);
+    }
+
+    const prepared_segment& segment() const noexcept { return s_; }
+    /// 1 / |b - a|^2 in sub-pixel units, as parameter() uses it.
+    double inverse_length2() const noexcept { return inv_length2_; }
+    /// 1/w changes along the segment: attributes are interpolated perspective-correctly.
+    bool perspective() const noexcept { return perspective_; }
+
+private:
+    /// Perspective-correct parameter of the attributes at window parameter t: t itself unless 1/w
+    /// changes along the segment.
+    HAIRSHADOW_ALWAYS_INLINE float attribute_parameter(float t) const noexcept {
+        if (!perspective_) return t;
+        const float wa = (1.0f - t) * s_.inv_w_a, wb = t * s_.inv_w_b;
+        return wb / (wa + wb);
+    }
+
+    const light_space* light_;
+    prepared_segment s_;
+    segment_attributes at_;
+    float fixed_alpha_;
+    std::int64_t dx_, dy_;
+    double inv_length2_;
+    bool perspective_, depth_varies_;
+    float footprint_;
+};
 
 /// Pre-filtered wide line: texel centres within half the width of the segment's axis, between its
 /// ends, weighted by a Gaussian (sigma = width / 4) truncated at the band's edge and normalised so
-/// that it integrates to one texel across the band.
+/// that it integrates to one texel across the band. Calls emit(x, y, t, weight).
 template <class Emit>
 void rasterize_wide_line(const prepared_segment& s, float width, const texel_rect& clip, Emit&& emit) {
-    const double ax = double(s.a.x) / subpixel_scale, ay = double(s.a.y) / subpixel_scale;
-    const double dx = double(s.b.x - s.a.x) / subpixel_scale, dy = double(s.b.y - s.a.y) / subpixel_scale;
+    const double ax = double(s.ax) / subpixel_scale, ay = double(s.ay) / subpixel_scale;
+    const double dx = double(std::int64_t(s.bx) - s.ax) / subpixel_scale, dy = double(std::int64_t(s.by) - s.ay) / subpixel_scale;
     const double len2 = dx * dx + dy * dy, len = std::sqrt(len2);
     const double half = 0.5 * width, sigma = 0.25 * width;
     const double norm = 1.0 / (sigma * std::sqrt(2.0 * std::numbers::pi) * std::erf(half / (sigma * std::numbers::sqrt2)));
@@ -1525,65 +1908,152 @@ void rasterize_wide_line(const prepared_segment& s, float width, const texel_rec
         }
 }
 
-} // namespace detail
+} // namespace hairshadow::detail
+// ---- end hairshadow/raster/prepared_segment.hpp
 
-/// Rasterises hair models into light-space fragments, keeping its working memory between calls so
-/// that a renderer rebuilding its maps every frame touches no new pages. Fragments follow the GL line
-/// rule (or the wide-line filter); a fragment's alpha is the strand's opacity times the share of the
-/// texel its thickness covers (thickness / texel footprint, at most 1), or the fixed alpha; either is
-/// clamped to HAIRSHADOW_ALPHA_MAX.
-class rasterizer {
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <span>
+#include <vector>
+
+namespace hairshadow::detail {
+
+/// A model's segments prepared for one light and binned into tiles; keeps its memory between calls.
+class segment_bins {
 public:
-    /// Throws argument_error for a bad alpha, wide-line width or tile size.
-    explicit rasterizer(const raster_options& options = {}) : opt_(options) {
-        if (opt_.fixed_alpha && !(*opt_.fixed_alpha >= 0.0f && *opt_.fixed_alpha <= 1.0f))
-            throw argument_error("fixed alpha must be in [0, 1]");
-        if (!(opt_.wide_line_width == 0.0f || (opt_.wide_line_width >= 2.0f && opt_.wide_line_width <= 64.0f)))
-            throw argument_error("wide line width must be 0 (off) or in [2, 64] texels");
-        if (opt_.tile_size < 8 || opt_.tile_size > 1024) throw argument_error("tile size must be in [8, 1024]");
+    /// Projects, snaps and bins every segment of `model` for `light`'s map, in tiles of
+    /// options.tile_size texels. Throws argument_error for bad options.
+    void prepare(const hair_model& model, const light_space& light, const raster_options& options) {
+        options.check();
+        opt_ = options;
+        light_ = light;
+        project(model, light);
+        bin(light.resolution());
     }
 
+    int resolution() const noexcept { return res_; }
     const raster_options& options() const noexcept { return opt_; }
+    const light_space& light() const noexcept { return light_; }
+    std::size_t segment_count() const noexcept { return segments_.size(); }
+    std::size_t tile_count() const noexcept { return std::size_t(tiles_x_) * std::size_t(tiles_x_); }
+    /// Segment-tile pairs: how many times the tile passes set up a segment.
+    std::size_t pair_count() const noexcept { return binned_.size(); }
+    /// Tiles from the most segments to the fewest: handing out the largest first balances threads.
+    const std::vector<std::uint32_t>& tiles_by_load() const noexcept { return by_load_; }
+    std::size_t tile_load(std::size_t t) const noexcept { return std::size_t(tile_begin_[t + 1] - tile_begin_[t]); }
 
-    /// Rasterises every segment of `model` into `light`'s map. The result stays valid until the next
-    /// call (move it out to keep it).
-    fragment_buffer& operator()(const hair_model& model, const light_space& light) {
-        prepare(model, light);
-        bin(light.resolution());
-        fill(light);
-        return out_;
+    /// The whole-map pre-pass: nearest and furthest end of every segment that reaches the map. Each
+    /// fragment's depth lies between its segment's end depths, so this range holds every fragment's;
+    /// it can be wider, by the parts of segments that leave the map or cross no texel centre.
+    depth_extent extent() const noexcept { return extent_; }
+
+    texel_rect tile_rect(std::size_t t) const noexcept {
+        const int tile = opt_.tile_size;
+        const int tx = int(t % std::size_t(tiles_x_)), ty = int(t / std::size_t(tiles_x_));
+        return {tx * tile, ty * tile, std::min(res_, (tx + 1) * tile), std::min(res_, (ty + 1) * tile)};
+    }
+
+    /// The segments binned to tile t, in segment order.
+    std::span<const std::uint32_t> tile_segments(std::size_t t) const noexcept {
+        return {binned_.data() + tile_begin_[t], std::size_t(tile_begin_[t + 1] - tile_begin_[t])};
+    }
+    const prepared_segment& segment(std::size_t i) const noexcept { return segments_[i]; }
+    /// Every segment has the same thickness and opacity at both ends (uniform_attributes()).
+    bool uniform_attributes() const noexcept { return attributes_.empty(); }
+    /// A segment of the same alpha at every fragment: constant attributes (uniform_attributes()) and a
+    /// footprint that does not change with depth, or a fixed alpha. Then its alpha is this shader's.
+    segment_shader uniform_shader() const noexcept { return {light_, opt_, prepared_segment{0, 0, 1, 0, 0.0f, 0.0f, 1.0f, 1.0f}, uniform_}; }
+
+    /// The shading of segment i's fragments.
+    segment_shader shader(std::size_t i) const noexcept {
+        return {light_, opt_, segments_[i], attributes_.empty() ? uniform_ : attributes_[i]};
+    }
+
+    /// Calls visit(shader) for each of tile t's segments, in segment order.
+    template <class Visit>
+    HAIRSHADOW_ALWAYS_INLINE void for_each_segment(std::size_t t, Visit&& visit) const {
+        constexpr std::uint64_t lookahead = 8; // a tile's segments lie scattered in memory: fetch ahead
+        const std::uint64_t end = tile_begin_[t + 1];
+        for (std::uint64_t i = tile_begin_[t]; i < end; ++i) {
+#if defined(__GNUC__)
+            if (i + lookahead < end) __builtin_prefetch(&segments_[binned_[i + lookahead]]);
+#endif
+            visit(shader(binned_[i]));
+        }
+    }
+
+    /// Calls visit(shader, x, y, t, weight) for every fragment of tile t's segments, in segment order;
+    /// thin lines pass t = -1 (shader.parameter(x, y) gives it, when needed) and weight 1.
+    template <class Visit>
+    HAIRSHADOW_ALWAYS_INLINE void for_each_fragment(std::size_t t, Visit&& visit) const {
+        const texel_rect rect = tile_rect(t);
+        for_each_segment(t, [&](const segment_shader& shading) HAIRSHADOW_ALWAYS_INLINE {
+            const prepared_segment& s = shading.segment();
+            if (opt_.wide_line_width > 0.0f)
+                rasterize_wide_line(s, opt_.wide_line_width, rect, [&](int x, int y, float param, float weight) { visit(shading, x, y, param, weight); });
+            else
+                rasterize_line(s.a(), s.b(), rect, [&](int x, int y) HAIRSHADOW_ALWAYS_INLINE { visit(shading, x, y, -1.0f, 1.0f); });
+        });
+    }
+
+    /// Bytes of working memory held.
+    std::size_t memory_bytes() const noexcept {
+        return segments_.capacity() * sizeof(prepared_segment) + attributes_.capacity() * sizeof(segment_attributes) +
+               first_segment_.capacity() * sizeof(std::size_t) + (cursor_.capacity() + tile_begin_.capacity()) * sizeof(std::uint64_t) +
+               (binned_.capacity() + by_load_.capacity()) * sizeof(std::uint32_t) + chunk_extent_.capacity() * sizeof(depth_extent);
     }
 
 private:
     static constexpr std::size_t chunks = 64; // fixed, so that binning does not depend on the thread count
 
-    // 1. Project and snap every segment, strand by strand.
-    void prepare(const hair_model& model, const light_space& light) {
+    // 1. Project and snap every segment, strand by strand. Per-segment thickness and opacity are kept
+    // only when the model has them per point; otherwise every segment shares one pair.
+    void project(const hair_model& model, const light_space& light) {
         first_segment_.assign(model.strand_count() + 1, 0);
         for (std::size_t s = 0; s < model.strand_count(); ++s)
             first_segment_[s + 1] = first_segment_[s] + (model.strand_size(s) > 1 ? model.strand_size(s) - 1 : 0);
         const std::size_t count = first_segment_.back();
         if (count > std::numeric_limits<std::uint32_t>::max()) throw argument_error("more than 2^32 segments");
         segments_.resize(count);
+        const bool per_point = !model.thickness.empty() || !model.transparency.empty();
+        const float t = model.default_thickness, o = 1.0f - model.default_transparency;
+        uniform_ = {t, t, o, o};
+        attributes_.resize(per_point ? count : 0);
         // Raw pointers: stores through a member vector would make the compiler reload its data pointer.
-        detail::prepared_segment* out = segments_.data();
+        prepared_segment* out = segments_.data();
+        segment_attributes* out_attributes = per_point ? attributes_.data() : nullptr;
         const std::size_t* first = first_segment_.data();
-        parallel_for(model.strand_count(), opt_.exec, [&model, &light, out, first](std::size_t s) {
-            const std::size_t p0 = model.strand_offsets[s];
-            for (std::size_t i = 0; i + 1 < model.strand_size(s); ++i) {
+        const segment_attributes uniform = uniform_;
+        parallel_for(model.strand_count(), opt_.exec, [&model, &light, out, out_attributes, first, uniform](std::size_t s) {
+            const std::size_t p0 = model.strand_offsets[s], n = model.strand_size(s);
+            if (n < 2) return;
+            const glm::vec3* points = model.points.data() + p0;
+            projected_point from = project_point(light, points[0]);
+            for (std::size_t i = 0; i + 1 < n; ++i) {
+                const projected_point to = project_point(light, points[i + 1]); // each point projected once
+                segment_attributes at = uniform;
                 const std::size_t p = p0 + i;
-                detail::prepare_segment(light, model.points[p], model.points[p + 1], model.thickness_at(p), model.thickness_at(p + 1),
-                                        1.0f - model.transparency_at(p), 1.0f - model.transparency_at(p + 1), out[first[s] + i]);
+                if (out_attributes)
+                    at = {model.thickness_at(p), model.thickness_at(p + 1), 1.0f - model.transparency_at(p), 1.0f - model.transparency_at(p + 1)};
+                prepare_segment(light, points[i], points[i + 1], from, to, at, out[first[s] + i]);
+                if (out_attributes) out_attributes[first[s] + i] = at;
+                from = to;
             }
-        }, 256);
+        }, 64);
     }
 
     // 2. Bin segments into tiles. Each of a fixed number of chunks of the segment range counts, then
     // writes, its segments per tile, so every tile's list is in segment order for any thread count.
+    // The count pass also takes the depth extent of the segments that reach the map.
     void bin(int res) {
         res_ = res;
         tiles_x_ = (res + opt_.tile_size - 1) / opt_.tile_size;
-        const std::size_t tile_count = std::size_t(tiles_x_) * std::size_t(tiles_x_);
+        tile_magic_ = (std::uint64_t(1) << 32) / std::uint64_t(opt_.tile_size) + 1;
+        static_assert(HAIRSHADOW_MAX_RESOLUTION <= (1 << 16), "tile_of needs texel coordinates below 2^16");
+        const std::size_t tiles = tile_count();
         const std::size_t segment_count = segments_.size();
         const std::size_t chunk_size = (segment_count + chunks - 1) / chunks;
         // Texels around the segment that it may touch, in sub-pixel units.
@@ -1592,44 +2062,72 @@ private:
             const std::size_t begin = c * chunk_size, end = std::min(segment_count, begin + chunk_size);
             for (std::size_t seg = begin; seg < end; ++seg) {
                 const auto& s = segments_[seg];
-                if (s.a == s.b) continue; // nothing to draw (clipped away or zero length)
+                if (s.empty()) continue;
                 visit_tiles(s, reach, [&](std::size_t t) HAIRSHADOW_ALWAYS_INLINE { visit(seg, t); });
             }
         };
-        cursor_.assign(chunks * tile_count, 0);
+        cursor_.assign(chunks * tiles, 0);
+        chunk_extent_.assign(chunks, depth_extent{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()});
         parallel_for(chunks, opt_.exec, [&](std::size_t c) {
-            for_each_tile_of_chunk(c, [&](std::size_t, std::size_t t) { ++cursor_[c * tile_count + t]; });
+            std::uint64_t* counts = cursor_.data() + c * tiles;
+            depth_extent e = chunk_extent_[c];
+            std::size_t last = std::size_t(-1);
+            for_each_tile_of_chunk(c, [&](std::size_t seg, std::size_t t) HAIRSHADOW_ALWAYS_INLINE {
+                ++counts[t];
+                if (seg != last) { // the segment reaches the map
+                    last = seg;
+                    const auto& s = segments_[seg];
+                    e.nearest = std::min({e.nearest, s.depth_a, s.depth_b});
+                    e.furthest = std::max({e.furthest, s.depth_a, s.depth_b});
+                }
+            });
+            chunk_extent_[c] = e;
         });
-        tile_begin_.resize(tile_count + 1);
+        extent_ = {std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
+        for (const auto& e : chunk_extent_) extent_.nearest = std::min(extent_.nearest, e.nearest), extent_.furthest = std::max(extent_.furthest, e.furthest);
+        if (!(extent_.nearest <= extent_.furthest)) extent_ = {}; // nothing reaches the map: {0, 0}, as extent_of an empty buffer
+        tile_begin_.resize(tiles + 1);
         std::uint64_t total = 0;
-        for (std::size_t t = 0; t < tile_count; ++t) {
+        for (std::size_t t = 0; t < tiles; ++t) {
             tile_begin_[t] = total;
             for (std::size_t c = 0; c < chunks; ++c) {
-                const std::uint64_t n = cursor_[c * tile_count + t];
-                cursor_[c * tile_count + t] = total;
+                const std::uint64_t n = cursor_[c * tiles + t];
+                cursor_[c * tiles + t] = total;
                 total += n;
             }
         }
-        tile_begin_[tile_count] = total;
+        tile_begin_[tiles] = total;
+        if (total > std::numeric_limits<std::uint32_t>::max()) throw argument_error("more than 2^32 segment-tile pairs");
         binned_.resize(total);
         parallel_for(chunks, opt_.exec, [&](std::size_t c) {
-            for_each_tile_of_chunk(c, [&](std::size_t seg, std::size_t t) { binned_[cursor_[c * tile_count + t]++] = std::uint32_t(seg); });
+            std::uint64_t* cursor = cursor_.data() + c * tiles;
+            std::uint32_t* binned = binned_.data();
+            for_each_tile_of_chunk(c, [&](std::size_t seg, std::size_t t) HAIRSHADOW_ALWAYS_INLINE { binned[cursor[t]++] = std::uint32_t(seg); });
         });
+        by_load_.resize(tiles);
+        std::iota(by_load_.begin(), by_load_.end(), 0u);
+        std::stable_sort(by_load_.begin(), by_load_.end(), [&](std::uint32_t a, std::uint32_t b) { return tile_load(a) > tile_load(b); });
     }
+
+    /// texel / tile_size for a texel of the map, by a multiplication: q = (texel m) >> 32 with
+    /// m = floor(2^32 / tile) + 1 is exact for texel < 2^16 and tile <= 2^10 (the error, texel (m tile -
+    /// 2^32) / (tile 2^32) < 2^-16, stays below the gap 1 / tile to the next integer). A division per
+    /// end per segment cost a fifth of the binning.
+    HAIRSHADOW_ALWAYS_INLINE int tile_of(std::int64_t texel) const noexcept { return int((std::uint64_t(texel) * tile_magic_) >> 32); }
 
     /// Calls visit(tile) for each tile within `reach` (sub-pixel units) of the segment; a long diagonal
     /// segment visits O(its length) tiles rather than its whole bounding box.
     template <class Visit>
-    HAIRSHADOW_ALWAYS_INLINE void visit_tiles(const detail::prepared_segment& s, std::int64_t reach, Visit&& visit) const {
+    HAIRSHADOW_ALWAYS_INLINE void visit_tiles(const prepared_segment& s, std::int64_t reach, Visit&& visit) const {
         // Texel bounds of the segment plus its reach; arithmetic shifts floor negative values.
-        const std::int64_t lo_x = (std::min(s.a.x, s.b.x) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
-        const std::int64_t hi_x = (std::max(s.a.x, s.b.x) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
-        const std::int64_t lo_y = (std::min(s.a.y, s.b.y) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
-        const std::int64_t hi_y = (std::max(s.a.y, s.b.y) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        const std::int64_t lo_x = (std::min<std::int64_t>(s.ax, s.bx) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        const std::int64_t hi_x = (std::max<std::int64_t>(s.ax, s.bx) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        const std::int64_t lo_y = (std::min<std::int64_t>(s.ay, s.by) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        const std::int64_t hi_y = (std::max<std::int64_t>(s.ay, s.by) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
         if (hi_x < 0 || hi_y < 0 || lo_x >= res_ || lo_y >= res_) return;
         const int tile = opt_.tile_size;
-        const int tx0 = int(std::max<std::int64_t>(lo_x, 0)) / tile, tx1 = int(std::min<std::int64_t>(hi_x, res_ - 1)) / tile;
-        const int ty0 = int(std::max<std::int64_t>(lo_y, 0)) / tile, ty1 = int(std::min<std::int64_t>(hi_y, res_ - 1)) / tile;
+        const int tx0 = tile_of(std::max<std::int64_t>(lo_x, 0)), tx1 = tile_of(std::min<std::int64_t>(hi_x, res_ - 1));
+        const int ty0 = tile_of(std::max<std::int64_t>(lo_y, 0)), ty1 = tile_of(std::min<std::int64_t>(hi_y, res_ - 1));
         if (ty0 == ty1 || tx0 == tx1) { // most hair segments: one row or column of tiles, as the box says
             for (int ty = ty0; ty <= ty1; ++ty)
                 for (int tx = tx0; tx <= tx1; ++tx) visit(std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx));
@@ -1638,7 +2136,7 @@ private:
         // A segment across several rows and columns: per row of tiles, only the columns that the
         // segment's piece in that row (widened by reach) spans.
         const double scale = 1.0 / double(subpixel_scale), r = double(reach) * scale;
-        const double ax = double(s.a.x) * scale, ay = double(s.a.y) * scale, bx = double(s.b.x) * scale, by = double(s.b.y) * scale;
+        const double ax = double(s.ax) * scale, ay = double(s.ay) * scale, bx = double(s.bx) * scale, by = double(s.by) * scale;
         for (int ty = ty0; ty <= ty1; ++ty) {
             const double band_lo = double(ty * tile) - r, band_hi = double((ty + 1) * tile) + r;
             const double u = (band_lo - ay) / (by - ay), v = (band_hi - ay) / (by - ay); // by != ay: the box spans rows
@@ -1651,66 +2149,90 @@ private:
         }
     }
 
-    texel_rect tile_rect(std::size_t t) const noexcept {
-        const int tile = opt_.tile_size;
-        const int tx = int(t % std::size_t(tiles_x_)), ty = int(t / std::size_t(tiles_x_));
-        return {tx * tile, ty * tile, std::min(res_, (tx + 1) * tile), std::min(res_, (ty + 1) * tile)};
+    raster_options opt_;
+    light_space light_;
+    int res_ = 0, tiles_x_ = 0;
+    std::uint64_t tile_magic_ = 0;
+    std::vector<prepared_segment> segments_;
+    std::vector<segment_attributes> attributes_; ///< per segment, only when the model has per-point thickness or transparency
+    segment_attributes uniform_{};
+    std::vector<std::size_t> first_segment_;
+    std::vector<std::uint64_t> cursor_, tile_begin_;
+    std::vector<std::uint32_t> binned_, by_load_;
+    std::vector<depth_extent> chunk_extent_;
+    depth_extent extent_{};
+};
+
+} // namespace hairshadow::detail
+// ---- end hairshadow/raster/segment_bins.hpp
+
+#include <cstdint>
+#include <vector>
+
+namespace hairshadow {
+
+/// Rasterises hair models into light-space fragments, keeping its working memory between calls so
+/// that a renderer rebuilding its maps every frame touches no new pages. Fragments follow the GL line
+/// rule (or the wide-line filter); a fragment's alpha is the strand's opacity times the share of the
+/// texel its thickness covers (thickness / texel footprint, at most 1), or the fixed alpha; either is
+/// clamped to HAIRSHADOW_ALPHA_MAX.
+class rasterizer {
+public:
+    /// Throws argument_error for a bad alpha, wide-line width or tile size.
+    explicit rasterizer(const raster_options& options = {}) : opt_(options) { opt_.check(); }
+
+    const raster_options& options() const noexcept { return opt_; }
+
+    /// Rasterises every segment of `model` into `light`'s map. The result stays valid until the next
+    /// call (move it out to keep it).
+    fragment_buffer& operator()(const hair_model& model, const light_space& light) {
+        bins_.prepare(model, light, opt_);
+        fill();
+        return out_;
     }
 
-    /// Calls visit(segment, x, y, parameter, weight) for every fragment of tile t's segments, in segment
-    /// order; thin lines pass parameter -1 (computed only when needed).
-    template <class Visit>
-    HAIRSHADOW_ALWAYS_INLINE void for_each_fragment(std::size_t t, const texel_rect& rect, Visit&& visit) const {
-        constexpr std::uint64_t lookahead = 8; // a tile's segments lie scattered in memory: fetch ahead
-        const std::uint64_t end = tile_begin_[t + 1];
-        for (std::uint64_t i = tile_begin_[t]; i < end; ++i) {
-#if defined(__GNUC__)
-            if (i + lookahead < end) __builtin_prefetch(&segments_[binned_[i + lookahead]]);
-#endif
-            const auto& s = segments_[binned_[i]];
-            if (opt_.wide_line_width > 0.0f)
-                detail::rasterize_wide_line(s, opt_.wide_line_width, rect, [&](int x, int y, float param, float weight) { visit(s, x, y, param, weight); });
-            else
-                rasterize_line(s.a, s.b, rect, [&](int x, int y) HAIRSHADOW_ALWAYS_INLINE { visit(s, x, y, -1.0f, 1.0f); });
-        }
-    }
+    /// The whole-map depth extent of the last call's segments (segment_bins::extent): the tiled build
+    /// places OSM's slices and DOM's layers with it.
+    depth_extent segment_extent() const noexcept { return bins_.extent(); }
 
-    // 3. Rasterise each tile into its own buffer (kept between calls) while counting every texel's
+private:
+    // Rasterise each tile into its own buffer (kept between calls) while counting every texel's
     // fragments; then, once the offsets are known, scatter each tile's fragments to their texels in
     // the order they were made, which is segment order.
-    void fill(const light_space& light) {
-        const std::size_t tile_count = std::size_t(tiles_x_) * std::size_t(tiles_x_);
-        const std::size_t texels = std::size_t(res_) * std::size_t(res_);
+    void fill() {
+        const int res = bins_.resolution();
+        const std::size_t tile_count = bins_.tile_count();
+        const std::size_t texels = std::size_t(res) * std::size_t(res);
         auto& offsets = out_.offsets_;
         offsets.assign(texels + 1, 0);
         tile_fragments_.resize(tile_count);
-        parallel_for(tile_count, opt_.exec, [&](std::size_t t) {
-            const texel_rect rect = tile_rect(t);
+        parallel_for(tile_count, opt_.exec, [&](std::size_t i) {
+            const std::size_t t = bins_.tiles_by_load()[i];
             // Work on a local vector: neighbouring tiles' vector headers share cache lines.
             auto made = std::move(tile_fragments_[t]);
             made.clear();
-            for_each_fragment(t, rect, [&](const detail::prepared_segment& s, int x, int y, float param, float weight) HAIRSHADOW_ALWAYS_INLINE {
-                if (param < 0.0f) param = detail::line_parameter(s, x, y);
-                const std::size_t texel = std::size_t(y) * std::size_t(res_) + std::size_t(x);
+            bins_.for_each_fragment(t, [&](const detail::segment_shader& s, int x, int y, float param, float weight) HAIRSHADOW_ALWAYS_INLINE {
+                if (param < 0.0f) param = s.parameter(x, y);
+                const std::size_t texel = std::size_t(y) * std::size_t(res) + std::size_t(x);
                 ++offsets[texel + 1];
-                made.push_back({std::uint32_t(texel), detail::shade_fragment(light, opt_, s, param, weight)});
+                made.push_back({std::uint32_t(texel), s.shade(param, weight)});
             });
             tile_fragments_[t] = std::move(made);
         });
         for (std::size_t i = 0; i < texels; ++i) offsets[i + 1] += offsets[i];
-        out_.resolution_ = res_;
+        out_.resolution_ = res;
         out_.fragments_.resize(offsets.back());
         parallel_for(tile_count, opt_.exec, [&](std::size_t t) {
             const auto& made = tile_fragments_[t];
             if (made.empty()) return;
-            const texel_rect rect = tile_rect(t);
+            const texel_rect rect = bins_.tile_rect(t);
             const std::size_t w = std::size_t(rect.x1 - rect.x0);
             std::vector<std::uint64_t> cursor(w * std::size_t(rect.y1 - rect.y0));
             for (int y = rect.y0; y < rect.y1; ++y)
                 for (int x = rect.x0; x < rect.x1; ++x)
-                    cursor[std::size_t(y - rect.y0) * w + std::size_t(x - rect.x0)] = offsets[std::size_t(y) * std::size_t(res_) + std::size_t(x)];
+                    cursor[std::size_t(y - rect.y0) * w + std::size_t(x - rect.x0)] = offsets[std::size_t(y) * std::size_t(res) + std::size_t(x)];
             for (const auto& m : made) {
-                const std::size_t x = m.texel % std::size_t(res_), y = m.texel / std::size_t(res_);
+                const std::size_t x = m.texel % std::size_t(res), y = m.texel / std::size_t(res);
                 out_.fragments_[cursor[(y - std::size_t(rect.y0)) * w + (x - std::size_t(rect.x0))]++] = m.value;
             }
         });
@@ -1723,11 +2245,7 @@ private:
 
     fragment_buffer out_;
     raster_options opt_;
-    int res_ = 0, tiles_x_ = 0;
-    std::vector<detail::prepared_segment> segments_;
-    std::vector<std::size_t> first_segment_;
-    std::vector<std::uint64_t> cursor_, tile_begin_;
-    std::vector<std::uint32_t> binned_;
+    detail::segment_bins bins_;
     std::vector<std::vector<placed_fragment>> tile_fragments_;
 };
 
@@ -1866,9 +2384,18 @@ struct emulated_8bit {
 /// @file
 /// Float accumulation: optical depths summed in 32-bit floats, as additive blending into RGBA32F does.
 
+#include <bit>
+#include <cstdint>
 #include <string_view>
 
 namespace hairshadow {
+
+namespace detail {
+/// x where `keep`, else +0, by a bit mask: no branch for the compiler to mispredict with.
+inline float keep_if(bool keep, float x) noexcept {
+    return std::bit_cast<float>(std::bit_cast<std::uint32_t>(x) & (0u - std::uint32_t(keep)));
+}
+} // namespace detail
 
 /// Sums each fragment's optical depth b = -ln(1 - alpha) in float; stores the sum as it is.
 struct float_accumulation {
@@ -1892,69 +2419,13 @@ struct float_accumulation {
 // ---- begin hairshadow/methods/shadow_method.hpp
 /// @file
 /// A shadow method composed of a placement, an accumulation and a reconstruction policy, with its
-/// CPU kernel: the placement's pre-passes, then one accumulation pass, texel by texel in parallel.
+/// CPU kernels: the placement's pre-passes, then one accumulation pass, texel by texel in parallel;
+/// built tile by tile straight from a model, or from a buffer of fragments.
 
 // ---- begin hairshadow/methods/concepts.hpp
 /// @file
 /// The three policy families of a shadow method, as concepts. docs/policies.md describes each member.
 
-// ---- begin hairshadow/placement/layer_position.hpp
-/// @file
-/// Where a depth falls among a texel's layers, and the depth extent of a fragment buffer.
-
-
-#include <algorithm>
-#include <cmath>
-#include <limits>
-
-namespace hairshadow {
-
-/// A query depth's place among `layer_count` layers: index -1 is in front of the first layer,
-/// index layer_count behind the last; otherwise `fraction` in [0, 1] says how far into layer `index`.
-struct layer_position {
-    int index;
-    float fraction;
-};
-
-/// Nearest and furthest fragment depth of a whole buffer (a global pre-pass); {0, 0} when empty.
-struct depth_extent {
-    float nearest = 0.0f;
-    float furthest = 0.0f;
-};
-
-inline depth_extent extent_of(const fragment_buffer& fragments) noexcept {
-    if (fragments.size() == 0) return {};
-    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-    for (const auto& f : fragments.fragments()) {
-        lo = std::min(lo, f.depth);
-        hi = std::max(hi, f.depth);
-    }
-    return {lo, hi};
-}
-
-namespace detail {
-/// Moves an estimated layer index to the k in [0, last] with boundary(k) <= depth < boundary(k + 1).
-/// Closed forms for the layer of a depth can miss by one where rounding meets a boundary; settling
-/// against the boundary depths themselves makes fragments and queries agree exactly.
-template <class Boundary>
-int settle_layer(float estimate, int last, float depth, Boundary boundary) noexcept {
-    int k = estimate > 0.0f ? int(std::min(estimate, float(last))) : 0; // NaN and negatives give 0
-    while (k > 0 && depth < boundary(k)) --k;
-    while (k < last && depth >= boundary(k + 1)) ++k;
-    return k;
-}
-
-/// Layer k's position for a depth between its boundaries lo and hi.
-inline layer_position position_in(int k, float depth, float lo, float hi) noexcept {
-    return {k, hi > lo ? std::clamp((depth - lo) / (hi - lo), 0.0f, 1.0f) : 0.0f};
-}
-
-/// The smallest float above `hi`, so that a half-open range [lo, end) holds a fragment at hi.
-inline float just_above(float hi) noexcept { return std::nextafter(hi, std::numeric_limits<float>::infinity()); }
-} // namespace detail
-
-} // namespace hairshadow
-// ---- end hairshadow/placement/layer_position.hpp
 
 #include <concepts>
 #include <span>
@@ -1962,10 +2433,14 @@ inline float just_above(float hi) noexcept { return std::nextafter(hi, std::nume
 
 namespace hairshadow {
 
-/// Placement: which pre-passes run and where a depth falls among a texel's layers.
+/// Placement: which pre-passes run and where a depth falls among a texel's layers. The per-texel
+/// steps take a texel's fragments as a span of `fragment` (from a fragment_buffer) or of
+/// `optical_fragment` (the tiled build), read through `.depth` and fragment_optical_depth(f).
 template <class P>
 concept placement_policy = std::default_initializable<P> && std::copyable<P> && requires(P p, const P cp, const fragment_buffer& fb,
+                                                                                         const depth_extent& extent,
                                                                                          std::span<const fragment> frags,
+                                                                                         std::span<const optical_fragment> tile_frags,
                                                                                          typename P::texel_state& state, float depth) {
     { P::layer_count } -> std::convertible_to<int>;
     { P::cumulative } -> std::convertible_to<bool>;
@@ -1973,7 +2448,9 @@ concept placement_policy = std::default_initializable<P> && std::copyable<P> && 
     { P::glsl_name } -> std::convertible_to<std::string_view>;
     requires std::default_initializable<typename P::texel_state>;
     p.prepare(fb);
+    p.prepare(extent);
     cp.prepare_texel(frags, state);
+    cp.prepare_texel(tile_frags, state);
     { cp.assign(state, depth) } -> std::same_as<int>;
     { cp.locate(state, depth) } -> std::same_as<layer_position>;
     { P::global_bytes() } -> std::convertible_to<std::size_t>;
@@ -1992,16 +2469,548 @@ concept accumulation_policy = requires(typename A::sum_type s, typename A::value
 /// Reconstruction: what a texel stores and how it turns into optical depth at a query depth.
 template <class R, class P, class A>
 concept reconstruction_policy =
-    requires(const P& p, const typename P::texel_state& state, std::span<const fragment> frags,
+    requires(const P& p, const typename P::texel_state& state, std::span<const fragment> frags, std::span<const optical_fragment> tile_frags,
              typename R::template storage<P, A>& out, const typename R::template storage<P, A>& in, float depth) {
         { R::template accepts<P> } -> std::convertible_to<bool>;
         { R::glsl_name } -> std::convertible_to<std::string_view>;
         R::template build<P, A>(p, state, frags, out);
+        R::template build<P, A>(p, state, tile_frags, out);
         { R::template optical_depth<P, A>(p, state, in, depth) } -> std::same_as<float>;
     };
 
 } // namespace hairshadow
 // ---- end hairshadow/methods/concepts.hpp
+// ---- begin hairshadow/methods/tiled_build.hpp
+/// @file
+/// The tiled build: every method's maps built tile by tile straight from the model, with no buffer of
+/// the whole map's fragments. Segments are projected and binned once (segment_bins); then each tile,
+/// in parallel, gathers its fragments into a per-thread store that stays in cache, and every texel of
+/// the tile is built from its own fragments, in segment order, exactly as from a fragment_buffer.
+
+// ---- begin hairshadow/raster/tile_fragments.hpp
+/// @file
+/// One tile's fragments, grouped texel by texel: the working set of the tiled build. The tile's
+/// segments are walked once, by the line rule, into a per-thread store; then the fragments are
+/// grouped by texel, each texel's in segment order, the order a fragment_buffer keeps. The walk runs
+/// in AVX-512 where the CPU has it (raster/tile_walk_avx512.hpp), else in scalar C++; both give the
+/// same fragments, bit for bit.
+
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(HAIRSHADOW_NO_AVX512)
+#define HAIRSHADOW_AVX512_WALK 1
+// GCC 12's intrinsics make their "undefined" vectors by self-initialisation, which -Wuninitialized
+// reports wherever they inline (GCC bug 105593); the warning is located in the header, so it is
+// silenced there.
+#if defined(__clang__)
+#include <immintrin.h>
+#else
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <immintrin.h>
+#pragma GCC diagnostic pop
+#endif
+#else
+#define HAIRSHADOW_AVX512_WALK 0
+#endif
+
+namespace hairshadow {
+
+namespace detail {
+/// Does this CPU (and this compiler) run the AVX-512 walk?
+inline bool cpu_has_avx512() noexcept {
+#if HAIRSHADOW_AVX512_WALK
+    static const bool has = __builtin_cpu_supports("avx512f");
+    return has;
+#else
+    return false;
+#endif
+}
+} // namespace detail
+
+/// The instruction set `requested` resolves to on this CPU: automatic picks the best there is.
+/// Throws argument_error for avx512 where the CPU or the compiler has none.
+inline instruction_set resolve(instruction_set requested) {
+    if (requested == instruction_set::automatic) return detail::cpu_has_avx512() ? instruction_set::avx512 : instruction_set::scalar;
+    if (requested == instruction_set::avx512 && !detail::cpu_has_avx512())
+        throw argument_error("this CPU (or this build) has no AVX-512F for the tiled walk; use instruction_set::scalar or automatic");
+    return requested;
+}
+
+namespace detail {
+
+/// A tile's fragments with their optical depths, each texel's in segment order, so that sums over
+/// them match the fragment_buffer build bit for bit. One per thread; its memory is kept from tile to
+/// tile and from build to build.
+class tile_fragments {
+public:
+    /// Walks tile t's segments and groups their fragments by texel. `instructions` must be resolved.
+    void gather(const segment_bins& bins, std::size_t t, instruction_set instructions) {
+        rect_ = bins.tile_rect(t);
+        width_ = rect_.x1 - rect_.x0;
+        n_ = 0;
+        const bool vector = instructions == instruction_set::avx512;
+#if HAIRSHADOW_AVX512_WALK
+        if (vector && simd_tile(bins)) walk_avx512(bins, t);
+        else walk_scalar(bins, t);
+#else
+        (void)vector;
+        walk_scalar(bins, t);
+#endif
+        group();
+    }
+
+    const texel_rect& rect() const noexcept { return rect_; }
+    /// Fragments of the tile's texel (x, y), in map coordinates.
+    std::span<const optical_fragment> texel(int x, int y) const noexcept {
+        const std::size_t k = std::size_t(y - rect_.y0) * std::size_t(width_) + std::size_t(x - rect_.x0);
+        return {grouped_.data() + offsets_[k], std::size_t(offsets_[k + 1] - offsets_[k])};
+    }
+    /// Fragments of the last tile.
+    std::size_t size() const noexcept { return n_; }
+    std::size_t memory_bytes() const noexcept {
+        return (where_.capacity() + offsets_.capacity()) * sizeof(std::uint32_t) + (depth_.capacity() + optical_.capacity()) * sizeof(float) +
+               grouped_.capacity() * sizeof(optical_fragment);
+    }
+
+private:
+    /// Room for `extra` more candidates after the n_ kept so far.
+    void reserve(std::size_t extra) {
+        if (n_ + extra <= where_.size()) return;
+        const std::size_t size = std::max(2 * where_.size(), n_ + extra);
+        where_.resize(size);
+        depth_.resize(size);
+        optical_.resize(size);
+    }
+
+    /// The b of an alpha, remembered: segments of one model mostly share one alpha, and a log per
+    /// segment would cost more than its walk.
+    float optical_depth_cached(float alpha) noexcept {
+        if (alpha != last_alpha_) last_alpha_ = alpha, last_optical_ = optical_depth_of(alpha);
+        return last_optical_;
+    }
+
+    /// A candidate of the walk: stored at n_, kept (n_ advanced) when `kept`.
+    HAIRSHADOW_ALWAYS_INLINE void store(int x, int y, bool kept, float depth, float optical) noexcept {
+        where_[n_] = std::uint32_t((y - rect_.y0) * width_ + (x - rect_.x0));
+        depth_[n_] = depth;
+        optical_[n_] = optical;
+        n_ += kept;
+    }
+
+    /// One segment, in scalar C++: the same fragments as the fragment_buffer rasteriser.
+    HAIRSHADOW_ALWAYS_INLINE void walk_segment(const segment_shader& s, float wide) {
+        const prepared_segment& seg = s.segment();
+        if (wide > 0.0f) {
+            rasterize_wide_line(seg, wide, rect_, [&](int x, int y, float param, float weight) {
+                reserve(1);
+                const fragment f = s.shade(param, weight);
+                store(x, y, true, f.depth, optical_depth_of(f.alpha));
+            });
+            return;
+        }
+        // A thin line makes at most one candidate per texel along its major axis in the tile, plus one
+        // where it starts.
+        reserve(std::size_t(std::max(width_, rect_.y1 - rect_.y0)) + 1);
+        if (s.constant_alpha()) { // b once: the same value shade() gives every fragment
+            const float b = optical_depth_cached(s.shade(0.0f).alpha);
+            walk_line(seg.a(), seg.b(), rect_, [&](int x, int y, bool kept) HAIRSHADOW_ALWAYS_INLINE { store(x, y, kept, s.depth(s.parameter(x, y)), b); });
+        } else {
+            walk_line(seg.a(), seg.b(), rect_, [&](int x, int y, bool kept) HAIRSHADOW_ALWAYS_INLINE {
+                const fragment f = s.shade(s.parameter(x, y));
+                store(x, y, kept, f.depth, kept ? optical_depth_of(f.alpha) : 0.0f);
+            });
+        }
+    }
+
+    void walk_scalar(const segment_bins& bins, std::size_t t) {
+        const float wide = bins.options().wide_line_width;
+        bins.for_each_segment(t, [&](const segment_shader& s) HAIRSHADOW_ALWAYS_INLINE { walk_segment(s, wide); });
+    }
+
+    /// Count, prefix sums and a stable scatter: texel k's fragments end in [offsets_[k], offsets_[k + 1]).
+    void group() {
+        const std::size_t texels = std::size_t(width_) * std::size_t(rect_.y1 - rect_.y0);
+        if (n_ > std::numeric_limits<std::uint32_t>::max()) throw argument_error("more than 2^32 fragments in one tile: use smaller tiles");
+        offsets_.assign(texels + 2, 0);
+        std::uint32_t* counts = offsets_.data() + 2;
+        const std::uint32_t* where = where_.data();
+        for (std::size_t i = 0; i < n_; ++i) ++counts[where[i]];
+        for (std::size_t k = 2; k < offsets_.size(); ++k) offsets_[k] += offsets_[k - 1];
+        if (grouped_.size() < n_) grouped_.resize(std::max(n_, where_.size()));
+        std::uint32_t* cursor = offsets_.data() + 1;
+        optical_fragment* grouped = grouped_.data();
+        const float* depth = depth_.data();
+        const float* optical = optical_.data();
+        for (std::size_t i = 0; i < n_; ++i) grouped[cursor[where[i]]++] = {depth[i], optical[i]};
+    }
+
+#if HAIRSHADOW_AVX512_WALK
+    /// The vector walk covers thin lines of one alpha (uniform attributes, a footprint constant in
+    /// depth); other tiles walk in scalar.
+    bool simd_tile(const segment_bins& bins) const noexcept {
+        return bins.options().wide_line_width == 0.0f && bins.uniform_attributes() && bins.uniform_shader().constant_alpha();
+    }
+    void walk_avx512(const segment_bins& bins, std::size_t t);
+#endif
+
+    texel_rect rect_{};
+    int width_ = 0;
+    std::size_t n_ = 0;
+    std::vector<std::uint32_t> where_, offsets_; ///< each candidate's texel in the tile; per texel counts, then offsets
+    std::vector<float> depth_, optical_;         ///< each candidate's depth and b
+    std::vector<optical_fragment> grouped_;
+    float last_alpha_ = -1.0f, last_optical_ = 0.0f;
+};
+
+} // namespace detail
+} // namespace hairshadow
+
+#if HAIRSHADOW_AVX512_WALK
+// ---- begin hairshadow/raster/tile_walk_avx512.hpp
+/// @file
+/// The tiled build's line walk in AVX-512F, chosen at run time (raster_options::instructions). Sixteen
+/// segments of a tile are set up at once, one per lane: major axis, the texel centres they cross in
+/// the tile, the exact quotient and remainder of the minor coordinate, the end's diamond and the start
+/// fragment (the diamond-exit rule of line_rule.hpp, without a branch). Then each segment is walked
+/// sixteen texels at a time, one per lane, and its fragments are compressed into the tile's store in
+/// order, so that segment order, and every sum, is the scalar walk's. Every quantity is an integer,
+/// or an integer held exactly in a double, until the depth: that is a + (b - a) t, rounded as the
+/// scalar walk rounds it.
+
+
+#include <cstdint>
+
+namespace hairshadow::detail::avx512 {
+
+#define HAIRSHADOW_AVX512_TARGET __attribute__((target("avx512f")))
+
+/// x itself: the multiplication that made x is not fused with a later addition (see rounded()).
+HAIRSHADOW_AVX512_TARGET inline __m512 rounded(__m512 x) noexcept {
+    __asm__("" : "+v"(x));
+    return x;
+}
+
+/// inside_diamond (line_rule.hpp) for sixteen points and texels.
+HAIRSHADOW_AVX512_TARGET inline __mmask16 inside_diamond(__m512i px, __m512i py, __m512i c, __m512i r) noexcept {
+    const __m512i half = _mm512_set1_epi32(std::int32_t(subpixel_scale / 2));
+    const __m512i u = _mm512_sub_epi32(px, _mm512_add_epi32(_mm512_slli_epi32(c, HAIRSHADOW_SUBPIXEL_BITS), half));
+    const __m512i v = _mm512_sub_epi32(py, _mm512_add_epi32(_mm512_slli_epi32(r, HAIRSHADOW_SUBPIXEL_BITS), half));
+    const __m512i l1 = _mm512_add_epi32(_mm512_abs_epi32(u), _mm512_abs_epi32(v));
+    return __mmask16(_mm512_cmplt_epi32_mask(l1, half) | (_mm512_cmpeq_epi32_mask(l1, half) & _mm512_cmpgt_epi32_mask(u, _mm512_setzero_si512())));
+}
+
+/// floor(x / 2^bits) per lane: an arithmetic shift floors negative values too.
+HAIRSHADOW_AVX512_TARGET inline __m512i texel_of(__m512i x) noexcept { return _mm512_srai_epi32(x, HAIRSHADOW_SUBPIXEL_BITS); }
+
+/// q = floor(num / denom) for integers num and denom > 0 held exactly in doubles (|num| < 2^52), and
+/// whether denom divides num. The product with 1 / denom misses the quotient by far less than one, so
+/// one correction each way makes it exact, with no division on the walk's path.
+HAIRSHADOW_AVX512_TARGET inline __mmask8 exact_quotient(__m512d num, __m512d denom, __m512d inv_denom, __m512d& q) noexcept {
+    q = _mm512_roundscale_pd(_mm512_mul_pd(num, inv_denom), _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+    __m512d rem = _mm512_sub_pd(num, _mm512_mul_pd(q, denom)); // exact: integers below 2^53
+    const __mmask8 below = _mm512_cmp_pd_mask(rem, _mm512_setzero_pd(), _CMP_LT_OQ);
+    q = _mm512_mask_sub_pd(q, below, q, _mm512_set1_pd(1.0));
+    rem = _mm512_mask_add_pd(rem, below, rem, denom);
+    const __mmask8 above = _mm512_cmp_pd_mask(rem, denom, _CMP_GE_OQ);
+    q = _mm512_mask_add_pd(q, above, q, _mm512_set1_pd(1.0));
+    rem = _mm512_mask_sub_pd(rem, above, rem, denom);
+    return _mm512_cmp_pd_mask(rem, _mm512_setzero_pd(), _CMP_EQ_OQ);
+}
+
+/// Lane halves as doubles.
+HAIRSHADOW_AVX512_TARGET inline __m512d low_pd(__m512i x) noexcept { return _mm512_cvtepi32_pd(_mm512_castsi512_si256(x)); }
+HAIRSHADOW_AVX512_TARGET inline __m512d high_pd(__m512i x) noexcept { return _mm512_cvtepi32_pd(_mm512_extracti64x4_epi64(x, 1)); }
+HAIRSHADOW_AVX512_TARGET inline __m512i join_epi32(__m256i low, __m256i high) noexcept {
+    return _mm512_inserti64x4(_mm512_castsi256_si512(low), high, 1);
+}
+HAIRSHADOW_AVX512_TARGET inline __m512 join_ps(__m256 low, __m256 high) noexcept {
+    return _mm512_castpd_ps(_mm512_insertf64x4(_mm512_castps_pd(_mm512_castps256_ps512(low)), _mm256_castps_pd(high), 1));
+}
+
+/// Sixteen segments set up for the walk, in tile-relative coordinates (sub-pixels for ends, texels
+/// for the rest). Lanes not `simd` are walked in scalar.
+struct alignas(64) batch {
+    std::int32_t ax[16], ay[16], bx[16], by[16];
+    std::int32_t m_begin[16], count[16], end_major[16], end_minor[16], minor_extent[16], start_x[16], start_y[16];
+    double num0[16], step[16], denom[16], inv_denom[16], inv_length2[16];
+    float start_depth[16];
+    float depth_a[16], depth_delta[16];
+    std::uint16_t x_major, tie, start, simd;
+};
+
+/// Vector set-up of the sixteen segments in b.ax..b.by for a tile of w x h texels: walk_line's
+/// quantities, lane by lane.
+HAIRSHADOW_AVX512_TARGET inline void set_up(batch& b, int w, int h) noexcept {
+    constexpr int bits = HAIRSHADOW_SUBPIXEL_BITS;
+    const __m512i zero = _mm512_setzero_si512(), one = _mm512_set1_epi32(1);
+    const __m512i half = _mm512_set1_epi32(std::int32_t(subpixel_scale / 2));
+    const __m512i ax = _mm512_load_si512(b.ax), ay = _mm512_load_si512(b.ay), bx = _mm512_load_si512(b.bx), by = _mm512_load_si512(b.by);
+    const __m512i dx = _mm512_sub_epi32(bx, ax), dy = _mm512_sub_epi32(by, ay);
+    const __mmask16 xm = _mm512_cmpge_epi32_mask(_mm512_abs_epi32(dx), _mm512_abs_epi32(dy));
+    const __m512i major_a = _mm512_mask_blend_epi32(xm, ay, ax), major_b = _mm512_mask_blend_epi32(xm, by, bx);
+    const __m512i minor_a = _mm512_mask_blend_epi32(xm, ax, ay);
+    const __m512i d_major = _mm512_mask_blend_epi32(xm, dy, dx), d_minor = _mm512_mask_blend_epi32(xm, dx, dy);
+    const __mmask16 rising = _mm512_cmpgt_epi32_mask(d_major, zero);
+    const __m512i lo_end = _mm512_mask_blend_epi32(rising, major_b, major_a), hi_end = _mm512_mask_blend_epi32(rising, major_a, major_b);
+    // Centres c S + H crossed: first = ceil((lo - H) / S), last = ceil((hi - H) / S) - 1.
+    const __m512i round_up = _mm512_set1_epi32(std::int32_t(subpixel_scale - 1 - subpixel_scale / 2));
+    const __m512i first = texel_of(_mm512_add_epi32(lo_end, round_up));
+    const __m512i last = _mm512_sub_epi32(texel_of(_mm512_add_epi32(hi_end, round_up)), one);
+    const __m512i extent = _mm512_mask_blend_epi32(xm, _mm512_set1_epi32(h), _mm512_set1_epi32(w));
+    const __m512i m_begin = _mm512_max_epi32(first, zero), m_end = _mm512_min_epi32(last, _mm512_sub_epi32(extent, one));
+    _mm512_store_si512(b.m_begin, m_begin);
+    _mm512_store_si512(b.count, _mm512_max_epi32(_mm512_add_epi32(_mm512_sub_epi32(m_end, m_begin), one), zero));
+    _mm512_store_si512(b.minor_extent, _mm512_mask_blend_epi32(xm, _mm512_set1_epi32(w), _mm512_set1_epi32(h)));
+    // The minor coordinate at m_begin, num0 / denom, and its step per texel: exact integers in doubles.
+    const __m512i denom = _mm512_slli_epi32(_mm512_abs_epi32(d_major), bits);
+    const __m512i d_minor_signed = _mm512_mask_sub_epi32(d_minor, __mmask16(~rising), zero, d_minor); // sign(d_major) d_minor
+    const __m512i offset = _mm512_sub_epi32(_mm512_add_epi32(_mm512_slli_epi32(m_begin, bits), half), major_a);
+    const __m512i d_major_abs = _mm512_abs_epi32(d_major);
+    // sign (minor_a d_major + offset d_minor) = minor_a |d_major| + offset sign d_minor
+    const __m512d num_low = _mm512_add_pd(_mm512_mul_pd(low_pd(minor_a), low_pd(d_major_abs)), _mm512_mul_pd(low_pd(offset), low_pd(d_minor_signed)));
+    const __m512d num_high = _mm512_add_pd(_mm512_mul_pd(high_pd(minor_a), high_pd(d_major_abs)), _mm512_mul_pd(high_pd(offset), high_pd(d_minor_signed)));
+    _mm512_store_pd(b.num0, num_low);
+    _mm512_store_pd(b.num0 + 8, num_high);
+    const __m512i step = _mm512_slli_epi32(d_minor_signed, bits);
+    _mm512_store_pd(b.step, low_pd(step));
+    _mm512_store_pd(b.step + 8, high_pd(step));
+    const __m512d ones = _mm512_set1_pd(1.0);
+    _mm512_store_pd(b.denom, low_pd(denom));
+    _mm512_store_pd(b.denom + 8, high_pd(denom));
+    _mm512_store_pd(b.inv_denom, _mm512_div_pd(ones, low_pd(denom)));
+    _mm512_store_pd(b.inv_denom + 8, _mm512_div_pd(ones, high_pd(denom)));
+    _mm512_store_pd(b.inv_length2, _mm512_div_pd(ones, _mm512_add_pd(_mm512_mul_pd(low_pd(dx), low_pd(dx)), _mm512_mul_pd(low_pd(dy), low_pd(dy)))));
+    _mm512_store_pd(b.inv_length2 + 8,
+                    _mm512_div_pd(ones, _mm512_add_pd(_mm512_mul_pd(high_pd(dx), high_pd(dx)), _mm512_mul_pd(high_pd(dy), high_pd(dy)))));
+    // Ties on the minor axis go to the lower row or left column unless the line is x-major and rising.
+    const __mmask16 opposite = __mmask16(_mm512_cmpgt_epi32_mask(dx, zero) ^ _mm512_cmpgt_epi32_mask(dy, zero));
+    b.tie = std::uint16_t(__mmask16(~xm) | _mm512_cmpeq_epi32_mask(dy, zero) | opposite);
+    b.x_major = xm;
+    // The texel whose diamond holds the end makes no fragment.
+    const __m512i cx[2] = {texel_of(_mm512_sub_epi32(bx, one)), texel_of(bx)}, cy[2] = {texel_of(_mm512_sub_epi32(by, one)), texel_of(by)};
+    __m512i end_x = _mm512_set1_epi32(-(1 << 30)), end_y = end_x; // no texel of the tile
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) {
+            const __mmask16 in = inside_diamond(bx, by, cx[i], cy[j]);
+            end_x = _mm512_mask_mov_epi32(end_x, in, cx[i]);
+            end_y = _mm512_mask_mov_epi32(end_y, in, cy[j]);
+        }
+    _mm512_store_si512(b.end_major, _mm512_mask_blend_epi32(xm, end_y, end_x));
+    _mm512_store_si512(b.end_minor, _mm512_mask_blend_epi32(xm, end_x, end_y));
+    // A start inside a diamond whose centre line the segment does not cross still exits it.
+    const __m512i sx = texel_of(_mm512_sub_epi32(ax, one)), sy = texel_of(_mm512_sub_epi32(ay, one));
+    const __m512i s_major = _mm512_mask_blend_epi32(xm, sy, sx);
+    const __mmask16 outside_walk = _mm512_cmplt_epi32_mask(s_major, first) | _mm512_cmpgt_epi32_mask(s_major, last);
+    const __mmask16 in_tile = _mm512_cmplt_epu32_mask(sx, _mm512_set1_epi32(w)) & _mm512_cmplt_epu32_mask(sy, _mm512_set1_epi32(h));
+    b.start = std::uint16_t(inside_diamond(ax, ay, sx, sy) & outside_walk & __mmask16(~inside_diamond(bx, by, sx, sy)) & in_tile);
+    _mm512_store_si512(b.start_x, sx);
+    _mm512_store_si512(b.start_y, sy);
+    // Its depth, as the walk computes a fragment's (segment_shader::parameter, lerp_exact).
+    const __m512i px = _mm512_sub_epi32(_mm512_add_epi32(_mm512_slli_epi32(sx, bits), half), ax);
+    const __m512i py = _mm512_sub_epi32(_mm512_add_epi32(_mm512_slli_epi32(sy, bits), half), ay);
+    const __m512d zero_pd = _mm512_setzero_pd();
+    const __m512d t_low = _mm512_max_pd(_mm512_min_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(low_pd(px), low_pd(dx)), _mm512_mul_pd(low_pd(py), low_pd(dy))),
+                                                                    _mm512_load_pd(b.inv_length2)), ones), zero_pd);
+    const __m512d t_high = _mm512_max_pd(_mm512_min_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(high_pd(px), high_pd(dx)), _mm512_mul_pd(high_pd(py), high_pd(dy))),
+                                                                     _mm512_load_pd(b.inv_length2 + 8)), ones), zero_pd);
+    const __m512 param = join_ps(_mm512_cvtpd_ps(t_low), _mm512_cvtpd_ps(t_high));
+    _mm512_store_ps(b.start_depth, _mm512_add_ps(_mm512_load_ps(b.depth_a), rounded(_mm512_mul_ps(_mm512_load_ps(b.depth_delta), param))));
+}
+
+} // namespace hairshadow::detail::avx512
+
+namespace hairshadow::detail {
+
+HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_bins& bins, std::size_t t) {
+    using namespace avx512;
+    constexpr int bits = HAIRSHADOW_SUBPIXEL_BITS;
+    // Bounds that keep every product exact in a double and every coordinate in 32 bits.
+    constexpr std::int64_t most_length = std::int64_t(1) << 22, most_coordinate = std::int64_t(1) << 24;
+    const int w = width_, h = rect_.y1 - rect_.y0;
+    const std::int64_t ox = std::int64_t(rect_.x0) << bits, oy = std::int64_t(rect_.y0) << bits;
+    const float optical = optical_depth_cached(bins.uniform_shader().shade(0.0f).alpha); // one alpha: simd_tile()
+    const auto list = bins.tile_segments(t);
+    const __m512i iota = _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
+    const __m512i half = _mm512_set1_epi32(std::int32_t(subpixel_scale / 2)), one = _mm512_set1_epi32(1);
+    const __m512d zero_pd = _mm512_setzero_pd(), one_pd = _mm512_set1_pd(1.0);
+    batch b;
+    for (std::size_t base = 0; base < list.size(); base += 16) {
+        const int lanes = int(std::min<std::size_t>(16, list.size() - base));
+        b.simd = 0;
+        for (int l = 0; l < 16; ++l) {
+            if (l < lanes) {
+#if defined(__GNUC__)
+                if (base + std::size_t(l) + 16 < list.size()) __builtin_prefetch(&bins.segment(list[base + std::size_t(l) + 16]));
+#endif
+                const prepared_segment& s = bins.segment(list[base + std::size_t(l)]);
+                const std::int64_t ax = s.ax - ox, ay = s.ay - oy, bx = s.bx - ox, by = s.by - oy;
+                const bool fits = s.inv_w_a == s.inv_w_b && std::abs(bx - ax) < most_length && std::abs(by - ay) < most_length &&
+                                  std::max({std::abs(ax), std::abs(ay), std::abs(bx), std::abs(by)}) < most_coordinate;
+                if (fits) {
+                    b.ax[l] = std::int32_t(ax), b.ay[l] = std::int32_t(ay), b.bx[l] = std::int32_t(bx), b.by[l] = std::int32_t(by);
+                    b.depth_a[l] = s.depth_a;
+                    b.depth_delta[l] = s.depth_b - s.depth_a;
+                    b.simd = std::uint16_t(b.simd | (1u << l));
+                    continue;
+                }
+            }
+            b.ax[l] = 0, b.ay[l] = 0, b.bx[l] = std::int32_t(subpixel_scale), b.by[l] = 0; // a harmless stand-in
+            b.depth_a[l] = 0.0f, b.depth_delta[l] = 0.0f;
+        }
+        set_up(b, w, h);
+        for (int l = 0; l < lanes; ++l) {
+            if (!((b.simd >> l) & 1u)) {
+                walk_segment(bins.shader(list[base + std::size_t(l)]), 0.0f);
+                continue;
+            }
+            const int count = b.count[l];
+            reserve(std::size_t(count) + 1);
+            const __mmask16 along_x = (b.x_major >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
+            const __mmask16 tie = (b.tie >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
+            const __m512i m_begin = _mm512_set1_epi32(b.m_begin[l]), counts = _mm512_set1_epi32(count);
+            const __m512i end_major = _mm512_set1_epi32(b.end_major[l]), end_minor = _mm512_set1_epi32(b.end_minor[l]);
+            const __m512i minor_extent = _mm512_set1_epi32(b.minor_extent[l]), width = _mm512_set1_epi32(w);
+            const __m512i ax = _mm512_set1_epi32(b.ax[l]), ay = _mm512_set1_epi32(b.ay[l]);
+            const __m512d num0 = _mm512_set1_pd(b.num0[l]), step = _mm512_set1_pd(b.step[l]), denom = _mm512_set1_pd(b.denom[l]);
+            const __m512d inv_denom = _mm512_set1_pd(b.inv_denom[l]);
+            const __m512d dx = _mm512_set1_pd(double(b.bx[l] - b.ax[l])), dy = _mm512_set1_pd(double(b.by[l] - b.ay[l]));
+            const __m512d inv_length2 = _mm512_set1_pd(b.inv_length2[l]);
+            const __m512 depth_a = _mm512_set1_ps(b.depth_a[l]), depth_delta = _mm512_set1_ps(b.depth_delta[l]);
+            const __m512 optical_depth = _mm512_set1_ps(optical);
+            for (int c = 0; c < count; c += 16) {
+                const __m512i i = _mm512_add_epi32(iota, _mm512_set1_epi32(c));
+                const __mmask16 active = _mm512_cmplt_epi32_mask(i, counts);
+                const __m512i m = _mm512_add_epi32(i, m_begin);
+                // minor = floor(num / denom) and whether it divides exactly: exact_quotient.
+                __m512d q_low, q_high;
+                const __mmask8 tie_low = exact_quotient(_mm512_add_pd(num0, _mm512_mul_pd(low_pd(i), step)), denom, inv_denom, q_low);
+                const __mmask8 tie_high = exact_quotient(_mm512_add_pd(num0, _mm512_mul_pd(high_pd(i), step)), denom, inv_denom, q_high);
+                const auto on_tie = __mmask16(tie_low | (tie_high << 8));
+                const __m512i q = join_epi32(_mm512_cvttpd_epi32(q_low), _mm512_cvttpd_epi32(q_high));
+                const __m512i minor = _mm512_mask_sub_epi32(q, __mmask16(on_tie & tie), q, one);
+                const __mmask16 at_end = _mm512_cmpeq_epi32_mask(m, end_major) & _mm512_cmpeq_epi32_mask(minor, end_minor);
+                const __mmask16 keep = active & _mm512_cmplt_epu32_mask(minor, minor_extent) & __mmask16(~at_end);
+                const __m512i x = _mm512_mask_blend_epi32(along_x, minor, m), y = _mm512_mask_blend_epi32(along_x, m, minor);
+                const __m512i local = _mm512_add_epi32(_mm512_mullo_epi32(y, width), x);
+                // t = ((x S + H - ax) dx + (y S + H - ay) dy) / |d|^2, clamped: segment_shader::parameter.
+                const __m512i px = _mm512_sub_epi32(_mm512_add_epi32(_mm512_slli_epi32(x, bits), half), ax);
+                const __m512i py = _mm512_sub_epi32(_mm512_add_epi32(_mm512_slli_epi32(y, bits), half), ay);
+                const __m512d t_low = _mm512_max_pd(
+                    _mm512_min_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(low_pd(px), dx), _mm512_mul_pd(low_pd(py), dy)), inv_length2), one_pd), zero_pd);
+                const __m512d t_high = _mm512_max_pd(
+                    _mm512_min_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(high_pd(px), dx), _mm512_mul_pd(high_pd(py), dy)), inv_length2), one_pd), zero_pd);
+                const __m512 param = join_ps(_mm512_cvtpd_ps(t_low), _mm512_cvtpd_ps(t_high));
+                const __m512 depth = _mm512_add_ps(depth_a, rounded(_mm512_mul_ps(depth_delta, param))); // lerp_exact
+                _mm512_mask_compressstoreu_epi32(where_.data() + n_, keep, local);
+                _mm512_mask_compressstoreu_ps(depth_.data() + n_, keep, depth);
+                _mm512_mask_compressstoreu_ps(optical_.data() + n_, keep, optical_depth);
+                n_ += std::size_t(__builtin_popcount(keep));
+            }
+            // The start fragment, as walk_line emits it, after the walk; stored always and kept when
+            // there is one, since whether there is one is anybody's guess.
+            where_[n_] = std::uint32_t(b.start_y[l] * w + b.start_x[l]);
+            depth_[n_] = b.start_depth[l];
+            optical_[n_] = optical;
+            n_ += (b.start >> l) & 1u;
+        }
+    }
+}
+
+#undef HAIRSHADOW_AVX512_TARGET
+
+} // namespace hairshadow::detail
+// ---- end hairshadow/raster/tile_walk_avx512.hpp
+#endif
+// ---- end hairshadow/raster/tile_fragments.hpp
+
+#include <memory>
+#include <vector>
+
+namespace hairshadow::detail {
+
+/// What the tiled build keeps from one build to the next: the binned segments and one tile store per
+/// thread. A renderer that rebuilds its maps every frame allocates nothing after the first.
+struct tiled_workspace {
+    segment_bins bins;
+    std::vector<tile_fragments> tiles;
+    std::vector<std::size_t> fragments; ///< per thread, in the last build
+
+    std::size_t memory_bytes() const noexcept {
+        std::size_t bytes = bins.memory_bytes();
+        for (const auto& t : tiles) bytes += t.memory_bytes();
+        return bytes;
+    }
+};
+
+/// Scratch memory owned by an object but not part of its value: copies and moves of the owner start
+/// without it, and it is made at first use.
+template <class T>
+class scratch {
+public:
+    scratch() = default;
+    scratch(const scratch&) noexcept {}
+    scratch& operator=(const scratch&) noexcept { return *this; }
+    T& get() {
+        if (!value_) value_ = std::make_unique<T>();
+        return *value_;
+    }
+    const T* peek() const noexcept { return value_.get(); }
+
+private:
+    std::unique_ptr<T> value_;
+};
+
+/// Calls build_texel(x, y, fragments) for every texel of the map that w.bins was prepared for (so the
+/// whole-map pre-pass, w.bins.extent(), is known before), tile by tile in parallel (the tiles with the most segments first), with the texel's
+/// optical_fragments in segment order (empty where no fragment falls). Each texel is visited once,
+/// from one thread, so build_texel may write the texel's own output without locks.
+/// Returns the number of fragments.
+template <class BuildTexel>
+std::size_t build_tiles(tiled_workspace& w, BuildTexel&& build_texel) {
+    const auto& order = w.bins.tiles_by_load();
+    const execution& exec = w.bins.options().exec;
+    const instruction_set instructions = resolve(w.bins.options().instructions);
+    const unsigned slots = parallel_slots(order.size(), exec);
+    w.tiles.resize(slots);
+    w.fragments.assign(slots, 0);
+    parallel_for_slots(order.size(), exec, [&](unsigned slot, std::size_t i) {
+        tile_fragments& tile = w.tiles[slot];
+        tile.gather(w.bins, order[i], instructions);
+        w.fragments[slot] += tile.size();
+        const texel_rect r = tile.rect();
+        for (int y = r.y0; y < r.y1; ++y)
+            for (int x = r.x0; x < r.x1; ++x) build_texel(x, y, tile.texel(x, y));
+    });
+    std::size_t total = 0;
+    for (const std::size_t n : w.fragments) total += n;
+    return total;
+}
+
+} // namespace hairshadow::detail
+
+namespace hairshadow {
+
+/// The number of fragments `model` makes in `light`'s map: what a fragment_buffer would hold, counted
+/// tile by tile without one.
+inline std::size_t count_fragments(const hair_model& model, const light_space& light, const raster_options& options = {}) {
+    detail::tiled_workspace w;
+    w.bins.prepare(model, light, options);
+    return detail::build_tiles(w, [](int, int, std::span<const optical_fragment>) {});
+}
+
+} // namespace hairshadow
+
+namespace hairshadow::detail {
+
+} // namespace hairshadow::detail
+// ---- end hairshadow/methods/tiled_build.hpp
 
 #include <vector>
 
@@ -2017,7 +3026,7 @@ template <class Placement, class Accumulation, class Reconstruction>
 class shadow_method : public map_queries<shadow_method<Placement, Accumulation, Reconstruction>> {
     static_assert(placement_policy<Placement>,
                   "Placement must provide layer_count, cumulative, contiguous, glsl_name, texel_state, prepare(fragment_buffer), "
-                  "prepare_texel(fragments, state), assign(state, depth) -> int, locate(state, depth) -> layer_position and "
+                  "prepare(depth_extent), prepare_texel(fragments, state) for spans of fragment and optical_fragment, assign(state, depth) -> int, locate(state, depth) -> layer_position and "
                   "global_bytes() - see docs/policies.md");
     static_assert(accumulation_policy<Accumulation>,
                   "Accumulation must provide value_type, sum_type, add(sum, b), combine(sum, sum), store(sum), decode(value) -> float "
@@ -2043,12 +3052,42 @@ public:
 
     explicit shadow_method(Placement placement = Placement()) : placement_(std::move(placement)) {}
 
+    /// Builds the maps of `model` for `light`, tile by tile (methods/tiled_build.hpp): the fastest
+    /// build, and the one to call every frame, since this object keeps its working memory. The
+    /// whole-map values (OSM's near and far, DOM's default extent) come from the segments' ends
+    /// (segment_bins::extent). Identical for any thread count and tile size, and equal to
+    /// build(rasterize(model, light, options), light, map_extent()).
+    void build(const hair_model& model, const light_space& light, const raster_options& options = {}) {
+        auto& w = workspace_.get();
+        w.bins.prepare(model, light, options); // bins first: the placement needs the extent before any tile
+        light_ = light;
+        extent_ = w.bins.extent();
+        placement_.prepare(extent_);
+        const std::size_t res = std::size_t(light.resolution());
+        texels_.resize(res * res);
+        fragments_ = detail::build_tiles(w, [&](int x, int y, std::span<const optical_fragment> in) HAIRSHADOW_ALWAYS_INLINE {
+            auto& out = texels_[std::size_t(y) * res + std::size_t(x)];
+            out = texel_maps{};
+            if (in.empty()) return;
+            placement_.prepare_texel(in, out.placement);
+            Reconstruction::template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
+        });
+    }
+
     /// Builds the maps from the fragments of `light`'s map: the placement's global and per-texel
     /// pre-passes, then the accumulation pass. Identical for any thread count.
     void build(const fragment_buffer& fragments, const light_space& light, const execution& exec = {}) {
+        build(fragments, light, extent_of(fragments), exec);
+    }
+
+    /// The same with the whole-map extent given (by default the fragments' own): the tiled build's
+    /// map_extent() gives the tiled build's maps.
+    void build(const fragment_buffer& fragments, const light_space& light, const depth_extent& extent, const execution& exec = {}) {
         if (fragments.resolution() != light.resolution()) throw argument_error("fragment buffer and light differ in resolution");
         light_ = light;
-        placement_.prepare(fragments);
+        extent_ = extent;
+        placement_.prepare(extent);
+        fragments_ = fragments.size();
         texels_.assign(fragments.texel_count(), texel_maps{});
         parallel_for(texels_.size(), exec, [&](std::size_t t) {
             const auto in = fragments.texel(t);
@@ -2085,6 +3124,13 @@ public:
 
     const texel_maps& texel(int x, int y) const noexcept { return texels_[std::size_t(y) * std::size_t(light_.resolution()) + std::size_t(x)]; }
     const Placement& placement() const noexcept { return placement_; }
+    /// The whole-map depth extent of the last build: the fragments' own, or the segments' in a build
+    /// from the model.
+    const depth_extent& map_extent() const noexcept { return extent_; }
+    /// Fragments the last build summed.
+    std::size_t fragment_count() const noexcept { return fragments_; }
+    /// Bytes of working memory the tiled build keeps between builds (not part of the maps).
+    std::size_t workspace_bytes() const noexcept { return workspace_.peek() ? workspace_.peek()->memory_bytes() : 0; }
     const light_space& light() const noexcept { return light_; }
     /// Bytes the maps hold: every texel's placement state and stored layers, plus the global state.
     std::size_t memory_bytes() const noexcept { return texels_.size() * sizeof(texel_maps) + Placement::global_bytes(); }
@@ -2095,6 +3141,9 @@ private:
     Placement placement_;
     light_space light_;                                  // 1x1 until built, so early queries see no shadow
     std::vector<texel_maps> texels_ = std::vector<texel_maps>(1);
+    depth_extent extent_{};
+    std::size_t fragments_ = 0;
+    detail::scratch<detail::tiled_workspace> workspace_;
 };
 
 } // namespace hairshadow
@@ -2147,7 +3196,8 @@ public:
     void prepare(const fragment_buffer&) const noexcept {}
     void prepare(const depth_extent&) const noexcept {}
 
-    void prepare_texel(std::span<const fragment> fragments, texel_state& s) const noexcept {
+    template <class Fragment>
+    void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
         s.sigma.fill(-1.0f);
         if (fragments.empty()) return;
         float lo = fragments[0].depth, hi = lo;
@@ -2159,7 +3209,7 @@ public:
         std::array<double, K> weight{}, sum{};
         for (const auto& f : fragments) {
             const auto j = std::size_t(nearest(centre, f.depth, [](int) { return true; }));
-            const double b = -std::log1p(-double(f.alpha));
+            const double b = fragment_optical_depth(f);
             weight[j] += b;
             sum[j] += b * f.depth;
         }
@@ -2171,7 +3221,7 @@ public:
         std::array<double, K> var_weight{}, var_sum{};
         for (const auto& f : fragments) {
             const auto j = std::size_t(nearest(s.mean, f.depth, [&](int i) { return s.sigma[std::size_t(i)] >= 0.0f; }));
-            const double b = -std::log1p(-double(f.alpha)), d = double(f.depth) - s.mean[j];
+            const double b = fragment_optical_depth(f), d = double(f.depth) - s.mean[j];
             var_weight[j] += b;
             var_sum[j] += b * d * d;
         }
@@ -2278,7 +3328,8 @@ public:
 
     void prepare(const fragment_buffer&) const noexcept {}
     void prepare(const depth_extent&) const noexcept {}
-    void prepare_texel(std::span<const fragment> fragments, texel_state& s) const noexcept {
+    template <class Fragment>
+    void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
         if (fragments.empty()) return;
         s.nearest = s.furthest = fragments[0].depth;
         for (const auto& f : fragments) s.nearest = std::min(s.nearest, f.depth), s.furthest = std::max(s.furthest, f.depth);
@@ -2317,6 +3368,7 @@ private:
 /// same d_k for every texel. A fragment adds to its layer and every later one.
 
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <optional>
@@ -2377,7 +3429,8 @@ public:
         extent_ = requested_extent_ ? *requested_extent_ : std::max(0.5f * (e.furthest - e.nearest), 1e-6f);
     }
     /// The depth pass: z0 is the nearest fragment (and, to extend, the furthest sets the stretch).
-    void prepare_texel(std::span<const fragment> fragments, texel_state& s) const noexcept {
+    template <class Fragment>
+    void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
         if (fragments.empty()) return;
         float lo = fragments[0].depth, hi = lo;
         for (const auto& f : fragments) lo = std::min(lo, f.depth), hi = std::max(hi, f.depth);
@@ -2390,14 +3443,32 @@ public:
         if constexpr (Sizes == layer_sizes::linear) return float(k * (k + 1)) / float(K * (K + 1));
         else return float(k) / float(K);
     }
+    /// relative_boundary(k) for k in [0, K], computed once.
+    static constexpr std::array<float, std::size_t(K) + 1> relative_boundaries = [] {
+        std::array<float, std::size_t(K) + 1> b{};
+        for (int k = 0; k <= K; ++k) b[std::size_t(k)] = relative_boundary(k);
+        return b;
+    }();
     /// Depth of boundary k in [0, K] of a texel: z0 + d_k.
     float boundary(const texel_state& s, int k) const noexcept { return s.z0 + span_of(s) * relative_boundary(k); }
 
     int assign(const texel_state& s, float depth) const noexcept {
-        const auto p = locate(s, depth);
-        if (p.index < 0) return 0;
-        if (p.index >= K) return Beyond == beyond_last_layer::ignore ? -1 : K - 1;
-        return p.index;
+        if constexpr (K <= 8) {
+            // The layer locate() settles on, counted without a branch (the build calls this for every
+            // fragment, and which layer comes next is anybody's guess): the boundaries d_1..d_K the
+            // depth has reached. They increase, so the count is the one k with d_k <= rel < d_k+1; K
+            // means beyond the last layer; NaN and depths in front reach none.
+            const float rel = (depth - s.z0) / span_of(s);
+            int k = 0;
+            for (int i = 1; i <= K; ++i) k += int(rel >= relative_boundaries[std::size_t(i)]);
+            if constexpr (Beyond == beyond_last_layer::ignore) return k == K ? -1 : k;
+            else return std::min(k, K - 1);
+        } else {
+            const auto p = locate(s, depth);
+            if (p.index < 0) return 0;
+            if (p.index >= K) return Beyond == beyond_last_layer::ignore ? -1 : K - 1;
+            return p.index;
+        }
     }
     layer_position locate(const texel_state& s, float depth) const noexcept {
         const float rel = (depth - s.z0) / span_of(s);
@@ -2406,8 +3477,8 @@ public:
         float estimate; // closed form of the layer, settled against the boundaries below
         if constexpr (Sizes == layer_sizes::linear) estimate = (std::sqrt(1.0f + 4.0f * rel * float(K * (K + 1))) - 1.0f) * 0.5f;
         else estimate = rel * float(K);
-        const int k = detail::settle_layer(estimate, K - 1, rel, relative_boundary);
-        return detail::position_in(k, rel, relative_boundary(k), relative_boundary(k + 1));
+        const int k = detail::settle_layer(estimate, K - 1, rel, [](int i) { return relative_boundaries[std::size_t(i)]; });
+        return detail::position_in(k, rel, relative_boundaries[std::size_t(k)], relative_boundaries[std::size_t(k + 1)]);
     }
     static constexpr std::size_t global_bytes() noexcept { return sizeof(float); }
     /// d_K in linear depth.
@@ -2477,7 +3548,8 @@ public:
         near_ = e.nearest;
         far_ = detail::just_above(e.furthest);
     }
-    void prepare_texel(std::span<const fragment>, texel_state&) const noexcept {}
+    template <class Fragment>
+    void prepare_texel(std::span<const Fragment>, texel_state&) const noexcept {}
 
     /// Depth of map i, i in [0, N] (D_0 .. D_N).
     float boundary(const texel_state&, int i) const noexcept {
@@ -2525,6 +3597,7 @@ using gamma_slices = planar_slices<N, gamma_spacing>;
 #include <cmath>
 #include <span>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 namespace hairshadow {
@@ -2546,14 +3619,25 @@ struct interpolation {
     };
 
     /// Sums the texel's fragments into its layers.
-    template <class Placement, class Accumulation>
-    static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const fragment> fragments,
+    template <class Placement, class Accumulation, class Fragment>
+    static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const Fragment> fragments,
                       storage<Placement, Accumulation>& out) {
         constexpr int L = Placement::layer_count;
         std::array<typename Accumulation::sum_type, std::size_t(L)> sums{};
-        for (const auto& f : fragments) {
-            const int k = placement.assign(state, f.depth);
-            if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], -std::log1p(-f.alpha));
+        if constexpr (std::is_same_v<Accumulation, float_accumulation> && L <= 16) {
+            // Every layer's sum takes b or +0 for every fragment: the same sums, bit for bit (x + 0 == x
+            // for the sums, which are never -0), without a store and reload of one layer's sum per
+            // fragment; the layers' adds are independent and vectorise.
+            for (const auto& f : fragments) {
+                const int k = placement.assign(state, f.depth);
+                const float b = fragment_optical_depth(f);
+                for (int j = 0; j < L; ++j) sums[std::size_t(j)] += detail::keep_if(k == j, b);
+            }
+        } else {
+            for (const auto& f : fragments) {
+                const int k = placement.assign(state, f.depth);
+                if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], fragment_optical_depth(f));
+            }
         }
         typename Accumulation::sum_type running{};
         for (std::size_t k = 0; k < std::size_t(L); ++k) {
@@ -2619,6 +3703,7 @@ struct interpolation {
 #include <cstdint>
 #include <span>
 #include <string_view>
+#include <type_traits>
 
 namespace hairshadow {
 
@@ -2641,16 +3726,28 @@ struct occupancy_bitcount {
         std::array<typename Accumulation::value_type, std::size_t(Slabs)> slabs{};
     };
 
-    template <class Placement, class Accumulation>
-    static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const fragment> fragments,
+    template <class Placement, class Accumulation, class Fragment>
+    static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const Fragment> fragments,
                       storage<Placement, Accumulation>& out) {
         constexpr int per_slab = Placement::layer_count / Slabs;
         std::array<typename Accumulation::sum_type, std::size_t(Slabs)> sums{};
-        for (const auto& f : fragments) {
-            const int k = placement.assign(state, f.depth);
-            if (k < 0) continue;
-            out.bits[std::size_t(k / 32)] |= std::uint32_t(1) << (k % 32);
-            sums[std::size_t(k / per_slab)] = Accumulation::add(sums[std::size_t(k / per_slab)], -std::log1p(-f.alpha));
+        if constexpr (std::is_same_v<Accumulation, float_accumulation> && Slabs <= 16) {
+            // As interpolation::build: every slab's sum takes b or +0, the same sums bit for bit.
+            for (const auto& f : fragments) {
+                const int k = placement.assign(state, f.depth);
+                if (k < 0) continue;
+                out.bits[std::size_t(k / 32)] |= std::uint32_t(1) << (k % 32);
+                const float b = fragment_optical_depth(f);
+                const int slab = k / per_slab;
+                for (int j = 0; j < Slabs; ++j) sums[std::size_t(j)] += detail::keep_if(slab == j, b);
+            }
+        } else {
+            for (const auto& f : fragments) {
+                const int k = placement.assign(state, f.depth);
+                if (k < 0) continue;
+                out.bits[std::size_t(k / 32)] |= std::uint32_t(1) << (k % 32);
+                sums[std::size_t(k / per_slab)] = Accumulation::add(sums[std::size_t(k / per_slab)], fragment_optical_depth(f));
+            }
         }
         for (std::size_t i = 0; i < std::size_t(Slabs); ++i) out.slabs[i] = Accumulation::store(sums[i]);
     }

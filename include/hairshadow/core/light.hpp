@@ -181,12 +181,15 @@ public:
     float distance_of_depth(float depth) const noexcept { return near_ + depth * (far_ - near_); }
 
     /// Projects a world point (no clipping): window coordinates, linear depth and clip w.
-    light_point project(const glm::vec3& world) const noexcept {
-        const glm::vec4 clip = view_projection_ * glm::vec4(world, 1.0f);
-        const float distance = -(view_ * glm::vec4(world, 1.0f)).z;
+    HAIRSHADOW_ALWAYS_INLINE light_point project(const glm::vec3& world) const noexcept { return project(world, distance_of(world)); }
+    /// The same, given the point's distance_of(world).
+    HAIRSHADOW_ALWAYS_INLINE light_point project(const glm::vec3& world, float distance) const noexcept {
+        const float x = row(view_projection_, 0, world), y = row(view_projection_, 1, world), w = row(view_projection_, 3, world);
         const float half_res = 0.5f * float(resolution_);
-        return {glm::vec2((clip.x / clip.w + 1.0f) * half_res, (clip.y / clip.w + 1.0f) * half_res), depth_of_distance(distance), clip.w};
+        return {glm::vec2((x / w + 1.0f) * half_res, (y / w + 1.0f) * half_res), depth_of_distance(distance), w};
     }
+    /// Distance of a world point in front of the light, along its axis (view space -z).
+    HAIRSHADOW_ALWAYS_INLINE float distance_of(const glm::vec3& world) const noexcept { return -row(view_, 2, world); }
 
     /// The texel holding a world point and its depth, or nothing when the point is outside the map.
     std::optional<texel_depth> locate(const glm::vec3& world) const noexcept {
@@ -204,6 +207,12 @@ public:
     }
 
 private:
+    /// Row i of m * (p, 1), summed in the order of GLM's matrix-vector product, inlined: the
+    /// rasteriser projects every point of the model.
+    HAIRSHADOW_ALWAYS_INLINE static float row(const glm::mat4& m, int i, const glm::vec3& p) noexcept {
+        return (m[0][i] * p.x + m[1][i] * p.y) + (m[2][i] * p.z + m[3][i]);
+    }
+
     int resolution_ = 1;
     light_type type_ = light_type::directional;
     glm::mat4 view_{1.0f}, projection_{1.0f}, view_projection_{1.0f};

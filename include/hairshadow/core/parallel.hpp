@@ -1,22 +1,24 @@
 #pragma once
 /// @file
-/// A minimal fork-join loop. Work items are handed out dynamically, but every kernel writes its result
-/// to a place fixed by the item's index, so results never depend on the thread count.
+/// A minimal fork-join loop on persistent workers. Work items are handed out dynamically, but every
+/// kernel writes its result to a place fixed by the item's index, so results never depend on the
+/// thread count.
+
+#include <hairshadow/core/thread_pool.hpp>
 
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <exception>
 #include <mutex>
-#include <system_error>
 #include <thread>
-#include <vector>
 
 namespace hairshadow {
 
 /// Thread count for the CPU kernels: 0 means every hardware thread.
 struct execution {
     unsigned threads = 0;
+    friend bool operator==(const execution&, const execution&) = default;
 
     unsigned resolved() const noexcept {
         if (threads != 0) return threads;
@@ -25,28 +27,41 @@ struct execution {
     }
 };
 
-/// Calls body(i) for every i in [0, count) on up to exec.resolved() threads, in chunks of `grain`.
+/// Threads a loop of `count` items in chunks of `grain` runs on: at most exec.resolved(), the chunk
+/// count and four per core (more only cost start-up time). Per-thread scratch memory for
+/// parallel_for_slots needs this many slots.
+inline unsigned parallel_slots(std::size_t count, const execution& exec, std::size_t grain = 1) noexcept {
+    if (count == 0) return 1;
+    grain = std::max<std::size_t>(grain, 1);
+    const std::size_t chunks = (count + grain - 1) / grain;
+    const std::size_t useful = 4 * std::size_t(std::max(1u, std::thread::hardware_concurrency()));
+    return static_cast<unsigned>(std::max<std::size_t>(1, std::min({std::size_t(exec.resolved()), chunks, useful})));
+}
+
+/// Calls body(slot, i) for every i in [0, count) on up to parallel_slots(count, exec, grain)
+/// threads, in chunks of `grain`; `slot`, below that count, tells apart the threads running at the
+/// same time, for per-thread scratch memory. What a slot runs depends on timing: results must not.
 /// The first exception thrown by any call is rethrown after all threads have stopped.
 template <class Body>
-void parallel_for(std::size_t count, const execution& exec, Body&& body, std::size_t grain = 1) {
+void parallel_for_slots(std::size_t count, const execution& exec, Body&& body, std::size_t grain = 1) {
     if (count == 0) return;
     grain = std::max<std::size_t>(grain, 1);
     const std::size_t chunks = (count + grain - 1) / grain;
-    // More threads than items, or than a few per core, only cost start-up time.
-    const std::size_t useful = std::max<std::size_t>(4 * std::max(1u, std::thread::hardware_concurrency()), 1);
-    const unsigned threads = static_cast<unsigned>(std::min({std::size_t(exec.resolved()), chunks, useful}));
+    const unsigned threads = parallel_slots(count, exec, grain);
     if (threads <= 1) {
-        for (std::size_t i = 0; i < count; ++i) body(i);
+        for (std::size_t i = 0; i < count; ++i) body(0u, i);
         return;
     }
     std::atomic<std::size_t> next{0};
+    std::atomic<unsigned> next_slot{0};
     std::exception_ptr failure;
     std::mutex failure_mutex;
     auto worker = [&] {
+        const unsigned slot = next_slot.fetch_add(1);
         try {
             for (std::size_t c = next.fetch_add(1); c < chunks; c = next.fetch_add(1)) {
                 const std::size_t end = std::min(count, (c + 1) * grain);
-                for (std::size_t i = c * grain; i < end; ++i) body(i);
+                for (std::size_t i = c * grain; i < end; ++i) body(slot, i);
             }
         } catch (...) {
             std::lock_guard lock(failure_mutex);
@@ -54,16 +69,15 @@ void parallel_for(std::size_t count, const execution& exec, Body&& body, std::si
             next.store(chunks);
         }
     };
-    std::vector<std::thread> pool;
-    pool.reserve(threads - 1);
-    try {
-        for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
-    } catch (const std::system_error&) {
-        // The system refused another thread: the ones started (and this one) drain every chunk anyway.
-    }
-    worker();
-    for (auto& t : pool) t.join();
+    if (!detail::thread_pool::instance().run(threads, worker)) worker(); // the pool is busy: this thread alone
     if (failure) std::rethrow_exception(failure);
+}
+
+/// Calls body(i) for every i in [0, count) on up to exec.resolved() threads, in chunks of `grain`.
+/// The first exception thrown by any call is rethrown after all threads have stopped.
+template <class Body>
+void parallel_for(std::size_t count, const execution& exec, Body&& body, std::size_t grain = 1) {
+    parallel_for_slots(count, exec, [&body](unsigned, std::size_t i) { body(i); }, grain);
 }
 
 } // namespace hairshadow

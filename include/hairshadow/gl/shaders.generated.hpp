@@ -509,7 +509,7 @@ int hs_assign(float depth) { return clamp(hs_locate(depth).index, 0, HS_LAYERS -
 
 /// shaders/raster/coverage.glsl
 inline constexpr std::string_view raster_coverage = R"hs_glsl(// A fragment's alpha: the strand's opacity times the share of the texel its thickness covers, or a
-// fixed alpha; clamped below 1 (HS_ALPHA_MAX). Mirrors hairshadow::detail::shade_fragment.
+// fixed alpha; clamped below 1 (HS_ALPHA_MAX). Mirrors hairshadow::detail::segment_shader::shade.
 in float hs_v_depth;
 in float hs_v_thickness;
 in float hs_v_opacity;

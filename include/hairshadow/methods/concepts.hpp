@@ -10,10 +10,14 @@
 
 namespace hairshadow {
 
-/// Placement: which pre-passes run and where a depth falls among a texel's layers.
+/// Placement: which pre-passes run and where a depth falls among a texel's layers. The per-texel
+/// steps take a texel's fragments as a span of `fragment` (from a fragment_buffer) or of
+/// `optical_fragment` (the tiled build), read through `.depth` and fragment_optical_depth(f).
 template <class P>
 concept placement_policy = std::default_initializable<P> && std::copyable<P> && requires(P p, const P cp, const fragment_buffer& fb,
+                                                                                         const depth_extent& extent,
                                                                                          std::span<const fragment> frags,
+                                                                                         std::span<const optical_fragment> tile_frags,
                                                                                          typename P::texel_state& state, float depth) {
     { P::layer_count } -> std::convertible_to<int>;
     { P::cumulative } -> std::convertible_to<bool>;
@@ -21,7 +25,9 @@ concept placement_policy = std::default_initializable<P> && std::copyable<P> && 
     { P::glsl_name } -> std::convertible_to<std::string_view>;
     requires std::default_initializable<typename P::texel_state>;
     p.prepare(fb);
+    p.prepare(extent);
     cp.prepare_texel(frags, state);
+    cp.prepare_texel(tile_frags, state);
     { cp.assign(state, depth) } -> std::same_as<int>;
     { cp.locate(state, depth) } -> std::same_as<layer_position>;
     { P::global_bytes() } -> std::convertible_to<std::size_t>;
@@ -40,11 +46,12 @@ concept accumulation_policy = requires(typename A::sum_type s, typename A::value
 /// Reconstruction: what a texel stores and how it turns into optical depth at a query depth.
 template <class R, class P, class A>
 concept reconstruction_policy =
-    requires(const P& p, const typename P::texel_state& state, std::span<const fragment> frags,
+    requires(const P& p, const typename P::texel_state& state, std::span<const fragment> frags, std::span<const optical_fragment> tile_frags,
              typename R::template storage<P, A>& out, const typename R::template storage<P, A>& in, float depth) {
         { R::template accepts<P> } -> std::convertible_to<bool>;
         { R::glsl_name } -> std::convertible_to<std::string_view>;
         R::template build<P, A>(p, state, frags, out);
+        R::template build<P, A>(p, state, tile_frags, out);
         { R::template optical_depth<P, A>(p, state, in, depth) } -> std::same_as<float>;
     };
 

@@ -6,6 +6,7 @@
 
 #include <hairshadow/methods/published.hpp>
 #include <hairshadow/methods/spec.hpp>
+#include <hairshadow/raster/rasterizer.hpp>
 #include <hairshadow/reference/compressed_deep_shadow_map.hpp>
 #include <hairshadow/reference/deep_shadow_map.hpp>
 
@@ -20,6 +21,9 @@ namespace hairshadow {
 class any_shadow_map : public map_queries<any_shadow_map> {
 public:
     virtual ~any_shadow_map() = default;
+    /// Builds straight from the model: tile by tile for the methods, through a fragment buffer for
+    /// the exact reference. Keeps working memory for the next build.
+    virtual void build(const hair_model& model, const light_space& light, const raster_options& options = {}) = 0;
     virtual void build(const fragment_buffer& fragments, const light_space& light, const execution& exec = {}) = 0;
     virtual float optical_depth(int x, int y, float depth) const = 0;
     virtual const light_space& light() const = 0;
@@ -31,6 +35,8 @@ public:
     virtual std::optional<std::size_t> memory_bytes_at(int resolution) const = 0;
     /// Maps the method stores per texel (layers, bins or slabs; 0 for the exact map), for inspection.
     virtual int stored_maps() const = 0;
+    /// Fragments the last build summed.
+    virtual std::size_t fragment_count() const = 0;
     /// Optical depth stored in map k of texel (x, y).
     virtual float stored_optical_depth(int x, int y, int k) const = 0;
     const method_spec& spec() const noexcept { return spec_; }
@@ -49,6 +55,7 @@ template <class Method>
 class method_map final : public any_shadow_map {
 public:
     explicit method_map(method_spec spec, Method method = Method()) : any_shadow_map(std::move(spec)), method_(std::move(method)) {}
+    void build(const hair_model& model, const light_space& light, const raster_options& options) override { method_.build(model, light, options); }
     void build(const fragment_buffer& fragments, const light_space& light, const execution& exec) override { method_.build(fragments, light, exec); }
     float optical_depth(int x, int y, float depth) const override { return method_.optical_depth(x, y, depth); }
     const light_space& light() const override { return method_.light(); }
@@ -58,6 +65,7 @@ public:
         return std::size_t(resolution) * std::size_t(resolution) * Method::texel_bytes() + Method::placement_type::global_bytes();
     }
     int stored_maps() const override { return Method::stored_maps; }
+    std::size_t fragment_count() const override { return method_.fragment_count(); }
     float stored_optical_depth(int x, int y, int k) const override { return method_.stored_optical_depth(x, y, k); }
     const Method& method() const noexcept { return method_; }
 
@@ -68,6 +76,10 @@ private:
 class reference_map final : public any_shadow_map {
 public:
     explicit reference_map(method_spec spec) : any_shadow_map(std::move(spec)) {}
+    void build(const hair_model& model, const light_space& light, const raster_options& options) override {
+        if (!raster_ || !(raster_->options() == options)) raster_.emplace(options);
+        build((*raster_)(model, light), light, options.exec);
+    }
     void build(const fragment_buffer& fragments, const light_space& light, const execution& exec) override {
         compressed_.reset();
         exact_.emplace(fragments, light, exec);
@@ -88,9 +100,11 @@ public:
     int layer_count() const override { return 0; }
     std::optional<std::size_t> memory_bytes_at(int) const override { return std::nullopt; }
     int stored_maps() const override { return 0; }
+    std::size_t fragment_count() const override { return exact_ ? exact_->fragment_count() : 0; }
     float stored_optical_depth(int, int, int) const override { return 0.0f; }
 
 private:
+    std::optional<rasterizer> raster_; ///< kept between builds from a model
     std::optional<deep_shadow_map> exact_;
     std::optional<compressed_deep_shadow_map> compressed_;
 };

@@ -1,14 +1,18 @@
 #pragma once
 /// @file
 /// A shadow method composed of a placement, an accumulation and a reconstruction policy, with its
-/// CPU kernel: the placement's pre-passes, then one accumulation pass, texel by texel in parallel.
+/// CPU kernels: the placement's pre-passes, then one accumulation pass, texel by texel in parallel;
+/// built tile by tile straight from a model, or from a buffer of fragments.
 
 #include <hairshadow/core/error.hpp>
 #include <hairshadow/core/light.hpp>
 #include <hairshadow/core/map_queries.hpp>
 #include <hairshadow/core/parallel.hpp>
+#include <hairshadow/core/hair_model.hpp>
 #include <hairshadow/methods/concepts.hpp>
+#include <hairshadow/methods/tiled_build.hpp>
 #include <hairshadow/raster/fragment.hpp>
+#include <hairshadow/raster/raster_options.hpp>
 
 #include <vector>
 
@@ -24,7 +28,7 @@ template <class Placement, class Accumulation, class Reconstruction>
 class shadow_method : public map_queries<shadow_method<Placement, Accumulation, Reconstruction>> {
     static_assert(placement_policy<Placement>,
                   "Placement must provide layer_count, cumulative, contiguous, glsl_name, texel_state, prepare(fragment_buffer), "
-                  "prepare_texel(fragments, state), assign(state, depth) -> int, locate(state, depth) -> layer_position and "
+                  "prepare(depth_extent), prepare_texel(fragments, state) for spans of fragment and optical_fragment, assign(state, depth) -> int, locate(state, depth) -> layer_position and "
                   "global_bytes() - see docs/policies.md");
     static_assert(accumulation_policy<Accumulation>,
                   "Accumulation must provide value_type, sum_type, add(sum, b), combine(sum, sum), store(sum), decode(value) -> float "
@@ -50,12 +54,42 @@ public:
 
     explicit shadow_method(Placement placement = Placement()) : placement_(std::move(placement)) {}
 
+    /// Builds the maps of `model` for `light`, tile by tile (methods/tiled_build.hpp): the fastest
+    /// build, and the one to call every frame, since this object keeps its working memory. The
+    /// whole-map values (OSM's near and far, DOM's default extent) come from the segments' ends
+    /// (segment_bins::extent). Identical for any thread count and tile size, and equal to
+    /// build(rasterize(model, light, options), light, map_extent()).
+    void build(const hair_model& model, const light_space& light, const raster_options& options = {}) {
+        auto& w = workspace_.get();
+        w.bins.prepare(model, light, options); // bins first: the placement needs the extent before any tile
+        light_ = light;
+        extent_ = w.bins.extent();
+        placement_.prepare(extent_);
+        const std::size_t res = std::size_t(light.resolution());
+        texels_.resize(res * res);
+        fragments_ = detail::build_tiles(w, [&](int x, int y, std::span<const optical_fragment> in) HAIRSHADOW_ALWAYS_INLINE {
+            auto& out = texels_[std::size_t(y) * res + std::size_t(x)];
+            out = texel_maps{};
+            if (in.empty()) return;
+            placement_.prepare_texel(in, out.placement);
+            Reconstruction::template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
+        });
+    }
+
     /// Builds the maps from the fragments of `light`'s map: the placement's global and per-texel
     /// pre-passes, then the accumulation pass. Identical for any thread count.
     void build(const fragment_buffer& fragments, const light_space& light, const execution& exec = {}) {
+        build(fragments, light, extent_of(fragments), exec);
+    }
+
+    /// The same with the whole-map extent given (by default the fragments' own): the tiled build's
+    /// map_extent() gives the tiled build's maps.
+    void build(const fragment_buffer& fragments, const light_space& light, const depth_extent& extent, const execution& exec = {}) {
         if (fragments.resolution() != light.resolution()) throw argument_error("fragment buffer and light differ in resolution");
         light_ = light;
-        placement_.prepare(fragments);
+        extent_ = extent;
+        placement_.prepare(extent);
+        fragments_ = fragments.size();
         texels_.assign(fragments.texel_count(), texel_maps{});
         parallel_for(texels_.size(), exec, [&](std::size_t t) {
             const auto in = fragments.texel(t);
@@ -92,6 +126,13 @@ public:
 
     const texel_maps& texel(int x, int y) const noexcept { return texels_[std::size_t(y) * std::size_t(light_.resolution()) + std::size_t(x)]; }
     const Placement& placement() const noexcept { return placement_; }
+    /// The whole-map depth extent of the last build: the fragments' own, or the segments' in a build
+    /// from the model.
+    const depth_extent& map_extent() const noexcept { return extent_; }
+    /// Fragments the last build summed.
+    std::size_t fragment_count() const noexcept { return fragments_; }
+    /// Bytes of working memory the tiled build keeps between builds (not part of the maps).
+    std::size_t workspace_bytes() const noexcept { return workspace_.peek() ? workspace_.peek()->memory_bytes() : 0; }
     const light_space& light() const noexcept { return light_; }
     /// Bytes the maps hold: every texel's placement state and stored layers, plus the global state.
     std::size_t memory_bytes() const noexcept { return texels_.size() * sizeof(texel_maps) + Placement::global_bytes(); }
@@ -102,6 +143,9 @@ private:
     Placement placement_;
     light_space light_;                                  // 1x1 until built, so early queries see no shadow
     std::vector<texel_maps> texels_ = std::vector<texel_maps>(1);
+    depth_extent extent_{};
+    std::size_t fragments_ = 0;
+    detail::scratch<detail::tiled_workspace> workspace_;
 };
 
 } // namespace hairshadow

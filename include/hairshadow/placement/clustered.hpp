@@ -47,7 +47,8 @@ public:
     void prepare(const fragment_buffer&) const noexcept {}
     void prepare(const depth_extent&) const noexcept {}
 
-    void prepare_texel(std::span<const fragment> fragments, texel_state& s) const noexcept {
+    template <class Fragment>
+    void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
         s.sigma.fill(-1.0f);
         if (fragments.empty()) return;
         float lo = fragments[0].depth, hi = lo;
@@ -59,7 +60,7 @@ public:
         std::array<double, K> weight{}, sum{};
         for (const auto& f : fragments) {
             const auto j = std::size_t(nearest(centre, f.depth, [](int) { return true; }));
-            const double b = -std::log1p(-double(f.alpha));
+            const double b = fragment_optical_depth(f);
             weight[j] += b;
             sum[j] += b * f.depth;
         }
@@ -71,7 +72,7 @@ public:
         std::array<double, K> var_weight{}, var_sum{};
         for (const auto& f : fragments) {
             const auto j = std::size_t(nearest(s.mean, f.depth, [&](int i) { return s.sigma[std::size_t(i)] >= 0.0f; }));
-            const double b = -std::log1p(-double(f.alpha)), d = double(f.depth) - s.mean[j];
+            const double b = fragment_optical_depth(f), d = double(f.depth) - s.mean[j];
             var_weight[j] += b;
             var_sum[j] += b * d * d;
         }

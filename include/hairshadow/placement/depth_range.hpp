@@ -32,7 +32,8 @@ public:
 
     void prepare(const fragment_buffer&) const noexcept {}
     void prepare(const depth_extent&) const noexcept {}
-    void prepare_texel(std::span<const fragment> fragments, texel_state& s) const noexcept {
+    template <class Fragment>
+    void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
         if (fragments.empty()) return;
         s.nearest = s.furthest = fragments[0].depth;
         for (const auto& f : fragments) s.nearest = std::min(s.nearest, f.depth), s.furthest = std::max(s.furthest, f.depth);

@@ -7,6 +7,7 @@
 #include <hairshadow/core/error.hpp>
 #include <hairshadow/placement/layer_position.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <optional>
@@ -67,7 +68,8 @@ public:
         extent_ = requested_extent_ ? *requested_extent_ : std::max(0.5f * (e.furthest - e.nearest), 1e-6f);
     }
     /// The depth pass: z0 is the nearest fragment (and, to extend, the furthest sets the stretch).
-    void prepare_texel(std::span<const fragment> fragments, texel_state& s) const noexcept {
+    template <class Fragment>
+    void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
         if (fragments.empty()) return;
         float lo = fragments[0].depth, hi = lo;
         for (const auto& f : fragments) lo = std::min(lo, f.depth), hi = std::max(hi, f.depth);
@@ -80,14 +82,32 @@ public:
         if constexpr (Sizes == layer_sizes::linear) return float(k * (k + 1)) / float(K * (K + 1));
         else return float(k) / float(K);
     }
+    /// relative_boundary(k) for k in [0, K], computed once.
+    static constexpr std::array<float, std::size_t(K) + 1> relative_boundaries = [] {
+        std::array<float, std::size_t(K) + 1> b{};
+        for (int k = 0; k <= K; ++k) b[std::size_t(k)] = relative_boundary(k);
+        return b;
+    }();
     /// Depth of boundary k in [0, K] of a texel: z0 + d_k.
     float boundary(const texel_state& s, int k) const noexcept { return s.z0 + span_of(s) * relative_boundary(k); }
 
     int assign(const texel_state& s, float depth) const noexcept {
-        const auto p = locate(s, depth);
-        if (p.index < 0) return 0;
-        if (p.index >= K) return Beyond == beyond_last_layer::ignore ? -1 : K - 1;
-        return p.index;
+        if constexpr (K <= 8) {
+            // The layer locate() settles on, counted without a branch (the build calls this for every
+            // fragment, and which layer comes next is anybody's guess): the boundaries d_1..d_K the
+            // depth has reached. They increase, so the count is the one k with d_k <= rel < d_k+1; K
+            // means beyond the last layer; NaN and depths in front reach none.
+            const float rel = (depth - s.z0) / span_of(s);
+            int k = 0;
+            for (int i = 1; i <= K; ++i) k += int(rel >= relative_boundaries[std::size_t(i)]);
+            if constexpr (Beyond == beyond_last_layer::ignore) return k == K ? -1 : k;
+            else return std::min(k, K - 1);
+        } else {
+            const auto p = locate(s, depth);
+            if (p.index < 0) return 0;
+            if (p.index >= K) return Beyond == beyond_last_layer::ignore ? -1 : K - 1;
+            return p.index;
+        }
     }
     layer_position locate(const texel_state& s, float depth) const noexcept {
         const float rel = (depth - s.z0) / span_of(s);
@@ -96,8 +116,8 @@ public:
         float estimate; // closed form of the layer, settled against the boundaries below
         if constexpr (Sizes == layer_sizes::linear) estimate = (std::sqrt(1.0f + 4.0f * rel * float(K * (K + 1))) - 1.0f) * 0.5f;
         else estimate = rel * float(K);
-        const int k = detail::settle_layer(estimate, K - 1, rel, relative_boundary);
-        return detail::position_in(k, rel, relative_boundary(k), relative_boundary(k + 1));
+        const int k = detail::settle_layer(estimate, K - 1, rel, [](int i) { return relative_boundaries[std::size_t(i)]; });
+        return detail::position_in(k, rel, relative_boundaries[std::size_t(k)], relative_boundaries[std::size_t(k + 1)]);
     }
     static constexpr std::size_t global_bytes() noexcept { return sizeof(float); }
     /// d_K in linear depth.

@@ -52,7 +52,8 @@ public:
         near_ = e.nearest;
         far_ = detail::just_above(e.furthest);
     }
-    void prepare_texel(std::span<const fragment>, texel_state&) const noexcept {}
+    template <class Fragment>
+    void prepare_texel(std::span<const Fragment>, texel_state&) const noexcept {}
 
     /// Depth of map i, i in [0, N] (D_0 .. D_N).
     float boundary(const texel_state&, int i) const noexcept {

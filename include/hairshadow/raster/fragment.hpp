@@ -2,6 +2,7 @@
 /// @file
 /// Light-space fragments and the per-texel buffer that holds them.
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -16,6 +17,22 @@ struct fragment {
     float alpha;
     friend bool operator==(const fragment&, const fragment&) = default;
 };
+
+/// A fragment's optical depth b = -ln(1 - alpha): what it adds to the optical depth behind it. Every
+/// method sums it from this one function, so a fragment's b is the same in every build path.
+inline float optical_depth_of(float alpha) noexcept { return -std::log1p(-alpha); }
+
+/// A fragment whose optical depth is already known: what the tiled build keeps per fragment, having
+/// computed b once per segment wherever the segment's alpha is constant.
+struct optical_fragment {
+    float depth;
+    float optical_depth; ///< optical_depth_of(alpha)
+    friend bool operator==(const optical_fragment&, const optical_fragment&) = default;
+};
+
+/// The optical depth of either kind of fragment; the policies read fragments through this.
+inline float fragment_optical_depth(const fragment& f) noexcept { return optical_depth_of(f.alpha); }
+inline float fragment_optical_depth(const optical_fragment& f) noexcept { return f.optical_depth; }
 
 /// Every texel's fragments, stored texel after texel (row-major, y then x). Within a texel, fragments
 /// keep the order of the segments that produced them, whatever the thread count.

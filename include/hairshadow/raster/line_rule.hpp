@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <cstdlib>
+#include <limits>
 
 namespace hairshadow {
 
@@ -94,6 +95,65 @@ HAIRSHADOW_ALWAYS_INLINE inline void rasterize_line(const fixed_point& a, const 
     const std::int64_t a_major = x_major ? ax : ay;
     if (inside_diamond(a, ax, ay) && (a_major < first || a_major > last) && !inside_diamond(b, ax, ay) && clip.contains(ax, ay))
         emit(int(ax), int(ay));
+}
+
+} // namespace hairshadow
+
+namespace hairshadow {
+
+/// The fragments of rasterize_line, in the same order, walked for speed: the tiled build calls it for
+/// every segment of every tile. Each texel centre on the segment's major axis inside `clip` is passed
+/// to emit(x, y, keep), with `keep` false where rasterize_line makes no fragment (the minor coordinate
+/// outside the clip, or the end's own diamond), so that the caller can store every candidate and
+/// advance by `keep`, with no branch to mispredict; then the start fragment, if there is one, with
+/// keep true. No division runs per texel, and only one per call. Coordinates as for rasterize_line.
+template <class Emit>
+HAIRSHADOW_ALWAYS_INLINE inline void walk_line(const fixed_point& a, const fixed_point& b, const texel_rect& clip, Emit&& emit) {
+    using detail::ceil_div;
+    using detail::floor_div;
+    using detail::inside_diamond;
+    constexpr std::int64_t S = subpixel_scale, H = subpixel_scale / 2;
+    const std::int64_t dx = b.x - a.x, dy = b.y - a.y;
+    if (dx == 0 && dy == 0) return;
+    const bool x_major = std::llabs(dx) >= std::llabs(dy);
+    const std::int64_t major_a = x_major ? a.x : a.y, major_b = x_major ? b.x : b.y;
+    const std::int64_t d_major = x_major ? dx : dy, d_minor = x_major ? dy : dx;
+    const std::int64_t minor_a = x_major ? a.y : a.x;
+    const std::int64_t lo_end = d_major > 0 ? major_a : major_b, hi_end = d_major > 0 ? major_b : major_a;
+    const std::int64_t first = ceil_div(lo_end - H, S), last = ceil_div(hi_end - H, S) - 1;
+    const std::int64_t clip_lo = x_major ? clip.x0 : clip.y0, clip_hi = x_major ? clip.x1 : clip.y1;
+    const std::int64_t minor_lo = x_major ? clip.y0 : clip.x0, minor_span = (x_major ? clip.y1 : clip.x1) - minor_lo;
+    const std::int64_t denom = (d_major > 0 ? d_major : -d_major) * S;
+    const std::int64_t sign = d_major > 0 ? 1 : -1;
+    const std::int64_t tie = (!x_major || dy == 0 || (dx > 0) != (dy > 0)) ? 1 : 0;
+    // The one texel whose diamond holds the end, if any (the open diamonds are disjoint, and the
+    // boundary rule gives a shared point to one of them): it makes no fragment.
+    std::int64_t end_major = std::numeric_limits<std::int64_t>::min(), end_minor = 0;
+    for (const std::int64_t cx : {floor_div(b.x - 1, S), floor_div(b.x, S)})
+        for (const std::int64_t cy : {floor_div(b.y - 1, S), floor_div(b.y, S)})
+            if (inside_diamond(b, cx, cy)) end_major = x_major ? cx : cy, end_minor = x_major ? cy : cx;
+    const std::int64_t m_begin = std::max(first, clip_lo), m_end = std::min(last, clip_hi - 1);
+    if (m_begin <= m_end) {
+        const std::int64_t num0 = sign * (minor_a * d_major + (m_begin * S + H - major_a) * d_minor);
+        std::int64_t n = floor_div(num0, denom), rem = num0 - n * denom;
+        // |d_minor| <= |d_major|: the step is within [-denom, denom], so its quotient needs no division.
+        const std::int64_t step = sign * d_minor * S;
+        const std::int64_t step_q = step == denom ? 1 : (step < 0 ? -1 : 0);
+        const std::int64_t step_r = step - step_q * denom;
+        for (std::int64_t m = m_begin; m <= m_end; ++m) {
+            const std::int64_t minor = n - (tie & std::int64_t(rem == 0));
+            const bool keep = std::uint64_t(minor - minor_lo) < std::uint64_t(minor_span) && !(m == end_major && minor == end_minor);
+            emit(int(x_major ? m : minor), int(x_major ? minor : m), keep);
+            rem += step_r;
+            const std::int64_t carry = rem >= denom;
+            rem -= carry * denom;
+            n += step_q + carry;
+        }
+    }
+    const std::int64_t ax = floor_div(a.x - 1, S), ay = floor_div(a.y - 1, S);
+    const std::int64_t a_major = x_major ? ax : ay;
+    if (inside_diamond(a, ax, ay) && (a_major < first || a_major > last) && !inside_diamond(b, ax, ay) && clip.contains(ax, ay))
+        emit(int(ax), int(ay), true);
 }
 
 } // namespace hairshadow

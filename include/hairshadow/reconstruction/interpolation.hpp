@@ -5,12 +5,14 @@
 /// falls in (Kim & Neumann 2001 section 2; Yuksel & Keyser 2008 section 3; Mertens et al. 2004 section
 /// 3.2: piecewise-constant density, piecewise-linear optical depth).
 
+#include <hairshadow/accumulation/float_accumulation.hpp>
 #include <hairshadow/placement/layer_position.hpp>
 
 #include <array>
 #include <cmath>
 #include <span>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 namespace hairshadow {
@@ -32,14 +34,25 @@ struct interpolation {
     };
 
     /// Sums the texel's fragments into its layers.
-    template <class Placement, class Accumulation>
-    static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const fragment> fragments,
+    template <class Placement, class Accumulation, class Fragment>
+    static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const Fragment> fragments,
                       storage<Placement, Accumulation>& out) {
         constexpr int L = Placement::layer_count;
         std::array<typename Accumulation::sum_type, std::size_t(L)> sums{};
-        for (const auto& f : fragments) {
-            const int k = placement.assign(state, f.depth);
-            if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], -std::log1p(-f.alpha));
+        if constexpr (std::is_same_v<Accumulation, float_accumulation> && L <= 16) {
+            // Every layer's sum takes b or +0 for every fragment: the same sums, bit for bit (x + 0 == x
+            // for the sums, which are never -0), without a store and reload of one layer's sum per
+            // fragment; the layers' adds are independent and vectorise.
+            for (const auto& f : fragments) {
+                const int k = placement.assign(state, f.depth);
+                const float b = fragment_optical_depth(f);
+                for (int j = 0; j < L; ++j) sums[std::size_t(j)] += detail::keep_if(k == j, b);
+            }
+        } else {
+            for (const auto& f : fragments) {
+                const int k = placement.assign(state, f.depth);
+                if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], fragment_optical_depth(f));
+            }
         }
         typename Accumulation::sum_type running{};
         for (std::size_t k = 0; k < std::size_t(L); ++k) {

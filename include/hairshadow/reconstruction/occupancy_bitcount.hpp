@@ -7,6 +7,7 @@
 /// fragment counts times a constant shadow weight; with per-fragment alpha we sum each fragment's
 /// optical depth b = -ln(1 - alpha), which is the same when every alpha is equal.
 
+#include <hairshadow/accumulation/float_accumulation.hpp>
 #include <hairshadow/placement/layer_position.hpp>
 
 #include <array>
@@ -15,6 +16,7 @@
 #include <cstdint>
 #include <span>
 #include <string_view>
+#include <type_traits>
 
 namespace hairshadow {
 
@@ -37,16 +39,28 @@ struct occupancy_bitcount {
         std::array<typename Accumulation::value_type, std::size_t(Slabs)> slabs{};
     };
 
-    template <class Placement, class Accumulation>
-    static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const fragment> fragments,
+    template <class Placement, class Accumulation, class Fragment>
+    static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const Fragment> fragments,
                       storage<Placement, Accumulation>& out) {
         constexpr int per_slab = Placement::layer_count / Slabs;
         std::array<typename Accumulation::sum_type, std::size_t(Slabs)> sums{};
-        for (const auto& f : fragments) {
-            const int k = placement.assign(state, f.depth);
-            if (k < 0) continue;
-            out.bits[std::size_t(k / 32)] |= std::uint32_t(1) << (k % 32);
-            sums[std::size_t(k / per_slab)] = Accumulation::add(sums[std::size_t(k / per_slab)], -std::log1p(-f.alpha));
+        if constexpr (std::is_same_v<Accumulation, float_accumulation> && Slabs <= 16) {
+            // As interpolation::build: every slab's sum takes b or +0, the same sums bit for bit.
+            for (const auto& f : fragments) {
+                const int k = placement.assign(state, f.depth);
+                if (k < 0) continue;
+                out.bits[std::size_t(k / 32)] |= std::uint32_t(1) << (k % 32);
+                const float b = fragment_optical_depth(f);
+                const int slab = k / per_slab;
+                for (int j = 0; j < Slabs; ++j) sums[std::size_t(j)] += detail::keep_if(slab == j, b);
+            }
+        } else {
+            for (const auto& f : fragments) {
+                const int k = placement.assign(state, f.depth);
+                if (k < 0) continue;
+                out.bits[std::size_t(k / 32)] |= std::uint32_t(1) << (k % 32);
+                sums[std::size_t(k / per_slab)] = Accumulation::add(sums[std::size_t(k / per_slab)], fragment_optical_depth(f));
+            }
         }
         for (std::size_t i = 0; i < std::size_t(Slabs); ++i) out.slabs[i] = Accumulation::store(sums[i]);
     }

@@ -1,0 +1,91 @@
+#pragma once
+/// @file
+/// The tiled build: every method's maps built tile by tile straight from the model, with no buffer of
+/// the whole map's fragments. Segments are projected and binned once (segment_bins); then each tile,
+/// in parallel, gathers its fragments into a per-thread store that stays in cache, and every texel of
+/// the tile is built from its own fragments, in segment order, exactly as from a fragment_buffer.
+
+#include <hairshadow/core/parallel.hpp>
+#include <hairshadow/raster/segment_bins.hpp>
+#include <hairshadow/raster/tile_fragments.hpp>
+
+#include <memory>
+#include <vector>
+
+namespace hairshadow::detail {
+
+/// What the tiled build keeps from one build to the next: the binned segments and one tile store per
+/// thread. A renderer that rebuilds its maps every frame allocates nothing after the first.
+struct tiled_workspace {
+    segment_bins bins;
+    std::vector<tile_fragments> tiles;
+    std::vector<std::size_t> fragments; ///< per thread, in the last build
+
+    std::size_t memory_bytes() const noexcept {
+        std::size_t bytes = bins.memory_bytes();
+        for (const auto& t : tiles) bytes += t.memory_bytes();
+        return bytes;
+    }
+};
+
+/// Scratch memory owned by an object but not part of its value: copies and moves of the owner start
+/// without it, and it is made at first use.
+template <class T>
+class scratch {
+public:
+    scratch() = default;
+    scratch(const scratch&) noexcept {}
+    scratch& operator=(const scratch&) noexcept { return *this; }
+    T& get() {
+        if (!value_) value_ = std::make_unique<T>();
+        return *value_;
+    }
+    const T* peek() const noexcept { return value_.get(); }
+
+private:
+    std::unique_ptr<T> value_;
+};
+
+/// Calls build_texel(x, y, fragments) for every texel of the map that w.bins was prepared for (so the
+/// whole-map pre-pass, w.bins.extent(), is known before), tile by tile in parallel (the tiles with the most segments first), with the texel's
+/// optical_fragments in segment order (empty where no fragment falls). Each texel is visited once,
+/// from one thread, so build_texel may write the texel's own output without locks.
+/// Returns the number of fragments.
+template <class BuildTexel>
+std::size_t build_tiles(tiled_workspace& w, BuildTexel&& build_texel) {
+    const auto& order = w.bins.tiles_by_load();
+    const execution& exec = w.bins.options().exec;
+    const instruction_set instructions = resolve(w.bins.options().instructions);
+    const unsigned slots = parallel_slots(order.size(), exec);
+    w.tiles.resize(slots);
+    w.fragments.assign(slots, 0);
+    parallel_for_slots(order.size(), exec, [&](unsigned slot, std::size_t i) {
+        tile_fragments& tile = w.tiles[slot];
+        tile.gather(w.bins, order[i], instructions);
+        w.fragments[slot] += tile.size();
+        const texel_rect r = tile.rect();
+        for (int y = r.y0; y < r.y1; ++y)
+            for (int x = r.x0; x < r.x1; ++x) build_texel(x, y, tile.texel(x, y));
+    });
+    std::size_t total = 0;
+    for (const std::size_t n : w.fragments) total += n;
+    return total;
+}
+
+} // namespace hairshadow::detail
+
+namespace hairshadow {
+
+/// The number of fragments `model` makes in `light`'s map: what a fragment_buffer would hold, counted
+/// tile by tile without one.
+inline std::size_t count_fragments(const hair_model& model, const light_space& light, const raster_options& options = {}) {
+    detail::tiled_workspace w;
+    w.bins.prepare(model, light, options);
+    return detail::build_tiles(w, [](int, int, std::span<const optical_fragment>) {});
+}
+
+} // namespace hairshadow
+
+namespace hairshadow::detail {
+
+} // namespace hairshadow::detail

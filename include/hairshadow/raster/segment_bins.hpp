@@ -1,0 +1,267 @@
+#pragma once
+/// @file
+/// The first two steps of every CPU build: each segment of a model projected and snapped once, then
+/// binned into the square tiles of the light's map that it may touch. Every tile's list is in segment
+/// order, whatever the thread count, so a texel's fragments always come in segment order.
+
+#include <hairshadow/config.hpp>
+#include <hairshadow/core/error.hpp>
+#include <hairshadow/core/hair_model.hpp>
+#include <hairshadow/core/light.hpp>
+#include <hairshadow/core/parallel.hpp>
+#include <hairshadow/placement/layer_position.hpp>
+#include <hairshadow/raster/prepared_segment.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <span>
+#include <vector>
+
+namespace hairshadow::detail {
+
+/// A model's segments prepared for one light and binned into tiles; keeps its memory between calls.
+class segment_bins {
+public:
+    /// Projects, snaps and bins every segment of `model` for `light`'s map, in tiles of
+    /// options.tile_size texels. Throws argument_error for bad options.
+    void prepare(const hair_model& model, const light_space& light, const raster_options& options) {
+        options.check();
+        opt_ = options;
+        light_ = light;
+        project(model, light);
+        bin(light.resolution());
+    }
+
+    int resolution() const noexcept { return res_; }
+    const raster_options& options() const noexcept { return opt_; }
+    const light_space& light() const noexcept { return light_; }
+    std::size_t segment_count() const noexcept { return segments_.size(); }
+    std::size_t tile_count() const noexcept { return std::size_t(tiles_x_) * std::size_t(tiles_x_); }
+    /// Segment-tile pairs: how many times the tile passes set up a segment.
+    std::size_t pair_count() const noexcept { return binned_.size(); }
+    /// Tiles from the most segments to the fewest: handing out the largest first balances threads.
+    const std::vector<std::uint32_t>& tiles_by_load() const noexcept { return by_load_; }
+    std::size_t tile_load(std::size_t t) const noexcept { return std::size_t(tile_begin_[t + 1] - tile_begin_[t]); }
+
+    /// The whole-map pre-pass: nearest and furthest end of every segment that reaches the map. Each
+    /// fragment's depth lies between its segment's end depths, so this range holds every fragment's;
+    /// it can be wider, by the parts of segments that leave the map or cross no texel centre.
+    depth_extent extent() const noexcept { return extent_; }
+
+    texel_rect tile_rect(std::size_t t) const noexcept {
+        const int tile = opt_.tile_size;
+        const int tx = int(t % std::size_t(tiles_x_)), ty = int(t / std::size_t(tiles_x_));
+        return {tx * tile, ty * tile, std::min(res_, (tx + 1) * tile), std::min(res_, (ty + 1) * tile)};
+    }
+
+    /// The segments binned to tile t, in segment order.
+    std::span<const std::uint32_t> tile_segments(std::size_t t) const noexcept {
+        return {binned_.data() + tile_begin_[t], std::size_t(tile_begin_[t + 1] - tile_begin_[t])};
+    }
+    const prepared_segment& segment(std::size_t i) const noexcept { return segments_[i]; }
+    /// Every segment has the same thickness and opacity at both ends (uniform_attributes()).
+    bool uniform_attributes() const noexcept { return attributes_.empty(); }
+    /// A segment of the same alpha at every fragment: constant attributes (uniform_attributes()) and a
+    /// footprint that does not change with depth, or a fixed alpha. Then its alpha is this shader's.
+    segment_shader uniform_shader() const noexcept { return {light_, opt_, prepared_segment{0, 0, 1, 0, 0.0f, 0.0f, 1.0f, 1.0f}, uniform_}; }
+
+    /// The shading of segment i's fragments.
+    segment_shader shader(std::size_t i) const noexcept {
+        return {light_, opt_, segments_[i], attributes_.empty() ? uniform_ : attributes_[i]};
+    }
+
+    /// Calls visit(shader) for each of tile t's segments, in segment order.
+    template <class Visit>
+    HAIRSHADOW_ALWAYS_INLINE void for_each_segment(std::size_t t, Visit&& visit) const {
+        constexpr std::uint64_t lookahead = 8; // a tile's segments lie scattered in memory: fetch ahead
+        const std::uint64_t end = tile_begin_[t + 1];
+        for (std::uint64_t i = tile_begin_[t]; i < end; ++i) {
+#if defined(__GNUC__)
+            if (i + lookahead < end) __builtin_prefetch(&segments_[binned_[i + lookahead]]);
+#endif
+            visit(shader(binned_[i]));
+        }
+    }
+
+    /// Calls visit(shader, x, y, t, weight) for every fragment of tile t's segments, in segment order;
+    /// thin lines pass t = -1 (shader.parameter(x, y) gives it, when needed) and weight 1.
+    template <class Visit>
+    HAIRSHADOW_ALWAYS_INLINE void for_each_fragment(std::size_t t, Visit&& visit) const {
+        const texel_rect rect = tile_rect(t);
+        for_each_segment(t, [&](const segment_shader& shading) HAIRSHADOW_ALWAYS_INLINE {
+            const prepared_segment& s = shading.segment();
+            if (opt_.wide_line_width > 0.0f)
+                rasterize_wide_line(s, opt_.wide_line_width, rect, [&](int x, int y, float param, float weight) { visit(shading, x, y, param, weight); });
+            else
+                rasterize_line(s.a(), s.b(), rect, [&](int x, int y) HAIRSHADOW_ALWAYS_INLINE { visit(shading, x, y, -1.0f, 1.0f); });
+        });
+    }
+
+    /// Bytes of working memory held.
+    std::size_t memory_bytes() const noexcept {
+        return segments_.capacity() * sizeof(prepared_segment) + attributes_.capacity() * sizeof(segment_attributes) +
+               first_segment_.capacity() * sizeof(std::size_t) + (cursor_.capacity() + tile_begin_.capacity()) * sizeof(std::uint64_t) +
+               (binned_.capacity() + by_load_.capacity()) * sizeof(std::uint32_t) + chunk_extent_.capacity() * sizeof(depth_extent);
+    }
+
+private:
+    static constexpr std::size_t chunks = 64; // fixed, so that binning does not depend on the thread count
+
+    // 1. Project and snap every segment, strand by strand. Per-segment thickness and opacity are kept
+    // only when the model has them per point; otherwise every segment shares one pair.
+    void project(const hair_model& model, const light_space& light) {
+        first_segment_.assign(model.strand_count() + 1, 0);
+        for (std::size_t s = 0; s < model.strand_count(); ++s)
+            first_segment_[s + 1] = first_segment_[s] + (model.strand_size(s) > 1 ? model.strand_size(s) - 1 : 0);
+        const std::size_t count = first_segment_.back();
+        if (count > std::numeric_limits<std::uint32_t>::max()) throw argument_error("more than 2^32 segments");
+        segments_.resize(count);
+        const bool per_point = !model.thickness.empty() || !model.transparency.empty();
+        const float t = model.default_thickness, o = 1.0f - model.default_transparency;
+        uniform_ = {t, t, o, o};
+        attributes_.resize(per_point ? count : 0);
+        // Raw pointers: stores through a member vector would make the compiler reload its data pointer.
+        prepared_segment* out = segments_.data();
+        segment_attributes* out_attributes = per_point ? attributes_.data() : nullptr;
+        const std::size_t* first = first_segment_.data();
+        const segment_attributes uniform = uniform_;
+        parallel_for(model.strand_count(), opt_.exec, [&model, &light, out, out_attributes, first, uniform](std::size_t s) {
+            const std::size_t p0 = model.strand_offsets[s], n = model.strand_size(s);
+            if (n < 2) return;
+            const glm::vec3* points = model.points.data() + p0;
+            projected_point from = project_point(light, points[0]);
+            for (std::size_t i = 0; i + 1 < n; ++i) {
+                const projected_point to = project_point(light, points[i + 1]); // each point projected once
+                segment_attributes at = uniform;
+                const std::size_t p = p0 + i;
+                if (out_attributes)
+                    at = {model.thickness_at(p), model.thickness_at(p + 1), 1.0f - model.transparency_at(p), 1.0f - model.transparency_at(p + 1)};
+                prepare_segment(light, points[i], points[i + 1], from, to, at, out[first[s] + i]);
+                if (out_attributes) out_attributes[first[s] + i] = at;
+                from = to;
+            }
+        }, 64);
+    }
+
+    // 2. Bin segments into tiles. Each of a fixed number of chunks of the segment range counts, then
+    // writes, its segments per tile, so every tile's list is in segment order for any thread count.
+    // The count pass also takes the depth extent of the segments that reach the map.
+    void bin(int res) {
+        res_ = res;
+        tiles_x_ = (res + opt_.tile_size - 1) / opt_.tile_size;
+        tile_magic_ = (std::uint64_t(1) << 32) / std::uint64_t(opt_.tile_size) + 1;
+        static_assert(HAIRSHADOW_MAX_RESOLUTION <= (1 << 16), "tile_of needs texel coordinates below 2^16");
+        const std::size_t tiles = tile_count();
+        const std::size_t segment_count = segments_.size();
+        const std::size_t chunk_size = (segment_count + chunks - 1) / chunks;
+        // Texels around the segment that it may touch, in sub-pixel units.
+        const auto reach = std::int64_t(std::ceil((1.0 + 0.5 * double(opt_.wide_line_width)) * double(subpixel_scale)));
+        auto for_each_tile_of_chunk = [&](std::size_t c, auto&& visit) {
+            const std::size_t begin = c * chunk_size, end = std::min(segment_count, begin + chunk_size);
+            for (std::size_t seg = begin; seg < end; ++seg) {
+                const auto& s = segments_[seg];
+                if (s.empty()) continue;
+                visit_tiles(s, reach, [&](std::size_t t) HAIRSHADOW_ALWAYS_INLINE { visit(seg, t); });
+            }
+        };
+        cursor_.assign(chunks * tiles, 0);
+        chunk_extent_.assign(chunks, depth_extent{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()});
+        parallel_for(chunks, opt_.exec, [&](std::size_t c) {
+            std::uint64_t* counts = cursor_.data() + c * tiles;
+            depth_extent e = chunk_extent_[c];
+            std::size_t last = std::size_t(-1);
+            for_each_tile_of_chunk(c, [&](std::size_t seg, std::size_t t) HAIRSHADOW_ALWAYS_INLINE {
+                ++counts[t];
+                if (seg != last) { // the segment reaches the map
+                    last = seg;
+                    const auto& s = segments_[seg];
+                    e.nearest = std::min({e.nearest, s.depth_a, s.depth_b});
+                    e.furthest = std::max({e.furthest, s.depth_a, s.depth_b});
+                }
+            });
+            chunk_extent_[c] = e;
+        });
+        extent_ = {std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
+        for (const auto& e : chunk_extent_) extent_.nearest = std::min(extent_.nearest, e.nearest), extent_.furthest = std::max(extent_.furthest, e.furthest);
+        if (!(extent_.nearest <= extent_.furthest)) extent_ = {}; // nothing reaches the map: {0, 0}, as extent_of an empty buffer
+        tile_begin_.resize(tiles + 1);
+        std::uint64_t total = 0;
+        for (std::size_t t = 0; t < tiles; ++t) {
+            tile_begin_[t] = total;
+            for (std::size_t c = 0; c < chunks; ++c) {
+                const std::uint64_t n = cursor_[c * tiles + t];
+                cursor_[c * tiles + t] = total;
+                total += n;
+            }
+        }
+        tile_begin_[tiles] = total;
+        if (total > std::numeric_limits<std::uint32_t>::max()) throw argument_error("more than 2^32 segment-tile pairs");
+        binned_.resize(total);
+        parallel_for(chunks, opt_.exec, [&](std::size_t c) {
+            std::uint64_t* cursor = cursor_.data() + c * tiles;
+            std::uint32_t* binned = binned_.data();
+            for_each_tile_of_chunk(c, [&](std::size_t seg, std::size_t t) HAIRSHADOW_ALWAYS_INLINE { binned[cursor[t]++] = std::uint32_t(seg); });
+        });
+        by_load_.resize(tiles);
+        std::iota(by_load_.begin(), by_load_.end(), 0u);
+        std::stable_sort(by_load_.begin(), by_load_.end(), [&](std::uint32_t a, std::uint32_t b) { return tile_load(a) > tile_load(b); });
+    }
+
+    /// texel / tile_size for a texel of the map, by a multiplication: q = (texel m) >> 32 with
+    /// m = floor(2^32 / tile) + 1 is exact for texel < 2^16 and tile <= 2^10 (the error, texel (m tile -
+    /// 2^32) / (tile 2^32) < 2^-16, stays below the gap 1 / tile to the next integer). A division per
+    /// end per segment cost a fifth of the binning.
+    HAIRSHADOW_ALWAYS_INLINE int tile_of(std::int64_t texel) const noexcept { return int((std::uint64_t(texel) * tile_magic_) >> 32); }
+
+    /// Calls visit(tile) for each tile within `reach` (sub-pixel units) of the segment; a long diagonal
+    /// segment visits O(its length) tiles rather than its whole bounding box.
+    template <class Visit>
+    HAIRSHADOW_ALWAYS_INLINE void visit_tiles(const prepared_segment& s, std::int64_t reach, Visit&& visit) const {
+        // Texel bounds of the segment plus its reach; arithmetic shifts floor negative values.
+        const std::int64_t lo_x = (std::min<std::int64_t>(s.ax, s.bx) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        const std::int64_t hi_x = (std::max<std::int64_t>(s.ax, s.bx) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        const std::int64_t lo_y = (std::min<std::int64_t>(s.ay, s.by) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        const std::int64_t hi_y = (std::max<std::int64_t>(s.ay, s.by) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        if (hi_x < 0 || hi_y < 0 || lo_x >= res_ || lo_y >= res_) return;
+        const int tile = opt_.tile_size;
+        const int tx0 = tile_of(std::max<std::int64_t>(lo_x, 0)), tx1 = tile_of(std::min<std::int64_t>(hi_x, res_ - 1));
+        const int ty0 = tile_of(std::max<std::int64_t>(lo_y, 0)), ty1 = tile_of(std::min<std::int64_t>(hi_y, res_ - 1));
+        if (ty0 == ty1 || tx0 == tx1) { // most hair segments: one row or column of tiles, as the box says
+            for (int ty = ty0; ty <= ty1; ++ty)
+                for (int tx = tx0; tx <= tx1; ++tx) visit(std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx));
+            return;
+        }
+        // A segment across several rows and columns: per row of tiles, only the columns that the
+        // segment's piece in that row (widened by reach) spans.
+        const double scale = 1.0 / double(subpixel_scale), r = double(reach) * scale;
+        const double ax = double(s.ax) * scale, ay = double(s.ay) * scale, bx = double(s.bx) * scale, by = double(s.by) * scale;
+        for (int ty = ty0; ty <= ty1; ++ty) {
+            const double band_lo = double(ty * tile) - r, band_hi = double((ty + 1) * tile) + r;
+            const double u = (band_lo - ay) / (by - ay), v = (band_hi - ay) / (by - ay); // by != ay: the box spans rows
+            const double s0 = std::max(0.0, std::min(u, v)), s1 = std::min(1.0, std::max(u, v));
+            if (s0 > s1) continue;
+            const double x0 = ax + s0 * (bx - ax), x1 = ax + s1 * (bx - ax);
+            const int c0 = std::max(tx0, int(std::floor((std::min(x0, x1) - r) / tile)));
+            const int c1 = std::min(tx1, int(std::floor((std::max(x0, x1) + r) / tile)));
+            for (int tx = c0; tx <= c1; ++tx) visit(std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx));
+        }
+    }
+
+    raster_options opt_;
+    light_space light_;
+    int res_ = 0, tiles_x_ = 0;
+    std::uint64_t tile_magic_ = 0;
+    std::vector<prepared_segment> segments_;
+    std::vector<segment_attributes> attributes_; ///< per segment, only when the model has per-point thickness or transparency
+    segment_attributes uniform_{};
+    std::vector<std::size_t> first_segment_;
+    std::vector<std::uint64_t> cursor_, tile_begin_;
+    std::vector<std::uint32_t> binned_, by_load_;
+    std::vector<depth_extent> chunk_extent_;
+    depth_extent extent_{};
+};
+
+} // namespace hairshadow::detail

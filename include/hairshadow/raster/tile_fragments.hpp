@@ -1,0 +1,193 @@
+#pragma once
+/// @file
+/// One tile's fragments, grouped texel by texel: the working set of the tiled build. The tile's
+/// segments are walked once, by the line rule, into a per-thread store; then the fragments are
+/// grouped by texel, each texel's in segment order, the order a fragment_buffer keeps. The walk runs
+/// in AVX-512 where the CPU has it (raster/tile_walk_avx512.hpp), else in scalar C++; both give the
+/// same fragments, bit for bit.
+
+#include <hairshadow/config.hpp>
+#include <hairshadow/core/error.hpp>
+#include <hairshadow/raster/fragment.hpp>
+#include <hairshadow/raster/line_rule.hpp>
+#include <hairshadow/raster/segment_bins.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(HAIRSHADOW_NO_AVX512)
+#define HAIRSHADOW_AVX512_WALK 1
+// GCC 12's intrinsics make their "undefined" vectors by self-initialisation, which -Wuninitialized
+// reports wherever they inline (GCC bug 105593); the warning is located in the header, so it is
+// silenced there.
+#if defined(__clang__)
+#include <immintrin.h>
+#else
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <immintrin.h>
+#pragma GCC diagnostic pop
+#endif
+#else
+#define HAIRSHADOW_AVX512_WALK 0
+#endif
+
+namespace hairshadow {
+
+namespace detail {
+/// Does this CPU (and this compiler) run the AVX-512 walk?
+inline bool cpu_has_avx512() noexcept {
+#if HAIRSHADOW_AVX512_WALK
+    static const bool has = __builtin_cpu_supports("avx512f");
+    return has;
+#else
+    return false;
+#endif
+}
+} // namespace detail
+
+/// The instruction set `requested` resolves to on this CPU: automatic picks the best there is.
+/// Throws argument_error for avx512 where the CPU or the compiler has none.
+inline instruction_set resolve(instruction_set requested) {
+    if (requested == instruction_set::automatic) return detail::cpu_has_avx512() ? instruction_set::avx512 : instruction_set::scalar;
+    if (requested == instruction_set::avx512 && !detail::cpu_has_avx512())
+        throw argument_error("this CPU (or this build) has no AVX-512F for the tiled walk; use instruction_set::scalar or automatic");
+    return requested;
+}
+
+namespace detail {
+
+/// A tile's fragments with their optical depths, each texel's in segment order, so that sums over
+/// them match the fragment_buffer build bit for bit. One per thread; its memory is kept from tile to
+/// tile and from build to build.
+class tile_fragments {
+public:
+    /// Walks tile t's segments and groups their fragments by texel. `instructions` must be resolved.
+    void gather(const segment_bins& bins, std::size_t t, instruction_set instructions) {
+        rect_ = bins.tile_rect(t);
+        width_ = rect_.x1 - rect_.x0;
+        n_ = 0;
+        const bool vector = instructions == instruction_set::avx512;
+#if HAIRSHADOW_AVX512_WALK
+        if (vector && simd_tile(bins)) walk_avx512(bins, t);
+        else walk_scalar(bins, t);
+#else
+        (void)vector;
+        walk_scalar(bins, t);
+#endif
+        group();
+    }
+
+    const texel_rect& rect() const noexcept { return rect_; }
+    /// Fragments of the tile's texel (x, y), in map coordinates.
+    std::span<const optical_fragment> texel(int x, int y) const noexcept {
+        const std::size_t k = std::size_t(y - rect_.y0) * std::size_t(width_) + std::size_t(x - rect_.x0);
+        return {grouped_.data() + offsets_[k], std::size_t(offsets_[k + 1] - offsets_[k])};
+    }
+    /// Fragments of the last tile.
+    std::size_t size() const noexcept { return n_; }
+    std::size_t memory_bytes() const noexcept {
+        return (where_.capacity() + offsets_.capacity()) * sizeof(std::uint32_t) + (depth_.capacity() + optical_.capacity()) * sizeof(float) +
+               grouped_.capacity() * sizeof(optical_fragment);
+    }
+
+private:
+    /// Room for `extra` more candidates after the n_ kept so far.
+    void reserve(std::size_t extra) {
+        if (n_ + extra <= where_.size()) return;
+        const std::size_t size = std::max(2 * where_.size(), n_ + extra);
+        where_.resize(size);
+        depth_.resize(size);
+        optical_.resize(size);
+    }
+
+    /// The b of an alpha, remembered: segments of one model mostly share one alpha, and a log per
+    /// segment would cost more than its walk.
+    float optical_depth_cached(float alpha) noexcept {
+        if (alpha != last_alpha_) last_alpha_ = alpha, last_optical_ = optical_depth_of(alpha);
+        return last_optical_;
+    }
+
+    /// A candidate of the walk: stored at n_, kept (n_ advanced) when `kept`.
+    HAIRSHADOW_ALWAYS_INLINE void store(int x, int y, bool kept, float depth, float optical) noexcept {
+        where_[n_] = std::uint32_t((y - rect_.y0) * width_ + (x - rect_.x0));
+        depth_[n_] = depth;
+        optical_[n_] = optical;
+        n_ += kept;
+    }
+
+    /// One segment, in scalar C++: the same fragments as the fragment_buffer rasteriser.
+    HAIRSHADOW_ALWAYS_INLINE void walk_segment(const segment_shader& s, float wide) {
+        const prepared_segment& seg = s.segment();
+        if (wide > 0.0f) {
+            rasterize_wide_line(seg, wide, rect_, [&](int x, int y, float param, float weight) {
+                reserve(1);
+                const fragment f = s.shade(param, weight);
+                store(x, y, true, f.depth, optical_depth_of(f.alpha));
+            });
+            return;
+        }
+        // A thin line makes at most one candidate per texel along its major axis in the tile, plus one
+        // where it starts.
+        reserve(std::size_t(std::max(width_, rect_.y1 - rect_.y0)) + 1);
+        if (s.constant_alpha()) { // b once: the same value shade() gives every fragment
+            const float b = optical_depth_cached(s.shade(0.0f).alpha);
+            walk_line(seg.a(), seg.b(), rect_, [&](int x, int y, bool kept) HAIRSHADOW_ALWAYS_INLINE { store(x, y, kept, s.depth(s.parameter(x, y)), b); });
+        } else {
+            walk_line(seg.a(), seg.b(), rect_, [&](int x, int y, bool kept) HAIRSHADOW_ALWAYS_INLINE {
+                const fragment f = s.shade(s.parameter(x, y));
+                store(x, y, kept, f.depth, kept ? optical_depth_of(f.alpha) : 0.0f);
+            });
+        }
+    }
+
+    void walk_scalar(const segment_bins& bins, std::size_t t) {
+        const float wide = bins.options().wide_line_width;
+        bins.for_each_segment(t, [&](const segment_shader& s) HAIRSHADOW_ALWAYS_INLINE { walk_segment(s, wide); });
+    }
+
+    /// Count, prefix sums and a stable scatter: texel k's fragments end in [offsets_[k], offsets_[k + 1]).
+    void group() {
+        const std::size_t texels = std::size_t(width_) * std::size_t(rect_.y1 - rect_.y0);
+        if (n_ > std::numeric_limits<std::uint32_t>::max()) throw argument_error("more than 2^32 fragments in one tile: use smaller tiles");
+        offsets_.assign(texels + 2, 0);
+        std::uint32_t* counts = offsets_.data() + 2;
+        const std::uint32_t* where = where_.data();
+        for (std::size_t i = 0; i < n_; ++i) ++counts[where[i]];
+        for (std::size_t k = 2; k < offsets_.size(); ++k) offsets_[k] += offsets_[k - 1];
+        if (grouped_.size() < n_) grouped_.resize(std::max(n_, where_.size()));
+        std::uint32_t* cursor = offsets_.data() + 1;
+        optical_fragment* grouped = grouped_.data();
+        const float* depth = depth_.data();
+        const float* optical = optical_.data();
+        for (std::size_t i = 0; i < n_; ++i) grouped[cursor[where[i]]++] = {depth[i], optical[i]};
+    }
+
+#if HAIRSHADOW_AVX512_WALK
+    /// The vector walk covers thin lines of one alpha (uniform attributes, a footprint constant in
+    /// depth); other tiles walk in scalar.
+    bool simd_tile(const segment_bins& bins) const noexcept {
+        return bins.options().wide_line_width == 0.0f && bins.uniform_attributes() && bins.uniform_shader().constant_alpha();
+    }
+    void walk_avx512(const segment_bins& bins, std::size_t t);
+#endif
+
+    texel_rect rect_{};
+    int width_ = 0;
+    std::size_t n_ = 0;
+    std::vector<std::uint32_t> where_, offsets_; ///< each candidate's texel in the tile; per texel counts, then offsets
+    std::vector<float> depth_, optical_;         ///< each candidate's depth and b
+    std::vector<optical_fragment> grouped_;
+    float last_alpha_ = -1.0f, last_optical_ = 0.0f;
+};
+
+} // namespace detail
+} // namespace hairshadow
+
+#if HAIRSHADOW_AVX512_WALK
+#include <hairshadow/raster/tile_walk_avx512.hpp>
+#endif

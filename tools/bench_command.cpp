@@ -1,0 +1,120 @@
+// `hairshadow bench`: full rebuilds of each method's maps from the model (rasterise and build), timed
+// on the CPU or on GL. Peak memory is the process's resident high-water mark (Linux VmHWM), reset
+// before each method, so it counts the model and everything the build holds.
+#include "bench_command.hpp"
+
+#include <hairshadow/methods/registry.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <optional>
+#include <string>
+
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
+namespace cli {
+namespace {
+
+using namespace hairshadow;
+
+double ms_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+/// A field of /proc/self/status in kB ("VmHWM", "VmRSS"), or nothing off Linux.
+std::optional<double> status_kib(const std::string& field) {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line))
+        if (line.rfind(field + ":", 0) == 0) return std::stod(line.substr(field.size() + 1));
+    return std::nullopt;
+}
+
+/// Starts a new high-water mark at the present resident size, having handed freed memory back
+/// first; false where the system cannot (then the peak is the whole run's).
+bool reset_peak() {
+#if defined(__GLIBC__)
+    malloc_trim(0);
+#endif
+    std::ofstream clear("/proc/self/clear_refs");
+    clear << "5";
+    clear.flush();
+    return clear.good();
+}
+
+struct row {
+    std::string method;
+    double cold = 0, median = 0, min = 0, max = 0;
+    std::size_t fragments = 0, map_bytes = 0;
+    std::optional<double> peak_mib;
+};
+
+} // namespace
+
+int run_bench(const hair_model& model, const light_space& light, const bench_options& o, gl_backend* gl) {
+    const auto now = [] { return std::chrono::steady_clock::now(); };
+    // GL counts no fragments: they are the CPU rule's, counted once, tile by tile.
+    const std::size_t gl_fragments = gl ? count_fragments(model, light, o.raster) : 0;
+    bool peak_known = true;
+    std::vector<row> rows;
+    for (const auto& spec : o.specs) {
+        std::fprintf(stderr, "  %s ...", spec.text.c_str());
+        std::fflush(stderr);
+        row r;
+        r.method = spec.text;
+        peak_known = reset_peak() && peak_known;
+        std::vector<double> times;
+        if (gl) {
+            // The first build compiles the driver's shader variants: it is the cold one.
+            const auto start = now();
+            gl->build(spec, light, o.raster); // builds twice
+            r.cold = ms_between(start, now());
+            for (int i = 0; i < o.repeat; ++i) times.push_back(gl->rebuild(light, o.raster));
+            r.map_bytes = gl->memory_bytes();
+            r.fragments = gl_fragments;
+        } else {
+            auto map = make_shadow_map(spec);
+            auto start = now();
+            map->build(model, light, o.raster);
+            r.cold = ms_between(start, now());
+            for (int i = 0; i < o.repeat; ++i) {
+                start = now();
+                map->build(model, light, o.raster);
+                times.push_back(ms_between(start, now()));
+            }
+            r.map_bytes = map->memory_bytes();
+            r.fragments = map->fragment_count();
+        }
+        if (const auto hwm = status_kib("VmHWM")) r.peak_mib = *hwm / 1024.0;
+        std::sort(times.begin(), times.end());
+        r.min = times.front();
+        r.max = times.back();
+        r.median = times.size() % 2 ? times[times.size() / 2] : 0.5 * (times[times.size() / 2 - 1] + times[times.size() / 2]);
+        std::fprintf(stderr, " %.1f ms\n", r.median);
+        rows.push_back(r);
+    }
+
+    std::printf("Model `%s` (%zu strands, %zu segments), light `%s`, %dx%d, %u threads, ", o.model_name.c_str(), model.strand_count(),
+                model.segment_count(), o.light_name.c_str(), light.resolution(), light.resolution(), o.raster.exec.resolved());
+    if (gl) std::printf("built on %s. ", gl->description().c_str());
+    else std::printf("built on the CPU, tile by tile (%s line walk). ", resolve(o.raster.instructions) == instruction_set::avx512 ? "AVX-512" : "scalar");
+    std::printf("A rebuild is a full build from the model (rasterise and build), the maps and working memory already in place; "
+                "the cold build is the first, which also allocates them%s. Times over %d rebuilds; peak memory is the process's resident "
+                "high-water mark while building%s.\n\n",
+                gl ? " and compiles the driver's shaders" : "", o.repeat, peak_known ? ", model included" : " (not resettable here: the whole run's)");
+    std::printf("| method | cold (ms) | median (ms) | min (ms) | max (ms) | fragments/s | maps (MiB) | peak memory (MiB) |\n");
+    std::printf("|---|---|---|---|---|---|---|---|\n");
+    for (const auto& r : rows) {
+        std::printf("| %s | %.1f | %.1f | %.1f | %.1f | %.0f M | %.1f | ", r.method.c_str(), r.cold, r.median, r.min, r.max,
+                    r.median > 0 ? double(r.fragments) / (r.median * 1e3) : 0.0, double(r.map_bytes) / 1048576.0);
+        if (r.peak_mib) std::printf("%.0f |\n", *r.peak_mib);
+        else std::printf("- |\n");
+    }
+    return 0;
+}
+
+} // namespace cli
