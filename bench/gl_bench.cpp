@@ -1,6 +1,7 @@
 // Map build time on GL under OSMesa (llvmpipe) beside the CPU kernels, in one run: for each method,
-// the GL passes (glFinish included) and the CPU's rasterisation plus build, on the Sintel model at
-// 512x512. Run: build/bench/hairshadow_gl_bench
+// the GL passes (glFinish included), the CPU's tiled build straight from the model, and the CPU's
+// older path (a reused rasterizer's fragment buffer, then the build), on the Sintel model at 512x512.
+// Run: build/bench/hairshadow_gl_bench
 #include <glad/gl.h>
 
 #include <hairshadow/gl.hpp>
@@ -50,14 +51,23 @@ void gl_build(benchmark::State& state) {
 template <class Method>
 void cpu_build(benchmark::State& state) {
     auto& s = sintel();
+    Method method;
+    method.build(s.model, s.light);
+    for (auto _ : state) method.build(s.model, s.light);
+}
+
+template <class Method>
+void cpu_buffer_build(benchmark::State& state) {
+    auto& s = sintel();
     rasterizer raster;
     Method method;
     method.build(raster(s.model, s.light), s.light);
     for (auto _ : state) method.build(raster(s.model, s.light), s.light);
 }
 
-#define HAIRSHADOW_BENCH_PAIR(NAME, METHOD, GLMAPS)                                                                   \
-    BENCHMARK_TEMPLATE(cpu_build, METHOD)->Name("cpu/" NAME)->Unit(benchmark::kMillisecond)->UseRealTime();       \
+#define HAIRSHADOW_BENCH_PAIR(NAME, METHOD, GLMAPS)                                                                                 \
+    BENCHMARK_TEMPLATE(cpu_build, METHOD)->Name("cpu_tiled/" NAME)->Unit(benchmark::kMillisecond)->UseRealTime();               \
+    BENCHMARK_TEMPLATE(cpu_buffer_build, METHOD)->Name("cpu_buffer/" NAME)->Unit(benchmark::kMillisecond)->UseRealTime();       \
     BENCHMARK_TEMPLATE(gl_build, GLMAPS)->Name("gl_osmesa/" NAME)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 using osm16 = opacity_shadow_maps<16>;

@@ -2557,7 +2557,7 @@ public:
         n_ = 0;
         const bool vector = instructions == instruction_set::avx512;
 #if HAIRSHADOW_AVX512_WALK
-        if (vector && simd_tile(bins)) walk_avx512(bins, t);
+        if (vector && simd_tile(bins)) walk_avx512(bins, t, optical_depth_cached(bins.uniform_shader().shade(0.0f).alpha));
         else walk_scalar(bins, t);
 #else
         (void)vector;
@@ -2574,6 +2574,15 @@ public:
     }
     /// Fragments of the last tile.
     std::size_t size() const noexcept { return n_; }
+    /// Fragments it holds without allocating.
+    std::size_t capacity() const noexcept { return std::min(where_.size(), grouped_.size()); }
+    /// Makes room for `fragments` fragments in tiles of `tile_texels` texels, so that tiles up to that
+    /// size allocate nothing.
+    void reserve(std::size_t fragments, std::size_t tile_texels) {
+        if (where_.size() < fragments) where_.resize(fragments), depth_.resize(fragments), optical_.resize(fragments);
+        if (grouped_.size() < fragments) grouped_.resize(fragments);
+        offsets_.reserve(tile_texels + 2);
+    }
     std::size_t memory_bytes() const noexcept {
         return (where_.capacity() + offsets_.capacity()) * sizeof(std::uint32_t) + (depth_.capacity() + optical_.capacity()) * sizeof(float) +
                grouped_.capacity() * sizeof(optical_fragment);
@@ -2581,7 +2590,7 @@ public:
 
 private:
     /// Room for `extra` more candidates after the n_ kept so far.
-    void reserve(std::size_t extra) {
+    void make_room(std::size_t extra) {
         if (n_ + extra <= where_.size()) return;
         const std::size_t size = std::max(2 * where_.size(), n_ + extra);
         where_.resize(size);
@@ -2609,7 +2618,7 @@ private:
         const prepared_segment& seg = s.segment();
         if (wide > 0.0f) {
             rasterize_wide_line(seg, wide, rect_, [&](int x, int y, float param, float weight) {
-                reserve(1);
+                make_room(1);
                 const fragment f = s.shade(param, weight);
                 store(x, y, true, f.depth, optical_depth_of(f.alpha));
             });
@@ -2617,7 +2626,7 @@ private:
         }
         // A thin line makes at most one candidate per texel along its major axis in the tile, plus one
         // where it starts.
-        reserve(std::size_t(std::max(width_, rect_.y1 - rect_.y0)) + 1);
+        make_room(std::size_t(std::max(width_, rect_.y1 - rect_.y0)) + 1);
         if (s.constant_alpha()) { // b once: the same value shade() gives every fragment
             const float b = optical_depth_cached(s.shade(0.0f).alpha);
             walk_line(seg.a(), seg.b(), rect_, [&](int x, int y, bool kept) HAIRSHADOW_ALWAYS_INLINE { store(x, y, kept, s.depth(s.parameter(x, y)), b); });
@@ -2628,6 +2637,14 @@ private:
             });
         }
     }
+
+    /// walk_segment for the vector walk's leftovers, compiled apart from it: inlined into the AVX-512
+    /// function, the compiler could fuse the scalar arithmetic into multiply-adds, and the fragments
+    /// would no longer be the scalar walk's.
+#if defined(__GNUC__)
+    __attribute__((noinline))
+#endif
+    void walk_segment_apart(const segment_bins& bins, std::uint32_t segment) { walk_segment(bins.shader(segment), 0.0f); }
 
     void walk_scalar(const segment_bins& bins, std::size_t t) {
         const float wide = bins.options().wide_line_width;
@@ -2657,7 +2674,7 @@ private:
     bool simd_tile(const segment_bins& bins) const noexcept {
         return bins.options().wide_line_width == 0.0f && bins.uniform_attributes() && bins.uniform_shader().constant_alpha();
     }
-    void walk_avx512(const segment_bins& bins, std::size_t t);
+    void walk_avx512(const segment_bins& bins, std::size_t t, float optical);
 #endif
 
     texel_rect rect_{};
@@ -2828,14 +2845,14 @@ HAIRSHADOW_AVX512_TARGET inline void set_up(batch& b, int w, int h) noexcept {
 
 namespace hairshadow::detail {
 
-HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_bins& bins, std::size_t t) {
+/// Walks tile t, whose every fragment has optical depth `optical` (simd_tile()).
+HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_bins& bins, std::size_t t, float optical) {
     using namespace avx512;
     constexpr int bits = HAIRSHADOW_SUBPIXEL_BITS;
     // Bounds that keep every product exact in a double and every coordinate in 32 bits.
     constexpr std::int64_t most_length = std::int64_t(1) << 22, most_coordinate = std::int64_t(1) << 24;
     const int w = width_, h = rect_.y1 - rect_.y0;
     const std::int64_t ox = std::int64_t(rect_.x0) << bits, oy = std::int64_t(rect_.y0) << bits;
-    const float optical = optical_depth_cached(bins.uniform_shader().shade(0.0f).alpha); // one alpha: simd_tile()
     const auto list = bins.tile_segments(t);
     const __m512i iota = _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
     const __m512i half = _mm512_set1_epi32(std::int32_t(subpixel_scale / 2)), one = _mm512_set1_epi32(1);
@@ -2867,11 +2884,11 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
         set_up(b, w, h);
         for (int l = 0; l < lanes; ++l) {
             if (!((b.simd >> l) & 1u)) {
-                walk_segment(bins.shader(list[base + std::size_t(l)]), 0.0f);
+                walk_segment_apart(bins, list[base + std::size_t(l)]);
                 continue;
             }
             const int count = b.count[l];
-            reserve(std::size_t(count) + 1);
+            make_room(std::size_t(count) + 1);
             const __mmask16 along_x = (b.x_major >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
             const __mmask16 tie = (b.tie >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
             const __m512i m_begin = _mm512_set1_epi32(b.m_begin[l]), counts = _mm512_set1_epi32(count);
@@ -2930,6 +2947,7 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
 #endif
 // ---- end hairshadow/raster/tile_fragments.hpp
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -2988,6 +3006,12 @@ std::size_t build_tiles(tiled_workspace& w, BuildTexel&& build_texel) {
         for (int y = r.y0; y < r.y1; ++y)
             for (int x = r.x0; x < r.x1; ++x) build_texel(x, y, tile.texel(x, y));
     });
+    // Every thread's store as large as the largest: the tiles go to other threads in the next build,
+    // which then allocates nothing.
+    std::size_t largest = 0;
+    for (const auto& tile : w.tiles) largest = std::max(largest, tile.capacity());
+    const auto side = std::size_t(w.bins.options().tile_size);
+    for (auto& tile : w.tiles) tile.reserve(largest, side * side);
     std::size_t total = 0;
     for (const std::size_t n : w.fragments) total += n;
     return total;
@@ -3048,6 +3072,8 @@ public:
     struct texel_maps {
         [[no_unique_address]] typename Placement::texel_state placement{};
         typename Reconstruction::template storage<Placement, Accumulation> data{};
+        /// Equal maps: every value equal (floats compare as floats).
+        friend bool operator==(const texel_maps&, const texel_maps&) = default;
     };
 
     explicit shadow_method(Placement placement = Placement()) : placement_(std::move(placement)) {}
@@ -3186,6 +3212,7 @@ public:
     struct texel_state {
         std::array<float, K> mean{};
         std::array<float, K> sigma{};
+        friend bool operator==(const texel_state&, const texel_state&) = default;
     };
     /// A cluster's bin [lo, hi], after overlaps are split.
     struct bin {
@@ -3324,6 +3351,7 @@ public:
     struct texel_state {
         float nearest = 0.0f;
         float furthest = 0.0f;
+        friend bool operator==(const texel_state&, const texel_state&) = default;
     };
 
     void prepare(const fragment_buffer&) const noexcept {}
@@ -3409,10 +3437,12 @@ public:
     /// The depth map (z0), plus the stretch factor when layers extend to the last fragment.
     struct z0_only {
         float z0 = 0.0f;
+        friend bool operator==(const z0_only&, const z0_only&) = default;
     };
     struct z0_and_scale {
         float z0 = 0.0f;
         float scale = 1.0f;
+        friend bool operator==(const z0_and_scale&, const z0_and_scale&) = default;
     };
     using texel_state = std::conditional_t<Beyond == beyond_last_layer::extend, z0_and_scale, z0_only>;
 
@@ -3539,7 +3569,9 @@ public:
     static constexpr bool contiguous = true; ///< the slices tile [D_0, D_N) without gaps
     static constexpr std::string_view name = Spacing::name;
     static constexpr std::string_view glsl_name = "placement/planar_slices";
-    struct texel_state {};
+    struct texel_state {
+        friend bool operator==(const texel_state&, const texel_state&) = default;
+    };
 
     /// Global pre-pass: D_0 is the nearest fragment, D_N just beyond the furthest.
     void prepare(const fragment_buffer& fragments) noexcept { prepare(extent_of(fragments)); }
@@ -3616,6 +3648,7 @@ struct interpolation {
     template <class Placement, class Accumulation>
     struct storage {
         std::array<typename Accumulation::value_type, std::size_t(Placement::layer_count)> layers{};
+        friend bool operator==(const storage&, const storage&) = default;
     };
 
     /// Sums the texel's fragments into its layers.
@@ -3724,6 +3757,7 @@ struct occupancy_bitcount {
     struct storage {
         std::array<std::uint32_t, std::size_t(Placement::layer_count / 32)> bits{};
         std::array<typename Accumulation::value_type, std::size_t(Slabs)> slabs{};
+        friend bool operator==(const storage&, const storage&) = default;
     };
 
     template <class Placement, class Accumulation, class Fragment>

@@ -50,6 +50,8 @@ public:
     struct texel_maps {
         [[no_unique_address]] typename Placement::texel_state placement{};
         typename Reconstruction::template storage<Placement, Accumulation> data{};
+        /// Equal maps: every value equal (floats compare as floats).
+        friend bool operator==(const texel_maps&, const texel_maps&) = default;
     };
 
     explicit shadow_method(Placement placement = Placement()) : placement_(std::move(placement)) {}

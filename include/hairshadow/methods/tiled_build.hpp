@@ -9,6 +9,7 @@
 #include <hairshadow/raster/segment_bins.hpp>
 #include <hairshadow/raster/tile_fragments.hpp>
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -67,6 +68,12 @@ std::size_t build_tiles(tiled_workspace& w, BuildTexel&& build_texel) {
         for (int y = r.y0; y < r.y1; ++y)
             for (int x = r.x0; x < r.x1; ++x) build_texel(x, y, tile.texel(x, y));
     });
+    // Every thread's store as large as the largest: the tiles go to other threads in the next build,
+    // which then allocates nothing.
+    std::size_t largest = 0;
+    for (const auto& tile : w.tiles) largest = std::max(largest, tile.capacity());
+    const auto side = std::size_t(w.bins.options().tile_size);
+    for (auto& tile : w.tiles) tile.reserve(largest, side * side);
     std::size_t total = 0;
     for (const std::size_t n : w.fragments) total += n;
     return total;

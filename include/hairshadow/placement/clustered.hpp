@@ -37,6 +37,7 @@ public:
     struct texel_state {
         std::array<float, K> mean{};
         std::array<float, K> sigma{};
+        friend bool operator==(const texel_state&, const texel_state&) = default;
     };
     /// A cluster's bin [lo, hi], after overlaps are split.
     struct bin {

@@ -28,6 +28,7 @@ public:
     struct texel_state {
         float nearest = 0.0f;
         float furthest = 0.0f;
+        friend bool operator==(const texel_state&, const texel_state&) = default;
     };
 
     void prepare(const fragment_buffer&) const noexcept {}

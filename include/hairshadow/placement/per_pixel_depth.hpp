@@ -48,10 +48,12 @@ public:
     /// The depth map (z0), plus the stretch factor when layers extend to the last fragment.
     struct z0_only {
         float z0 = 0.0f;
+        friend bool operator==(const z0_only&, const z0_only&) = default;
     };
     struct z0_and_scale {
         float z0 = 0.0f;
         float scale = 1.0f;
+        friend bool operator==(const z0_and_scale&, const z0_and_scale&) = default;
     };
     using texel_state = std::conditional_t<Beyond == beyond_last_layer::extend, z0_and_scale, z0_only>;
 

@@ -43,7 +43,9 @@ public:
     static constexpr bool contiguous = true; ///< the slices tile [D_0, D_N) without gaps
     static constexpr std::string_view name = Spacing::name;
     static constexpr std::string_view glsl_name = "placement/planar_slices";
-    struct texel_state {};
+    struct texel_state {
+        friend bool operator==(const texel_state&, const texel_state&) = default;
+    };
 
     /// Global pre-pass: D_0 is the nearest fragment, D_N just beyond the furthest.
     void prepare(const fragment_buffer& fragments) noexcept { prepare(extent_of(fragments)); }

@@ -73,7 +73,7 @@ public:
         n_ = 0;
         const bool vector = instructions == instruction_set::avx512;
 #if HAIRSHADOW_AVX512_WALK
-        if (vector && simd_tile(bins)) walk_avx512(bins, t);
+        if (vector && simd_tile(bins)) walk_avx512(bins, t, optical_depth_cached(bins.uniform_shader().shade(0.0f).alpha));
         else walk_scalar(bins, t);
 #else
         (void)vector;
@@ -90,6 +90,15 @@ public:
     }
     /// Fragments of the last tile.
     std::size_t size() const noexcept { return n_; }
+    /// Fragments it holds without allocating.
+    std::size_t capacity() const noexcept { return std::min(where_.size(), grouped_.size()); }
+    /// Makes room for `fragments` fragments in tiles of `tile_texels` texels, so that tiles up to that
+    /// size allocate nothing.
+    void reserve(std::size_t fragments, std::size_t tile_texels) {
+        if (where_.size() < fragments) where_.resize(fragments), depth_.resize(fragments), optical_.resize(fragments);
+        if (grouped_.size() < fragments) grouped_.resize(fragments);
+        offsets_.reserve(tile_texels + 2);
+    }
     std::size_t memory_bytes() const noexcept {
         return (where_.capacity() + offsets_.capacity()) * sizeof(std::uint32_t) + (depth_.capacity() + optical_.capacity()) * sizeof(float) +
                grouped_.capacity() * sizeof(optical_fragment);
@@ -97,7 +106,7 @@ public:
 
 private:
     /// Room for `extra` more candidates after the n_ kept so far.
-    void reserve(std::size_t extra) {
+    void make_room(std::size_t extra) {
         if (n_ + extra <= where_.size()) return;
         const std::size_t size = std::max(2 * where_.size(), n_ + extra);
         where_.resize(size);
@@ -125,7 +134,7 @@ private:
         const prepared_segment& seg = s.segment();
         if (wide > 0.0f) {
             rasterize_wide_line(seg, wide, rect_, [&](int x, int y, float param, float weight) {
-                reserve(1);
+                make_room(1);
                 const fragment f = s.shade(param, weight);
                 store(x, y, true, f.depth, optical_depth_of(f.alpha));
             });
@@ -133,7 +142,7 @@ private:
         }
         // A thin line makes at most one candidate per texel along its major axis in the tile, plus one
         // where it starts.
-        reserve(std::size_t(std::max(width_, rect_.y1 - rect_.y0)) + 1);
+        make_room(std::size_t(std::max(width_, rect_.y1 - rect_.y0)) + 1);
         if (s.constant_alpha()) { // b once: the same value shade() gives every fragment
             const float b = optical_depth_cached(s.shade(0.0f).alpha);
             walk_line(seg.a(), seg.b(), rect_, [&](int x, int y, bool kept) HAIRSHADOW_ALWAYS_INLINE { store(x, y, kept, s.depth(s.parameter(x, y)), b); });
@@ -144,6 +153,14 @@ private:
             });
         }
     }
+
+    /// walk_segment for the vector walk's leftovers, compiled apart from it: inlined into the AVX-512
+    /// function, the compiler could fuse the scalar arithmetic into multiply-adds, and the fragments
+    /// would no longer be the scalar walk's.
+#if defined(__GNUC__)
+    __attribute__((noinline))
+#endif
+    void walk_segment_apart(const segment_bins& bins, std::uint32_t segment) { walk_segment(bins.shader(segment), 0.0f); }
 
     void walk_scalar(const segment_bins& bins, std::size_t t) {
         const float wide = bins.options().wide_line_width;
@@ -173,7 +190,7 @@ private:
     bool simd_tile(const segment_bins& bins) const noexcept {
         return bins.options().wide_line_width == 0.0f && bins.uniform_attributes() && bins.uniform_shader().constant_alpha();
     }
-    void walk_avx512(const segment_bins& bins, std::size_t t);
+    void walk_avx512(const segment_bins& bins, std::size_t t, float optical);
 #endif
 
     texel_rect rect_{};

@@ -154,14 +154,14 @@ HAIRSHADOW_AVX512_TARGET inline void set_up(batch& b, int w, int h) noexcept {
 
 namespace hairshadow::detail {
 
-HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_bins& bins, std::size_t t) {
+/// Walks tile t, whose every fragment has optical depth `optical` (simd_tile()).
+HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_bins& bins, std::size_t t, float optical) {
     using namespace avx512;
     constexpr int bits = HAIRSHADOW_SUBPIXEL_BITS;
     // Bounds that keep every product exact in a double and every coordinate in 32 bits.
     constexpr std::int64_t most_length = std::int64_t(1) << 22, most_coordinate = std::int64_t(1) << 24;
     const int w = width_, h = rect_.y1 - rect_.y0;
     const std::int64_t ox = std::int64_t(rect_.x0) << bits, oy = std::int64_t(rect_.y0) << bits;
-    const float optical = optical_depth_cached(bins.uniform_shader().shade(0.0f).alpha); // one alpha: simd_tile()
     const auto list = bins.tile_segments(t);
     const __m512i iota = _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
     const __m512i half = _mm512_set1_epi32(std::int32_t(subpixel_scale / 2)), one = _mm512_set1_epi32(1);
@@ -193,11 +193,11 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
         set_up(b, w, h);
         for (int l = 0; l < lanes; ++l) {
             if (!((b.simd >> l) & 1u)) {
-                walk_segment(bins.shader(list[base + std::size_t(l)]), 0.0f);
+                walk_segment_apart(bins, list[base + std::size_t(l)]);
                 continue;
             }
             const int count = b.count[l];
-            reserve(std::size_t(count) + 1);
+            make_room(std::size_t(count) + 1);
             const __mmask16 along_x = (b.x_major >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
             const __mmask16 tie = (b.tie >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
             const __m512i m_begin = _mm512_set1_epi32(b.m_begin[l]), counts = _mm512_set1_epi32(count);

@@ -31,6 +31,7 @@ struct interpolation {
     template <class Placement, class Accumulation>
     struct storage {
         std::array<typename Accumulation::value_type, std::size_t(Placement::layer_count)> layers{};
+        friend bool operator==(const storage&, const storage&) = default;
     };
 
     /// Sums the texel's fragments into its layers.

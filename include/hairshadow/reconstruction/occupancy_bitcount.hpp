@@ -37,6 +37,7 @@ struct occupancy_bitcount {
     struct storage {
         std::array<std::uint32_t, std::size_t(Placement::layer_count / 32)> bits{};
         std::array<typename Accumulation::value_type, std::size_t(Slabs)> slabs{};
+        friend bool operator==(const storage&, const storage&) = default;
     };
 
     template <class Placement, class Accumulation, class Fragment>

@@ -1,0 +1,239 @@
+// The tiled build (methods/tiled_build.hpp): the maps of the fragment-buffer build, bit for bit, for
+// every published method and hybrid, any thread count, tile size and line walk; its whole-map
+// pre-pass; the line walk against the line rule; the persistent thread pool.
+#include "test_support.hpp"
+
+#include <hairshadow/hairshadow.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <random>
+#include <thread>
+
+using namespace hairshadow;
+
+namespace {
+
+/// Sintel at 512x512, or a curly model of 3000 strands (a scaled-down copy of the 1.5M-segment
+/// benchmark model, dense enough for 60 fragments per texel).
+const hair_model& test_model(const std::string& name) {
+    static const hair_model sintel = read_tfx(test::sintel_hair());
+    static const hair_model curly = make_procedural({.style = hair_style::curly, .strands = 3000, .segments = 100, .seed = 1});
+    return name == "sintel" ? sintel : curly;
+}
+
+/// Every texel of a and b equal, and the same whole-map extent.
+template <class Method>
+bool same_maps(const Method& a, const Method& b) {
+    const int res = a.light().resolution();
+    if (res != b.light().resolution()) return false;
+    for (int y = 0; y < res; ++y)
+        for (int x = 0; x < res; ++x)
+            if (!(a.texel(x, y) == b.texel(x, y))) {
+                UNSCOPED_INFO("first difference at texel (" << x << ", " << y << ")");
+                return false;
+            }
+    return true;
+}
+
+struct build_config {
+    unsigned threads;
+    int tile;
+    instruction_set instructions;
+};
+
+/// The tiled build against the fragment-buffer build with the tiled build's own whole-map extent,
+/// for several thread counts, tile sizes and both line walks.
+template <class Method>
+void check_tiled_equals_buffer(const hair_model& model, const light_space& light, raster_options base = {}) {
+    const std::vector<build_config> configs = {{1, 64, instruction_set::scalar}, {2, 64, instruction_set::automatic},
+                                               {3, 16, instruction_set::automatic}, {8, 37, instruction_set::scalar},
+                                               {2, 200, instruction_set::automatic}, {1, 8, instruction_set::automatic}};
+    base.exec.threads = 1;
+    const fragment_buffer fragments = rasterize(model, light, base);
+    Method reference;
+    for (const auto& c : configs) {
+        CAPTURE(c.threads, c.tile, int(c.instructions));
+        raster_options o = base;
+        o.exec.threads = c.threads;
+        o.tile_size = c.tile;
+        o.instructions = c.instructions;
+        Method tiled;
+        tiled.build(model, light, o);
+        reference.build(fragments, light, tiled.map_extent(), execution{1});
+        CHECK(tiled.fragment_count() == fragments.size());
+        CHECK(same_maps(tiled, reference));
+    }
+}
+
+} // namespace
+
+TEMPLATE_TEST_CASE("the tiled build gives the fragment-buffer build's maps, bit for bit", "[tiled][determinism]", opacity_shadow_maps<16>,
+                   (opacity_shadow_maps<16, gamma_spacing>), deep_opacity_maps<3>, density_clustering<4>, (occupancy_maps<128, 4>),
+                   deep_opacity_maps_8bit<3>, (deep_occupancy_maps<128, 4>), range_opacity_maps<16>,
+                   (shadow_method<per_pixel_depth<4, layer_sizes::uniform, beyond_last_layer::ignore>, float_accumulation, interpolation>)) {
+    const std::string name = GENERATE("sintel", "curly");
+    CAPTURE(name);
+    const auto& model = test_model(name);
+    const auto light = light_space::fit(light_spec::directional({0.3f, -1, -0.5f}), model.bounds(), name == "sintel" ? 512 : 256);
+    check_tiled_equals_buffer<TestType>(model, light);
+}
+
+TEST_CASE("the tiled build matches on the scalar paths: perspective lights, per-point attributes, fixed alpha, wide lines", "[tiled]") {
+    const auto& sintel = test_model("sintel");
+    SECTION("a point light (coverage weighted by depth)") {
+        const auto light = light_space::fit(light_spec::point({0.4f, 2.2f, 0.6f}), sintel.bounds(), 256);
+        check_tiled_equals_buffer<deep_opacity_maps<3>>(sintel, light);
+        check_tiled_equals_buffer<occupancy_maps<128, 4>>(sintel, light);
+    }
+    SECTION("a spot light without depth weighting: one alpha, perspective interpolation") {
+        const auto light = light_space::fit(light_spec::spot({0.0f, 2.2f, 0.0f}, {0, -1, 0}, 20.0f), sintel.bounds(), 256);
+        raster_options o;
+        o.depth_weighting = false;
+        check_tiled_equals_buffer<deep_opacity_maps<3>>(sintel, light, o);
+    }
+    SECTION("per-point thickness and transparency") {
+        hair_model m = make_procedural({.style = hair_style::wavy, .strands = 600, .segments = 24, .seed = 5});
+        m.thickness.resize(m.point_count());
+        m.transparency.resize(m.point_count());
+        for (std::size_t i = 0; i < m.point_count(); ++i) {
+            m.thickness[i] = 0.0004f + 0.0003f * float(i % 7);
+            m.transparency[i] = 0.1f * float(i % 5);
+        }
+        const auto light = light_space::fit(light_spec::directional({0, -1, -1}), m.bounds(), 200);
+        check_tiled_equals_buffer<density_clustering<4>>(m, light);
+        check_tiled_equals_buffer<opacity_shadow_maps<8>>(m, light);
+    }
+    SECTION("a fixed alpha and pre-filtered wide lines") {
+        const auto light = light_space::fit(light_spec::directional({0, -1, -1}), sintel.bounds(), 256);
+        raster_options o;
+        o.fixed_alpha = 0.3f;
+        check_tiled_equals_buffer<deep_opacity_maps<3>>(sintel, light, o);
+        o.fixed_alpha.reset();
+        o.wide_line_width = 3.0f;
+        check_tiled_equals_buffer<occupancy_maps<128, 4>>(sintel, light, o);
+    }
+}
+
+TEST_CASE("the whole-map extent from the segments holds every fragment, and is close to the fragments' own", "[tiled][extent]") {
+    const std::string name = GENERATE("sintel", "curly");
+    CAPTURE(name);
+    const auto& model = test_model(name);
+    const auto light = light_space::fit(light_spec::directional({0, -1, -1}), model.bounds(), 512);
+    const fragment_buffer fragments = rasterize(model, light);
+    const depth_extent exact = extent_of(fragments);
+    deep_opacity_maps<3> dom;
+    dom.build(model, light);
+    const depth_extent from_segments = dom.map_extent();
+    CHECK(from_segments.nearest <= exact.nearest);
+    CHECK(from_segments.furthest >= exact.furthest);
+    const float half_range_segments = 0.5f * (from_segments.furthest - from_segments.nearest), half_range_fragments = 0.5f * (exact.furthest - exact.nearest);
+    WARN(name << ": DOM's default extent (half the depth range) " << half_range_segments << " from the segments, " << half_range_fragments
+              << " from the fragments; nearest " << from_segments.nearest << " vs " << exact.nearest << ", furthest " << from_segments.furthest
+              << " vs " << exact.furthest);
+    CHECK(half_range_segments == Approx(half_range_fragments).epsilon(0.02));
+    CHECK(dom.placement().extent() == Approx(std::max(half_range_segments, 1e-6f)));
+    // OSM places its slices with the same extent.
+    opacity_shadow_maps<16> osm;
+    osm.build(model, light);
+    CHECK(osm.placement().nearest() == from_segments.nearest);
+    // An empty map: the same {0, 0} as an empty buffer.
+    const auto elsewhere = light_space::fit(light_spec::directional({0, -1, -1}), aabb{glm::vec3(5.0f), glm::vec3(6.0f)}, 64);
+    deep_opacity_maps<3> empty;
+    empty.build(model, elsewhere);
+    CHECK(empty.fragment_count() == 0);
+    CHECK(empty.map_extent().nearest == 0.0f);
+    CHECK(empty.map_extent().furthest == 0.0f);
+}
+
+TEST_CASE("a rebuild reuses its working memory and gives the same maps", "[tiled]") {
+    const auto& model = test_model("sintel");
+    const auto light = light_space::fit(light_spec::directional({0, -1, -1}), model.bounds(), 512);
+    occupancy_maps<128, 4> occ;
+    occ.build(model, light);
+    const auto first = occ;
+    const std::size_t workspace = occ.workspace_bytes();
+    CHECK(workspace > 0);
+    CHECK(first.workspace_bytes() == 0); // copies carry no working memory
+    for (int i = 0; i < 3; ++i) occ.build(model, light);
+    CHECK(occ.workspace_bytes() == workspace);
+    CHECK(same_maps(occ, first));
+    CHECK(count_fragments(model, light) == rasterize(model, light).size());
+}
+
+TEST_CASE("the tiled line walk keeps exactly the line rule's fragments", "[tiled][raster]") {
+    std::mt19937 rng(7);
+    std::uniform_int_distribution<std::int64_t> near(-3 * subpixel_scale, 40 * subpixel_scale);
+    std::uniform_int_distribution<std::int64_t> far(-(std::int64_t(1) << 27), std::int64_t(1) << 27);
+    std::uniform_int_distribution<int> pick(0, 9);
+    std::uniform_int_distribution<int> clip_corner(0, 24), clip_size(1, 20);
+    auto coordinate = [&] {
+        const int k = pick(rng);
+        if (k == 0) return far(rng);
+        if (k < 4) return near(rng) / subpixel_scale * subpixel_scale + (k == 1 ? 0 : subpixel_scale / 2); // texel corners and centres
+        return near(rng);
+    };
+    int checked = 0;
+    for (int i = 0; i < 40000; ++i) {
+        const fixed_point a{coordinate(), coordinate()}, b{coordinate(), coordinate()};
+        const int x0 = clip_corner(rng), y0 = clip_corner(rng);
+        const texel_rect clip{x0, y0, x0 + clip_size(rng), y0 + clip_size(rng)};
+        std::vector<std::pair<int, int>> expected, walked;
+        rasterize_line(a, b, clip, [&](int x, int y) { expected.emplace_back(x, y); });
+        walk_line(a, b, clip, [&](int x, int y, bool keep) {
+            if (keep) walked.emplace_back(x, y);
+        });
+        if (expected != walked) {
+            CAPTURE(a.x, a.y, b.x, b.y, clip.x0, clip.y0, clip.x1, clip.y1);
+            CHECK(expected == walked);
+            return;
+        }
+        checked += !expected.empty();
+    }
+    CHECK(checked > 5000);
+}
+
+TEST_CASE("the instruction set resolves to what the CPU runs", "[tiled]") {
+    CHECK(resolve(instruction_set::scalar) == instruction_set::scalar);
+    const auto best = resolve(instruction_set::automatic);
+    CHECK((best == instruction_set::avx512) == detail::cpu_has_avx512());
+    if (detail::cpu_has_avx512()) CHECK(resolve(instruction_set::avx512) == instruction_set::avx512);
+    else CHECK_THROWS_AS(resolve(instruction_set::avx512), argument_error);
+    raster_options bad;
+    bad.tile_size = 4;
+    deep_opacity_maps<3> dom;
+    CHECK_THROWS_AS(dom.build(test_model("sintel"), light_space::fit(light_spec::directional({0, -1, 0}), test_model("sintel").bounds(), 64), bad),
+                    argument_error);
+}
+
+TEST_CASE("the thread pool runs nested and concurrent loops and passes exceptions on", "[parallel]") {
+    std::vector<int> hits(1000, 0);
+    parallel_for(10, execution{4}, [&](std::size_t i) {
+        parallel_for(100, execution{4}, [&](std::size_t j) { ++hits[i * 100 + j]; }); // nested: runs on the calling thread
+    });
+    CHECK(std::count(hits.begin(), hits.end(), 1) == 1000);
+
+    std::atomic<int> total{0};
+    std::thread other([&] { parallel_for(5000, execution{3}, [&](std::size_t) { ++total; }); });
+    parallel_for(5000, execution{3}, [&](std::size_t) { ++total; });
+    other.join();
+    CHECK(total == 10000);
+
+    CHECK_THROWS_AS(parallel_for(100, execution{4}, [](std::size_t i) {
+                        if (i == 57) throw argument_error("item 57");
+                    }),
+                    argument_error);
+    // The pool still works after a failed loop.
+    std::atomic<int> after{0};
+    parallel_for(64, execution{8}, [&](std::size_t) { ++after; });
+    CHECK(after == 64);
+    // Slots tell the threads of one loop apart.
+    std::vector<std::atomic<int>> in_use(parallel_slots(1000, execution{3}));
+    std::atomic<bool> shared{false};
+    parallel_for_slots(1000, execution{3}, [&](unsigned slot, std::size_t) {
+        if (in_use[slot].fetch_add(1) != 0) shared = true;
+        in_use[slot].fetch_sub(1);
+    });
+    CHECK_FALSE(shared);
+}
