@@ -231,7 +231,7 @@ TEST_CASE("maps hold what the papers store", "[policy][memory]") {
     CHECK(dom.memory_bytes() == texels * 16 + sizeof(float));       // 4 MiB plus d_K
     CHECK(occ.memory_bytes() == texels * 40);                        // 10 MiB, as in Sintorn & Assarsson
     CHECK(occ.memory_bytes() <= 10u * 1024 * 1024);
-    CHECK(osm.memory_bytes() == texels * 16 * 4 + 2 * sizeof(float)); // N MiB plus the range
+    CHECK(osm.memory_bytes() == texels * 16 * 4 + (16 + 3) * sizeof(float)); // N MiB plus the boundaries
 }
 
 TEST_CASE("8-bit sums saturate at every step", "[policy][accumulation]") {

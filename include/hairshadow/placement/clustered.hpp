@@ -104,15 +104,27 @@ public:
         return out;
     }
 
-    /// The bin holding `depth`, or else the cluster with the nearest mean.
-    int assign(const texel_state& s, float depth) const noexcept {
-        const auto b = bins(s);
-        for (int j = 0; j < K; ++j) {
-            const auto& x = b[std::size_t(j)];
-            if (!x.empty && depth >= x.lo && (depth < x.hi || (x.lo == x.hi && depth == x.lo))) return j;
+    /// assign() for the fragments of one texel, with the texel's bins worked out once.
+    class texel_assigner {
+    public:
+        texel_assigner(const clustered& placement, const texel_state& s) noexcept : state_(&s), bins_(placement.bins(s)) {}
+        /// The bin holding `depth`, or else the cluster with the nearest mean.
+        int operator()(float depth) const noexcept {
+            for (int j = 0; j < K; ++j) {
+                const auto& x = bins_[std::size_t(j)];
+                if (!x.empty && depth >= x.lo && (depth < x.hi || (x.lo == x.hi && depth == x.lo))) return j;
+            }
+            return nearest(state_->mean, depth, [&](int i) { return state_->sigma[std::size_t(i)] >= 0.0f; });
         }
-        return nearest(s.mean, depth, [&](int i) { return s.sigma[std::size_t(i)] >= 0.0f; });
-    }
+
+    private:
+        const texel_state* state_;
+        std::array<bin, K> bins_;
+    };
+    texel_assigner assigner(const texel_state& s) const noexcept { return {*this, s}; }
+
+    /// The bin holding `depth`, or else the cluster with the nearest mean.
+    int assign(const texel_state& s, float depth) const noexcept { return assigner(s)(depth); }
     /// Inside bin j: {j, fraction}; between bins: the end of the bin before; before all: -1.
     layer_position locate(const texel_state& s, float depth) const noexcept {
         const auto b = bins(s);

@@ -45,6 +45,14 @@ int settle_layer(float estimate, int last, float depth, Boundary boundary) noexc
     return k;
 }
 
+/// placement.assign(state, depth) for the fragments of one texel: the placement's own assigner(state)
+/// where it has one (work done once per texel instead of once per fragment), else assign itself.
+template <class Placement>
+auto texel_assigner(const Placement& placement, const typename Placement::texel_state& state) noexcept {
+    if constexpr (requires { placement.assigner(state); }) return placement.assigner(state);
+    else return [&placement, &state](float depth) noexcept { return placement.assign(state, depth); };
+}
+
 /// Layer k's position for a depth between its boundaries lo and hi.
 inline layer_position position_in(int k, float depth, float lo, float hi) noexcept {
     return {k, hi > lo ? std::clamp((depth - lo) / (hi - lo), 0.0f, 1.0f) : 0.0f};

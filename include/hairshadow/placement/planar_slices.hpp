@@ -7,6 +7,8 @@
 
 #include <hairshadow/placement/layer_position.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <span>
@@ -53,33 +55,44 @@ public:
     void prepare(const depth_extent& e) noexcept {
         near_ = e.nearest;
         far_ = detail::just_above(e.furthest);
+        for (int i = 0; i < N; ++i) boundaries_[std::size_t(i)] = near_ + (far_ - near_) * Spacing::boundary(float(i) / float(N));
+        boundaries_[std::size_t(N)] = far_;
     }
     template <class Fragment>
     void prepare_texel(std::span<const Fragment>, texel_state&) const noexcept {}
 
-    /// Depth of map i, i in [0, N] (D_0 .. D_N).
-    float boundary(const texel_state&, int i) const noexcept {
-        return i >= N ? far_ : near_ + (far_ - near_) * Spacing::boundary(float(i) / float(N));
-    }
+    /// Depth of map i, i in [0, N] (D_0 .. D_N): D_0 + (D_N - D_0) spacing(i / N), computed once per build.
+    float boundary(const texel_state&, int i) const noexcept { return boundaries_[std::size_t(std::clamp(i, 0, N))]; }
     /// The slice a fragment at `depth` falls in: D_k <= depth < D_{k+1}.
-    int assign(const texel_state& s, float depth) const noexcept {
-        const int k = locate(s, depth).index;
-        return std::clamp(k, 0, N - 1);
-    }
-    layer_position locate(const texel_state& s, float depth) const noexcept {
+    int assign(const texel_state&, float depth) const noexcept { return std::min(reached(depth), N - 1); }
+    layer_position locate(const texel_state&, float depth) const noexcept {
         if (!(depth >= near_)) return {-1, 0.0f};
         if (depth >= far_) return {N, 0.0f};
-        const int k = detail::settle_layer(Spacing::inverse((depth - near_) / (far_ - near_)) * float(N), N - 1, depth,
-                                           [&](int i) { return boundary(s, i); });
-        return detail::position_in(k, depth, boundary(s, k), boundary(s, k + 1));
+        const int k = reached(depth);
+        return detail::position_in(k, depth, boundaries_[std::size_t(k)], boundaries_[std::size_t(k + 1)]);
     }
-    /// Bytes of global state the maps need besides their texels (D_0 and D_N).
-    static constexpr std::size_t global_bytes() noexcept { return 2 * sizeof(float); }
+    /// Bytes of global state the maps need besides their texels (D_0 .. D_N, and D_0 and D_N apart).
+    static constexpr std::size_t global_bytes() noexcept { return (std::size_t(N) + 3) * sizeof(float); }
     float nearest() const noexcept { return near_; }
     float furthest() const noexcept { return far_; }
 
 private:
+    /// How many of D_1..D_N lie at or before `depth` (0 for NaN): the k with D_k <= depth < D_k+1 where
+    /// depth is in [D_0, D_N), since the boundaries never decrease. Without a branch for a few maps
+    /// (the build calls this for every fragment), by bisection for many.
+    int reached(float depth) const noexcept {
+        if constexpr (N <= 16) {
+            int k = 0;
+            for (int i = 1; i <= N; ++i) k += int(boundaries_[std::size_t(i)] <= depth);
+            return k;
+        } else {
+            if (!(depth >= near_)) return 0; // NaN too
+            return int(std::upper_bound(boundaries_.begin() + 1, boundaries_.end(), depth) - (boundaries_.begin() + 1));
+        }
+    }
+
     float near_ = 0.0f, far_ = 0.0f;
+    std::array<float, std::size_t(N) + 1> boundaries_{};
 };
 
 /// Uniformly spaced opacity maps (Kim & Neumann Fig. 3a).

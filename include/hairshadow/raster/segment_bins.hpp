@@ -31,8 +31,7 @@ public:
         options.check();
         opt_ = options;
         light_ = light;
-        project(model, light);
-        bin(light.resolution());
+        project_and_bin(model, light, light.resolution());
     }
 
     int resolution() const noexcept { return res_; }
@@ -103,98 +102,100 @@ public:
     /// Bytes of working memory held.
     std::size_t memory_bytes() const noexcept {
         return segments_.capacity() * sizeof(prepared_segment) + attributes_.capacity() * sizeof(segment_attributes) +
-               first_segment_.capacity() * sizeof(std::size_t) + (cursor_.capacity() + tile_begin_.capacity()) * sizeof(std::uint64_t) +
+               (first_segment_.capacity() + chunk_strand_.capacity()) * sizeof(std::size_t) + first_tile_.capacity() * sizeof(std::uint32_t) + (cursor_.capacity() + tile_begin_.capacity()) * sizeof(std::uint64_t) +
                (binned_.capacity() + by_load_.capacity()) * sizeof(std::uint32_t) + chunk_extent_.capacity() * sizeof(depth_extent);
     }
 
 private:
     static constexpr std::size_t chunks = 64; // fixed, so that binning does not depend on the thread count
 
-    // 1. Project and snap every segment, strand by strand. Per-segment thickness and opacity are kept
-    // only when the model has them per point; otherwise every segment shares one pair.
-    void project(const hair_model& model, const light_space& light) {
+    // Each of a fixed number of chunks (strand ranges of about equal segment counts, so that nothing
+    // depends on the thread count) runs two passes over its segments:
+    // 1. project and snap each segment, strand by strand, and count it in the tiles it reaches, noting
+    //    its first tile (while the segment is in registers: the segments are read from memory once,
+    //    in the walk, and never re-read to bin them);
+    // 2. once every chunk's counts are known, write each segment into its tiles' lists.
+    // Per-segment thickness and opacity are kept only when the model has them per point; otherwise
+    // every segment shares one pair.
+    static constexpr std::uint32_t no_tile = std::numeric_limits<std::uint32_t>::max();
+    static constexpr std::uint32_t more_tiles = std::uint32_t(1) << 31; ///< in first_tile_: the segment reaches other tiles too
+
+    void project_and_bin(const hair_model& model, const light_space& light, int res) {
+        res_ = res;
+        tiles_x_ = (res + opt_.tile_size - 1) / opt_.tile_size;
+        tile_magic_ = (std::uint64_t(1) << 32) / std::uint64_t(opt_.tile_size) + 1;
+        static_assert(HAIRSHADOW_MAX_RESOLUTION <= (1 << 16), "tile_of needs texel coordinates below 2^16");
+        const std::size_t tiles = tile_count();
+        if (tiles >= more_tiles) throw argument_error("too many tiles: use larger tiles");
         first_segment_.assign(model.strand_count() + 1, 0);
         for (std::size_t s = 0; s < model.strand_count(); ++s)
             first_segment_[s + 1] = first_segment_[s] + (model.strand_size(s) > 1 ? model.strand_size(s) - 1 : 0);
         const std::size_t count = first_segment_.back();
         if (count > std::numeric_limits<std::uint32_t>::max()) throw argument_error("more than 2^32 segments");
         segments_.resize(count);
+        first_tile_.resize(count);
         const bool per_point = !model.thickness.empty() || !model.transparency.empty();
         const float t = model.default_thickness, o = 1.0f - model.default_transparency;
         uniform_ = {t, t, o, o};
         attributes_.resize(per_point ? count : 0);
-        // Raw pointers: stores through a member vector would make the compiler reload its data pointer.
-        prepared_segment* out = segments_.data();
-        segment_attributes* out_attributes = per_point ? attributes_.data() : nullptr;
-        const std::size_t* first = first_segment_.data();
-        const segment_attributes uniform = uniform_;
-        parallel_for(model.strand_count(), opt_.exec, [&model, &light, out, out_attributes, first, uniform](std::size_t s) {
-            const std::size_t p0 = model.strand_offsets[s], n = model.strand_size(s);
-            if (n < 2) return;
-            const glm::vec3* points = model.points.data() + p0;
-            projected_point from = project_point(light, points[0]);
-            for (std::size_t i = 0; i + 1 < n; ++i) {
-                const projected_point to = project_point(light, points[i + 1]); // each point projected once
-                segment_attributes at = uniform;
-                const std::size_t p = p0 + i;
-                if (out_attributes)
-                    at = {model.thickness_at(p), model.thickness_at(p + 1), 1.0f - model.transparency_at(p), 1.0f - model.transparency_at(p + 1)};
-                prepare_segment(light, points[i], points[i + 1], from, to, at, out[first[s] + i]);
-                if (out_attributes) out_attributes[first[s] + i] = at;
-                from = to;
-            }
-        }, 64);
-    }
-
-    // 2. Bin segments into tiles. Each of a fixed number of chunks of the segment range counts, then
-    // writes, its segments per tile, so every tile's list is in segment order for any thread count.
-    // The count pass also takes the depth extent of the segments that reach the map.
-    void bin(int res) {
-        res_ = res;
-        tiles_x_ = (res + opt_.tile_size - 1) / opt_.tile_size;
-        tile_magic_ = (std::uint64_t(1) << 32) / std::uint64_t(opt_.tile_size) + 1;
-        static_assert(HAIRSHADOW_MAX_RESOLUTION <= (1 << 16), "tile_of needs texel coordinates below 2^16");
-        const std::size_t tiles = tile_count();
-        const std::size_t segment_count = segments_.size();
-        const std::size_t chunk_size = (segment_count + chunks - 1) / chunks;
-        // Texels around the segment that it may touch, in sub-pixel units.
-        const auto reach = std::int64_t(std::ceil((1.0 + 0.5 * double(opt_.wide_line_width)) * double(subpixel_scale)));
-        auto for_each_tile_of_chunk = [&](std::size_t c, auto&& visit) {
-            const std::size_t begin = c * chunk_size, end = std::min(segment_count, begin + chunk_size);
-            for (std::size_t seg = begin; seg < end; ++seg) {
-                const auto& s = segments_[seg];
-                if (s.empty()) continue;
-                visit_tiles(s, reach, [&](std::size_t t) HAIRSHADOW_ALWAYS_INLINE { visit(seg, t); });
-            }
-        };
+        // Chunk c: the strands whose first segment lies in [c count / chunks, (c + 1) count / chunks).
+        chunk_strand_.resize(chunks + 1);
+        for (std::size_t c = 0; c <= chunks; ++c)
+            chunk_strand_[c] = std::size_t(std::lower_bound(first_segment_.begin(), first_segment_.end() - 1, c * count / chunks) - first_segment_.begin());
+        chunk_strand_[chunks] = model.strand_count();
         cursor_.assign(chunks * tiles, 0);
         chunk_extent_.assign(chunks, depth_extent{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()});
+        const auto reach = this->reach();
         parallel_for(chunks, opt_.exec, [&](std::size_t c) {
+            // Raw pointers: stores through a member vector would make the compiler reload its data pointer.
+            prepared_segment* out = segments_.data();
+            std::uint32_t* first_tile = first_tile_.data();
+            segment_attributes* out_attributes = per_point ? attributes_.data() : nullptr;
             std::uint64_t* counts = cursor_.data() + c * tiles;
+            const segment_attributes uniform = uniform_;
             depth_extent e = chunk_extent_[c];
-            std::size_t last = std::size_t(-1);
-            for_each_tile_of_chunk(c, [&](std::size_t seg, std::size_t t) HAIRSHADOW_ALWAYS_INLINE {
-                ++counts[t];
-                if (seg != last) { // the segment reaches the map
-                    last = seg;
-                    const auto& s = segments_[seg];
-                    e.nearest = std::min({e.nearest, s.depth_a, s.depth_b});
-                    e.furthest = std::max({e.furthest, s.depth_a, s.depth_b});
+            for (std::size_t strand = chunk_strand_[c]; strand < chunk_strand_[c + 1]; ++strand) {
+                const std::size_t p0 = model.strand_offsets[strand], n = model.strand_size(strand);
+                if (n < 2) continue;
+                const glm::vec3* points = model.points.data() + p0;
+                projected_point from = project_point(light, points[0]);
+                for (std::size_t i = 0; i + 1 < n; ++i) {
+                    const projected_point to = project_point(light, points[i + 1]); // each point projected once
+                    const std::size_t seg = first_segment_[strand] + i, p = p0 + i;
+                    segment_attributes at = uniform;
+                    if (out_attributes)
+                        at = {model.thickness_at(p), model.thickness_at(p + 1), 1.0f - model.transparency_at(p), 1.0f - model.transparency_at(p + 1)};
+                    prepared_segment& s = out[seg];
+                    prepare_segment(light, points[i], points[i + 1], from, to, at, s);
+                    if (out_attributes) out_attributes[seg] = at;
+                    from = to;
+                    std::uint32_t first = no_tile;
+                    if (!s.empty()) {
+                        visit_tiles(s, reach, [&](std::size_t tile) HAIRSHADOW_ALWAYS_INLINE {
+                            ++counts[tile];
+                            first = first == no_tile ? std::uint32_t(tile) : (first | more_tiles);
+                        });
+                        if (first != no_tile) { // the segment reaches the map
+                            e.nearest = std::min({e.nearest, s.depth_a, s.depth_b});
+                            e.furthest = std::max({e.furthest, s.depth_a, s.depth_b});
+                        }
+                    }
+                    first_tile[seg] = first;
                 }
-            });
+            }
             chunk_extent_[c] = e;
-        });
+        }, 1);
         extent_ = {std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
         for (const auto& e : chunk_extent_) extent_.nearest = std::min(extent_.nearest, e.nearest), extent_.furthest = std::max(extent_.furthest, e.furthest);
         if (!(extent_.nearest <= extent_.furthest)) extent_ = {}; // nothing reaches the map: {0, 0}, as extent_of an empty buffer
         tile_begin_.resize(tiles + 1);
         std::uint64_t total = 0;
-        for (std::size_t t = 0; t < tiles; ++t) {
-            tile_begin_[t] = total;
+        for (std::size_t tile = 0; tile < tiles; ++tile) {
+            tile_begin_[tile] = total;
             for (std::size_t c = 0; c < chunks; ++c) {
-                const std::uint64_t n = cursor_[c * tiles + t];
-                cursor_[c * tiles + t] = total;
-                total += n;
+                const std::uint64_t k = cursor_[c * tiles + tile];
+                cursor_[c * tiles + tile] = total;
+                total += k;
             }
         }
         tile_begin_[tiles] = total;
@@ -203,12 +204,22 @@ private:
         parallel_for(chunks, opt_.exec, [&](std::size_t c) {
             std::uint64_t* cursor = cursor_.data() + c * tiles;
             std::uint32_t* binned = binned_.data();
-            for_each_tile_of_chunk(c, [&](std::size_t seg, std::size_t t) HAIRSHADOW_ALWAYS_INLINE { binned[cursor[t]++] = std::uint32_t(seg); });
+            const std::uint32_t* first_tile = first_tile_.data();
+            const std::size_t end = first_segment_[chunk_strand_[c + 1]];
+            for (std::size_t seg = first_segment_[chunk_strand_[c]]; seg < end; ++seg) {
+                const std::uint32_t first = first_tile[seg];
+                if (first == no_tile) continue;
+                if (!(first & more_tiles)) binned[cursor[first]++] = std::uint32_t(seg);
+                else visit_tiles(segments_[seg], reach, [&](std::size_t tile) HAIRSHADOW_ALWAYS_INLINE { binned[cursor[tile]++] = std::uint32_t(seg); });
+            }
         });
         by_load_.resize(tiles);
         std::iota(by_load_.begin(), by_load_.end(), 0u);
         std::stable_sort(by_load_.begin(), by_load_.end(), [&](std::uint32_t a, std::uint32_t b) { return tile_load(a) > tile_load(b); });
     }
+
+    /// Texels around a segment that it may touch, in sub-pixel units.
+    std::int64_t reach() const noexcept { return std::int64_t(std::ceil((1.0 + 0.5 * double(opt_.wide_line_width)) * double(subpixel_scale))); }
 
     /// texel / tile_size for a texel of the map, by a multiplication: q = (texel m) >> 32 with
     /// m = floor(2^32 / tile) + 1 is exact for texel < 2^16 and tile <= 2^10 (the error, texel (m tile -
@@ -257,7 +268,8 @@ private:
     std::vector<prepared_segment> segments_;
     std::vector<segment_attributes> attributes_; ///< per segment, only when the model has per-point thickness or transparency
     segment_attributes uniform_{};
-    std::vector<std::size_t> first_segment_;
+    std::vector<std::size_t> first_segment_, chunk_strand_;
+    std::vector<std::uint32_t> first_tile_; ///< per segment: its first tile, no_tile, or with more_tiles set
     std::vector<std::uint64_t> cursor_, tile_begin_;
     std::vector<std::uint32_t> binned_, by_load_;
     std::vector<depth_extent> chunk_extent_;

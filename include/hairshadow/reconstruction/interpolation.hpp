@@ -40,18 +40,19 @@ struct interpolation {
                       storage<Placement, Accumulation>& out) {
         constexpr int L = Placement::layer_count;
         std::array<typename Accumulation::sum_type, std::size_t(L)> sums{};
+        const auto assign = detail::texel_assigner(placement, state);
         if constexpr (std::is_same_v<Accumulation, float_accumulation> && L <= 16) {
             // Every layer's sum takes b or +0 for every fragment: the same sums, bit for bit (x + 0 == x
             // for the sums, which are never -0), without a store and reload of one layer's sum per
             // fragment; the layers' adds are independent and vectorise.
             for (const auto& f : fragments) {
-                const int k = placement.assign(state, f.depth);
+                const int k = assign(f.depth);
                 const float b = fragment_optical_depth(f);
                 for (int j = 0; j < L; ++j) sums[std::size_t(j)] += detail::keep_if(k == j, b);
             }
         } else {
             for (const auto& f : fragments) {
-                const int k = placement.assign(state, f.depth);
+                const int k = assign(f.depth);
                 if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], fragment_optical_depth(f));
             }
         }

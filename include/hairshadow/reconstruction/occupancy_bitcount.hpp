@@ -45,10 +45,11 @@ struct occupancy_bitcount {
                       storage<Placement, Accumulation>& out) {
         constexpr int per_slab = Placement::layer_count / Slabs;
         std::array<typename Accumulation::sum_type, std::size_t(Slabs)> sums{};
+        const auto assign = detail::texel_assigner(placement, state);
         if constexpr (std::is_same_v<Accumulation, float_accumulation> && Slabs <= 16) {
             // As interpolation::build: every slab's sum takes b or +0, the same sums bit for bit.
             for (const auto& f : fragments) {
-                const int k = placement.assign(state, f.depth);
+                const int k = assign(f.depth);
                 if (k < 0) continue;
                 out.bits[std::size_t(k / 32)] |= std::uint32_t(1) << (k % 32);
                 const float b = fragment_optical_depth(f);
@@ -57,7 +58,7 @@ struct occupancy_bitcount {
             }
         } else {
             for (const auto& f : fragments) {
-                const int k = placement.assign(state, f.depth);
+                const int k = assign(f.depth);
                 if (k < 0) continue;
                 out.bits[std::size_t(k / 32)] |= std::uint32_t(1) << (k % 32);
                 sums[std::size_t(k / per_slab)] = Accumulation::add(sums[std::size_t(k / per_slab)], fragment_optical_depth(f));
