@@ -107,6 +107,19 @@ TEST_CASE("compare prints and writes one row per method", "[cli][methods]") {
     CHECK(std::filesystem::exists(dir.file("c/compare.md")));
 }
 
+TEST_CASE("bench prints one row per method with its rebuild times and memory", "[cli][tiled]") {
+    const auto r = test::run_cli("bench procedural:curly:strands=300:segments=16 --res 128 --methods dom:3,occ:128:4,dsm --repeat 3 --threads 2");
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.out, Catch::Contains("| method | cold (ms) | median (ms) | min (ms) | max (ms) | fragments/s | maps (MiB) | peak memory (MiB) |"));
+    CHECK_THAT(r.out, Catch::Contains("2 threads"));
+    CHECK_THAT(r.out, Catch::Contains("over 3 rebuilds"));
+    for (const std::string method : {"| dom:3 | ", "| occ:128:4 | ", "| dsm | "}) CHECK_THAT(r.out, Catch::Contains(method));
+    CHECK_THAT(r.out, Catch::Contains("| 0.6 | ")); // occupancy maps at 128x128: 0.62 MiB
+    CHECK(test::run_cli("bench procedural:curly:strands=30 --repeat 0").status == 2);
+    CHECK(test::run_cli("bench procedural:curly:strands=30 --methods dom:99").status == 2);
+    CHECK(test::run_cli("bench procedural:curly:strands=30 --res 0").status == 1);
+}
+
 TEST_CASE("render writes the stored maps for inspection", "[cli][methods]") {
     test::temp_dir dir("cli_maps");
     const auto r = test::run_cli("render procedural:straight:strands=200:segments=8 --view light --res 32 --method dom:3 --out " + dir.file("t.png") +
