@@ -9,6 +9,7 @@
 #include <hairshadow/core/map_queries.hpp>
 #include <hairshadow/core/parallel.hpp>
 #include <hairshadow/core/hair_model.hpp>
+#include <hairshadow/core/huge_pages.hpp>
 #include <hairshadow/methods/concepts.hpp>
 #include <hairshadow/methods/tiled_build.hpp>
 #include <hairshadow/raster/fragment.hpp>
@@ -109,7 +110,7 @@ public:
         if (texels.size() != res * res) throw argument_error("adopted maps need one texel per texel of the light's map");
         light_ = light;
         placement_ = std::move(placement);
-        texels_ = std::move(texels);
+        texels_.assign(texels.begin(), texels.end());
     }
 
     /// Optical depth at linear `depth` in texel (x, y).
@@ -144,7 +145,7 @@ public:
 private:
     Placement placement_;
     light_space light_;                                  // 1x1 until built, so early queries see no shadow
-    std::vector<texel_maps> texels_ = std::vector<texel_maps>(1);
+    std::vector<texel_maps, detail::huge_page_allocator<texel_maps>> texels_ = decltype(texels_)(1);
     depth_extent extent_{};
     std::size_t fragments_ = 0;
     detail::scratch<detail::tiled_workspace> workspace_;

@@ -7,6 +7,7 @@
 #include <hairshadow/config.hpp>
 #include <hairshadow/core/error.hpp>
 #include <hairshadow/core/hair_model.hpp>
+#include <hairshadow/core/huge_pages.hpp>
 #include <hairshadow/core/light.hpp>
 #include <hairshadow/core/parallel.hpp>
 #include <hairshadow/placement/layer_position.hpp>
@@ -265,13 +266,14 @@ private:
     light_space light_;
     int res_ = 0, tiles_x_ = 0;
     std::uint64_t tile_magic_ = 0;
-    std::vector<prepared_segment> segments_;
+    std::vector<prepared_segment, huge_page_allocator<prepared_segment>> segments_;
     std::vector<segment_attributes> attributes_; ///< per segment, only when the model has per-point thickness or transparency
     segment_attributes uniform_{};
     std::vector<std::size_t> first_segment_, chunk_strand_;
-    std::vector<std::uint32_t> first_tile_; ///< per segment: its first tile, no_tile, or with more_tiles set
+    std::vector<std::uint32_t, huge_page_allocator<std::uint32_t>> first_tile_; ///< per segment: its first tile, no_tile, or with more_tiles set
     std::vector<std::uint64_t> cursor_, tile_begin_;
-    std::vector<std::uint32_t> binned_, by_load_;
+    std::vector<std::uint32_t, huge_page_allocator<std::uint32_t>> binned_;
+    std::vector<std::uint32_t> by_load_;
     std::vector<depth_extent> chunk_extent_;
     depth_extent extent_{};
 };

@@ -8,6 +8,7 @@
 
 #include <hairshadow/config.hpp>
 #include <hairshadow/core/error.hpp>
+#include <hairshadow/core/huge_pages.hpp>
 #include <hairshadow/raster/fragment.hpp>
 #include <hairshadow/raster/line_rule.hpp>
 #include <hairshadow/raster/segment_bins.hpp>
@@ -196,9 +197,12 @@ private:
     texel_rect rect_{};
     int width_ = 0;
     std::size_t n_ = 0;
-    std::vector<std::uint32_t> where_, offsets_; ///< each candidate's texel in the tile; per texel counts, then offsets
-    std::vector<float> depth_, optical_;         ///< each candidate's depth and b
-    std::vector<optical_fragment> grouped_;
+    template <class T>
+    using big_vector = std::vector<T, huge_page_allocator<T>>;
+    big_vector<std::uint32_t> where_;            ///< each candidate's texel in the tile
+    std::vector<std::uint32_t> offsets_;         ///< per texel counts, then offsets
+    big_vector<float> depth_, optical_;          ///< each candidate's depth and b
+    big_vector<optical_fragment> grouped_;
     float last_alpha_ = -1.0f, last_optical_ = 0.0f;
 };
 
