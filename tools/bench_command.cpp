@@ -59,7 +59,8 @@ int run_bench(const hair_model& model, const light_space& light, const bench_opt
     const auto now = [] { return std::chrono::steady_clock::now(); };
     // GL counts no fragments: they are the CPU rule's, counted once, tile by tile.
     const std::size_t gl_fragments = gl ? count_fragments(model, light, o.raster) : 0;
-    bool peak_known = true;
+    bool peak_known = reset_peak();
+    const std::optional<double> baseline_kib = status_kib("VmRSS");
     std::vector<row> rows;
     for (const auto& spec : o.specs) {
         std::fprintf(stderr, "  %s ...", spec.text.c_str());
@@ -104,8 +105,10 @@ int run_bench(const hair_model& model, const light_space& light, const bench_opt
     else std::printf("built on the CPU, tile by tile (%s line walk). ", resolve(o.raster.instructions) == instruction_set::avx512 ? "AVX-512" : "scalar");
     std::printf("A rebuild is a full build from the model (rasterise and build), the maps and working memory already in place; "
                 "the cold build is the first, which also allocates them%s. Times over %d rebuilds; peak memory is the process's resident "
-                "high-water mark while building%s.\n\n",
+                "high-water mark while building%s",
                 gl ? " and compiles the driver's shaders" : "", o.repeat, peak_known ? ", model included" : " (not resettable here: the whole run's)");
+    if (baseline_kib) std::printf(" (%.0f MiB resident before the first build)", *baseline_kib / 1024.0);
+    std::printf(".\n\n");
     std::printf("| method | cold (ms) | median (ms) | min (ms) | max (ms) | fragments/s | maps (MiB) | peak memory (MiB) |\n");
     std::printf("|---|---|---|---|---|---|---|---|\n");
     for (const auto& r : rows) {
