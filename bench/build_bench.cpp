@@ -10,6 +10,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "bench_models.hpp"
+
 #include <map>
 #include <string>
 
@@ -17,16 +19,7 @@ namespace {
 
 using namespace hairshadow;
 
-const hair_model& model(const std::string& name) {
-    static std::map<std::string, hair_model> cache;
-    auto it = cache.find(name);
-    if (it == cache.end()) {
-        hair_model m = name == "sintel" ? read_tfx(std::string(HAIRSHADOW_SHARED_DIR) + "/data/sintel/sintel_hair.16points.tfx")
-                                        : make_procedural({.style = hair_style::curly, .strands = 10000, .segments = 150, .seed = 1});
-        it = cache.emplace(name, std::move(m)).first;
-    }
-    return it->second;
-}
+using bench::model;
 
 enum class path { buffer, tiled, tiled_scalar, tiled_cold };
 
