@@ -369,6 +369,18 @@ inline void check_resolution(long long resolution) {
         throw argument_error("resolution " + std::to_string(resolution) + " is outside 1.." + std::to_string(HAIRSHADOW_MAX_RESOLUTION));
 }
 
+namespace detail {
+/// x itself, as a rounded float: a fence that keeps the compiler from fusing the multiplication that
+/// made x with a later addition. A fused multiply-add rounds once, not twice, so fusing would make
+/// the vector and scalar paths of the tiled build, or builds with and without -mfma, differ.
+HAIRSHADOW_ALWAYS_INLINE inline float rounded(float x) noexcept {
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+    __asm__("" : "+x"(x));
+#endif
+    return x;
+}
+} // namespace detail
+
 /// A world point seen from the light: window coordinates in texels, linear depth in [0, 1] inside the
 /// frustum, and the clip-space w (1 for orthographic lights).
 struct light_point {
@@ -505,10 +517,19 @@ public:
 
 private:
     /// Row i of m * (p, 1), summed in the order of GLM's matrix-vector product, inlined: the
-    /// rasteriser projects every point of the model.
+    /// rasteriser projects every point of the model. Every product is rounded before it is summed,
+    /// as the vector projection of the tiled build rounds it (detail::rounded).
     HAIRSHADOW_ALWAYS_INLINE static float row(const glm::mat4& m, int i, const glm::vec3& p) noexcept {
-        return (m[0][i] * p.x + m[1][i] * p.y) + (m[2][i] * p.z + m[3][i]);
+        using detail::rounded;
+        return (rounded(m[0][i] * p.x) + rounded(m[1][i] * p.y)) + (rounded(m[2][i] * p.z) + m[3][i]);
     }
+
+public:
+    /// The coefficients of row(view_projection(), i) for i = 0, 1, 3 and of row(view(), 2), for the
+    /// vector projection: {m[0][i], m[1][i], m[2][i], m[3][i]}.
+    std::array<float, 4> row_coefficients(const glm::mat4& m, int i) const noexcept { return {m[0][i], m[1][i], m[2][i], m[3][i]}; }
+
+private:
 
     int resolution_ = 1;
     light_type type_ = light_type::directional;
@@ -1747,6 +1768,68 @@ inline float just_above(float hi) noexcept { return std::nextafter(hi, std::nume
 
 } // namespace hairshadow
 // ---- end hairshadow/placement/layer_position.hpp
+// ---- begin hairshadow/raster/instruction_set.hpp
+/// @file
+/// Which vector instructions the tiled build runs on this CPU (raster_options::instructions): the
+/// AVX-512 paths are compiled with GCC's or Clang's target attribute and chosen at run time, so a
+/// build for plain x86-64 still uses them where the CPU has them. HAIRSHADOW_NO_AVX512 leaves them out.
+
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(HAIRSHADOW_NO_AVX512)
+#define HAIRSHADOW_AVX512_WALK 1
+// GCC 12's intrinsics make their "undefined" vectors by self-initialisation, which -Wuninitialized
+// reports wherever they inline (GCC bug 105593); the warning is located in the header, so it is
+// silenced there.
+#if defined(__clang__)
+#include <immintrin.h>
+#else
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <immintrin.h>
+#pragma GCC diagnostic pop
+#endif
+/// The attribute of every function that uses AVX-512 intrinsics.
+#define HAIRSHADOW_AVX512_TARGET __attribute__((target("avx512f")))
+#else
+#define HAIRSHADOW_AVX512_WALK 0
+#endif
+
+namespace hairshadow {
+
+namespace detail {
+/// Does this CPU (and this compiler) run the AVX-512 paths?
+inline bool cpu_has_avx512() noexcept {
+#if HAIRSHADOW_AVX512_WALK
+    static const bool has = __builtin_cpu_supports("avx512f");
+    return has;
+#else
+    return false;
+#endif
+}
+} // namespace detail
+
+#if HAIRSHADOW_AVX512_WALK
+namespace detail::avx512 {
+/// x itself: the multiplication that made x is not fused with a later addition (see detail::rounded).
+HAIRSHADOW_AVX512_TARGET inline __m512 rounded(__m512 x) noexcept {
+    __asm__("" : "+v"(x));
+    return x;
+}
+} // namespace detail::avx512
+#endif
+
+/// The instruction set `requested` resolves to on this CPU: automatic picks the best there is.
+/// Throws argument_error for avx512 where the CPU or the compiler has none.
+inline instruction_set resolve(instruction_set requested) {
+    if (requested == instruction_set::automatic) return detail::cpu_has_avx512() ? instruction_set::avx512 : instruction_set::scalar;
+    if (requested == instruction_set::avx512 && !detail::cpu_has_avx512())
+        throw argument_error("this CPU (or this build) has no AVX-512F for the tiled build; use instruction_set::scalar or automatic");
+    return requested;
+}
+
+} // namespace hairshadow
+// ---- end hairshadow/raster/instruction_set.hpp
 // ---- begin hairshadow/raster/prepared_segment.hpp
 /// @file
 /// Segments ready for the line rule (clipped to the light's depth range and a guard band, projected,
@@ -1798,16 +1881,6 @@ struct projected_point {
 HAIRSHADOW_ALWAYS_INLINE inline projected_point project_point(const light_space& ls, const glm::vec3& p) noexcept {
     const float distance = ls.distance_of(p);
     return {distance, ls.project(p, distance)};
-}
-
-/// x itself, as a rounded float: a fence that keeps the compiler from fusing the multiplication that
-/// made x with a later addition. A fused multiply-add rounds once, not twice, so fusing would make
-/// the vector and scalar walks, or builds with and without -mfma, give different depths.
-HAIRSHADOW_ALWAYS_INLINE inline float rounded(float x) noexcept {
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-    __asm__("" : "+x"(x));
-#endif
-    return x;
 }
 
 /// a + (b - a) s: exact at s = 0, and exactly a wherever a == b, so that a strand of constant
@@ -1978,6 +2051,7 @@ void rasterize_wide_line(const prepared_segment& s, float width, const texel_rec
 // ---- end hairshadow/raster/prepared_segment.hpp
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -2111,6 +2185,10 @@ private:
         cursor_.assign(chunks * tiles, 0);
         chunk_extent_.assign(chunks, depth_extent{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()});
         const auto reach = this->reach();
+        // The vector projection covers segments of one thickness and opacity, in tiles whose side is
+        // a power of two.
+        const bool vector = resolve(opt_.instructions) == instruction_set::avx512 && !per_point && std::has_single_bit(unsigned(opt_.tile_size));
+        (void)vector;
         parallel_for(chunks, opt_.exec, [&](std::size_t c) {
             // Raw pointers: stores through a member vector would make the compiler reload its data pointer.
             prepared_segment* out = segments_.data();
@@ -2123,6 +2201,12 @@ private:
                 const std::size_t p0 = model.strand_offsets[strand], n = model.strand_size(strand);
                 if (n < 2) continue;
                 const glm::vec3* points = model.points.data() + p0;
+#if HAIRSHADOW_AVX512_WALK
+                if (vector) {
+                    project_strand_avx512(points, n, first_segment_[strand], counts, e, reach);
+                    continue;
+                }
+#endif
                 projected_point from = project_point(light, points[0]);
                 for (std::size_t i = 0; i + 1 < n; ++i) {
                     const projected_point to = project_point(light, points[i + 1]); // each point projected once
@@ -2134,18 +2218,7 @@ private:
                     prepare_segment(light, points[i], points[i + 1], from, to, at, s);
                     if (out_attributes) out_attributes[seg] = at;
                     from = to;
-                    std::uint32_t first = no_tile;
-                    if (!s.empty()) {
-                        visit_tiles(s, reach, [&](std::size_t tile) HAIRSHADOW_ALWAYS_INLINE {
-                            ++counts[tile];
-                            first = first == no_tile ? std::uint32_t(tile) : (first | more_tiles);
-                        });
-                        if (first != no_tile) { // the segment reaches the map
-                            e.nearest = std::min({e.nearest, s.depth_a, s.depth_b});
-                            e.furthest = std::max({e.furthest, s.depth_a, s.depth_b});
-                        }
-                    }
-                    first_tile[seg] = first;
+                    first_tile[seg] = count_tiles(s, reach, counts, e);
                 }
             }
             chunk_extent_[c] = e;
@@ -2182,6 +2255,29 @@ private:
         std::iota(by_load_.begin(), by_load_.end(), 0u);
         std::stable_sort(by_load_.begin(), by_load_.end(), [&](std::uint32_t a, std::uint32_t b) { return tile_load(a) > tile_load(b); });
     }
+
+    /// Counts segment s in each tile it reaches and returns its first tile (with more_tiles set when
+    /// it reaches others too), or no_tile; widens e by its ends when it reaches the map.
+    HAIRSHADOW_ALWAYS_INLINE std::uint32_t count_tiles(const prepared_segment& s, std::int64_t reach, std::uint64_t* counts, depth_extent& e) const noexcept {
+        std::uint32_t first = no_tile;
+        if (s.empty()) return first;
+        visit_tiles(s, reach, [&](std::size_t tile) HAIRSHADOW_ALWAYS_INLINE {
+            ++counts[tile];
+            first = first == no_tile ? std::uint32_t(tile) : (first | more_tiles);
+        });
+        if (first != no_tile) { // the segment reaches the map
+            e.nearest = std::min({e.nearest, s.depth_a, s.depth_b});
+            e.furthest = std::max({e.furthest, s.depth_a, s.depth_b});
+        }
+        return first;
+    }
+
+#if HAIRSHADOW_AVX512_WALK
+    /// project_and_bin's loop over one strand of n points, whose first segment is first_seg, in
+    /// AVX-512 (raster/segment_project_avx512.hpp).
+    void project_strand_avx512(const glm::vec3* points, std::size_t n, std::size_t first_seg, std::uint64_t* counts, depth_extent& e,
+                               std::int64_t reach);
+#endif
 
     /// Texels around a segment that it may touch, in sub-pixel units.
     std::int64_t reach() const noexcept { return std::int64_t(std::ceil((1.0 + 0.5 * double(opt_.wide_line_width)) * double(subpixel_scale))); }
@@ -2243,6 +2339,150 @@ private:
 };
 
 } // namespace hairshadow::detail
+
+#if HAIRSHADOW_AVX512_WALK
+// ---- begin hairshadow/raster/segment_project_avx512.hpp
+/// @file
+/// The projection and binning of segment_bins in AVX-512F, sixteen segments of a strand at a time:
+/// both ends projected (light_space::project, product by product as it rounds them), the near and
+/// far planes and the guard band checked, the ends snapped, and the segment counted in its tile when
+/// it lies in one tile. Segments that need clipping, or that reach several tiles, go through the
+/// scalar code, lane by lane, in order; so every segment, count and first tile is the scalar one.
+
+
+
+#include <bit>
+#include <cstdint>
+
+namespace hairshadow::detail {
+
+namespace avx512 {
+
+/// c v, rounded (no fused multiply-add: see detail::rounded).
+HAIRSHADOW_AVX512_TARGET inline __m512 product(float c, __m512 v) noexcept { return rounded(_mm512_mul_ps(_mm512_set1_ps(c), v)); }
+
+/// Row i of m (p, 1) for sixteen points, as light_space::row rounds it.
+HAIRSHADOW_AVX512_TARGET inline __m512 project_row(const std::array<float, 4>& m, __m512 x, __m512 y, __m512 z) noexcept {
+    return _mm512_add_ps(_mm512_add_ps(product(m[0], x), product(m[1], y)), _mm512_add_ps(product(m[2], z), _mm512_set1_ps(m[3])));
+}
+
+/// snap() for eight window coordinates: x S + copysign(1/2, x), truncated, in doubles.
+HAIRSHADOW_AVX512_TARGET inline __m256i snap8(__m256 window) noexcept {
+    const __m512d x = _mm512_mul_pd(_mm512_cvtps_pd(window), _mm512_set1_pd(double(subpixel_scale)));
+    const __m512i sign = _mm512_set1_epi64(std::int64_t(0x8000000000000000ull)), half = _mm512_castpd_si512(_mm512_set1_pd(0.5));
+    const __m512d h = _mm512_castsi512_pd(_mm512_or_si512(_mm512_and_si512(_mm512_castpd_si512(x), sign), half));
+    return _mm512_cvttpd_epi32(_mm512_add_pd(x, h));
+}
+
+/// snap() for sixteen window coordinates.
+HAIRSHADOW_AVX512_TARGET inline __m512i snap16(__m512 window) noexcept {
+    const __m256 low = _mm512_castps512_ps256(window);
+    const __m256 high = _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(window), 1));
+    return _mm512_inserti64x4(_mm512_castsi256_si512(snap8(low)), snap8(high), 1);
+}
+
+/// |v| <= limit, lane by lane (false for NaN).
+HAIRSHADOW_AVX512_TARGET inline __mmask16 within(__m512 v, __m512 limit) noexcept { return _mm512_cmp_ps_mask(_mm512_abs_ps(v), limit, _CMP_LE_OQ); }
+
+/// Floats at byte offsets 4 (at + offset) from `from`, in the `valid` lanes (0 elsewhere).
+HAIRSHADOW_AVX512_TARGET inline __m512 gather_floats(const float* from, __m512i at, int offset, __mmask16 valid) noexcept {
+    return _mm512_mask_i32gather_ps(_mm512_setzero_ps(), valid, _mm512_add_epi32(at, _mm512_set1_epi32(offset)), from, 4);
+}
+
+} // namespace avx512
+
+HAIRSHADOW_AVX512_TARGET inline void segment_bins::project_strand_avx512(const glm::vec3* points, std::size_t n, std::size_t first_seg,
+                                                                         std::uint64_t* counts, depth_extent& e, std::int64_t reach) {
+    using namespace avx512;
+    const light_space& ls = light_;
+    const auto vp_x = ls.row_coefficients(ls.view_projection(), 0), vp_y = ls.row_coefficients(ls.view_projection(), 1);
+    const auto vp_w = ls.row_coefficients(ls.view_projection(), 3), view_z = ls.row_coefficients(ls.view(), 2);
+    const __m512 half_res = _mm512_set1_ps(0.5f * float(res_)), one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
+    const __m512 near_plane = _mm512_set1_ps(ls.near_plane()), far_plane = _mm512_set1_ps(ls.far_plane());
+    const __m512 depth_span = _mm512_set1_ps(ls.far_plane() - ls.near_plane());
+    const __m512 guard = _mm512_set1_ps(guard_band), two = _mm512_set1_ps(2.0f);
+    const __m512i lane3 = _mm512_mullo_epi32(_mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0), _mm512_set1_epi32(3));
+    const __m512i reach_v = _mm512_set1_epi32(std::int32_t(reach)), res_v = _mm512_set1_epi32(res_), last_v = _mm512_set1_epi32(res_ - 1);
+    const int tile_shift = std::countr_zero(unsigned(opt_.tile_size));
+    const __m512i tiles_x = _mm512_set1_epi32(tiles_x_), zero_i = _mm512_setzero_si512();
+    __m512 nearest = _mm512_set1_ps(e.nearest), furthest = _mm512_set1_ps(e.furthest);
+    alignas(64) std::int32_t ax[16], ay[16], bx[16], by[16], tile[16];
+    alignas(64) float depth_a[16], depth_b[16], inv_w_a[16], inv_w_b[16];
+    const std::size_t segments = n - 1;
+    for (std::size_t base = 0; base < segments; base += 16) {
+        const auto lanes = int(std::min<std::size_t>(16, segments - base));
+        const auto valid = __mmask16((1u << lanes) - 1u);
+        // Both ends of each segment: points base + l and base + l + 1.
+        const float* from = &points[base].x;
+        const __m512 x0 = gather_floats(from, lane3, 0, valid), y0 = gather_floats(from, lane3, 1, valid), z0 = gather_floats(from, lane3, 2, valid);
+        const __m512 x1 = gather_floats(from, lane3, 3, valid), y1 = gather_floats(from, lane3, 4, valid), z1 = gather_floats(from, lane3, 5, valid);
+        const __m512 d0 = _mm512_sub_ps(zero, project_row(view_z, x0, y0, z0)), d1 = _mm512_sub_ps(zero, project_row(view_z, x1, y1, z1));
+        // No clipping at the near and far planes (prepare_segment's tests, in its own arithmetic).
+        auto simple = __mmask16(valid & _mm512_cmp_ps_mask(_mm512_sub_ps(d0, near_plane), zero, _CMP_GE_OQ) &
+                           _mm512_cmp_ps_mask(_mm512_sub_ps(d1, near_plane), zero, _CMP_GE_OQ) &
+                           _mm512_cmp_ps_mask(_mm512_sub_ps(far_plane, d0), zero, _CMP_GE_OQ) &
+                           _mm512_cmp_ps_mask(_mm512_sub_ps(far_plane, d1), zero, _CMP_GE_OQ));
+        const __m512 w0 = project_row(vp_w, x0, y0, z0), w1 = project_row(vp_w, x1, y1, z1);
+        const __m512 wx0 = _mm512_mul_ps(_mm512_add_ps(_mm512_div_ps(project_row(vp_x, x0, y0, z0), w0), one), half_res);
+        const __m512 wy0 = _mm512_mul_ps(_mm512_add_ps(_mm512_div_ps(project_row(vp_y, x0, y0, z0), w0), one), half_res);
+        const __m512 wx1 = _mm512_mul_ps(_mm512_add_ps(_mm512_div_ps(project_row(vp_x, x1, y1, z1), w1), one), half_res);
+        const __m512 wy1 = _mm512_mul_ps(_mm512_add_ps(_mm512_div_ps(project_row(vp_y, x1, y1, z1), w1), one), half_res);
+        const __m512 dep0 = _mm512_div_ps(_mm512_sub_ps(d0, near_plane), depth_span), dep1 = _mm512_div_ps(_mm512_sub_ps(d1, near_plane), depth_span);
+        // Inside the guard band, finite, in front of the light: prepare_segment's last test.
+        simple = __mmask16(simple & within(wx0, guard) & within(wy0, guard) & within(wx1, guard) & within(wy1, guard) & within(dep0, two) &
+                           within(dep1, two) & _mm512_cmp_ps_mask(w0, zero, _CMP_GT_OQ) & _mm512_cmp_ps_mask(w1, zero, _CMP_GT_OQ));
+        const __m512i sax = snap16(wx0), say = snap16(wy0), sbx = snap16(wx1), sby = snap16(wy1);
+        _mm512_store_si512(ax, sax);
+        _mm512_store_si512(ay, say);
+        _mm512_store_si512(bx, sbx);
+        _mm512_store_si512(by, sby);
+        _mm512_store_ps(depth_a, dep0);
+        _mm512_store_ps(depth_b, dep1);
+        _mm512_store_ps(inv_w_a, _mm512_div_ps(one, w0));
+        _mm512_store_ps(inv_w_b, _mm512_div_ps(one, w1));
+        // One tile, inside the map: counted here; anything else goes through the scalar code.
+        const __mmask16 empty = _mm512_cmpeq_epi32_mask(sax, sbx) & _mm512_cmpeq_epi32_mask(say, sby);
+        const __m512i lo_x = _mm512_srai_epi32(_mm512_sub_epi32(_mm512_min_epi32(sax, sbx), reach_v), HAIRSHADOW_SUBPIXEL_BITS);
+        const __m512i hi_x = _mm512_srai_epi32(_mm512_add_epi32(_mm512_max_epi32(sax, sbx), reach_v), HAIRSHADOW_SUBPIXEL_BITS);
+        const __m512i lo_y = _mm512_srai_epi32(_mm512_sub_epi32(_mm512_min_epi32(say, sby), reach_v), HAIRSHADOW_SUBPIXEL_BITS);
+        const __m512i hi_y = _mm512_srai_epi32(_mm512_add_epi32(_mm512_max_epi32(say, sby), reach_v), HAIRSHADOW_SUBPIXEL_BITS);
+        const __mmask16 in_map = _mm512_cmpge_epi32_mask(hi_x, zero_i) & _mm512_cmpge_epi32_mask(hi_y, zero_i) &
+                                 _mm512_cmplt_epi32_mask(lo_x, res_v) & _mm512_cmplt_epi32_mask(lo_y, res_v);
+        const __m512i tx0 = _mm512_srai_epi32(_mm512_max_epi32(lo_x, zero_i), tile_shift), tx1 = _mm512_srai_epi32(_mm512_min_epi32(hi_x, last_v), tile_shift);
+        const __m512i ty0 = _mm512_srai_epi32(_mm512_max_epi32(lo_y, zero_i), tile_shift), ty1 = _mm512_srai_epi32(_mm512_min_epi32(hi_y, last_v), tile_shift);
+        const __mmask16 one_tile = simple & __mmask16(~empty) & in_map & _mm512_cmpeq_epi32_mask(tx0, tx1) & _mm512_cmpeq_epi32_mask(ty0, ty1);
+        const __mmask16 off_map = simple & __mmask16(~empty) & __mmask16(~in_map);
+        _mm512_store_si512(tile, _mm512_add_epi32(_mm512_mullo_epi32(ty0, tiles_x), tx0));
+        nearest = _mm512_mask_min_ps(nearest, one_tile, nearest, _mm512_min_ps(dep0, dep1));
+        furthest = _mm512_mask_max_ps(furthest, one_tile, furthest, _mm512_max_ps(dep0, dep1));
+        for (int l = 0; l < lanes; ++l) {
+            const std::size_t i = base + std::size_t(l), seg = first_seg + i;
+            const std::uint32_t bit = 1u << l;
+            if (simple & bit) {
+                segments_[seg] = {ax[l], ay[l], bx[l], by[l], depth_a[l], depth_b[l], inv_w_a[l], inv_w_b[l]};
+                if (one_tile & bit) {
+                    ++counts[tile[l]];
+                    first_tile_[seg] = std::uint32_t(tile[l]);
+                    continue;
+                }
+                if ((empty | off_map) & bit) {
+                    first_tile_[seg] = no_tile;
+                    continue;
+                }
+            } else {
+                segment_attributes at = uniform_;
+                prepare_segment(ls, points[i], points[i + 1], project_point(ls, points[i]), project_point(ls, points[i + 1]), at, segments_[seg]);
+            }
+            first_tile_[seg] = count_tiles(segments_[seg], reach, counts, e);
+        }
+    }
+    e.nearest = std::min(e.nearest, _mm512_reduce_min_ps(nearest));
+    e.furthest = std::max(e.furthest, _mm512_reduce_max_ps(furthest));
+}
+
+} // namespace hairshadow::detail
+// ---- end hairshadow/raster/segment_project_avx512.hpp
+#endif
 // ---- end hairshadow/raster/segment_bins.hpp
 
 #include <cstdint>
@@ -2581,46 +2821,7 @@ concept reconstruction_policy =
 #include <span>
 #include <vector>
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(HAIRSHADOW_NO_AVX512)
-#define HAIRSHADOW_AVX512_WALK 1
-// GCC 12's intrinsics make their "undefined" vectors by self-initialisation, which -Wuninitialized
-// reports wherever they inline (GCC bug 105593); the warning is located in the header, so it is
-// silenced there.
-#if defined(__clang__)
-#include <immintrin.h>
-#else
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#include <immintrin.h>
-#pragma GCC diagnostic pop
-#endif
-#else
-#define HAIRSHADOW_AVX512_WALK 0
-#endif
-
 namespace hairshadow {
-
-namespace detail {
-/// Does this CPU (and this compiler) run the AVX-512 walk?
-inline bool cpu_has_avx512() noexcept {
-#if HAIRSHADOW_AVX512_WALK
-    static const bool has = __builtin_cpu_supports("avx512f");
-    return has;
-#else
-    return false;
-#endif
-}
-} // namespace detail
-
-/// The instruction set `requested` resolves to on this CPU: automatic picks the best there is.
-/// Throws argument_error for avx512 where the CPU or the compiler has none.
-inline instruction_set resolve(instruction_set requested) {
-    if (requested == instruction_set::automatic) return detail::cpu_has_avx512() ? instruction_set::avx512 : instruction_set::scalar;
-    if (requested == instruction_set::avx512 && !detail::cpu_has_avx512())
-        throw argument_error("this CPU (or this build) has no AVX-512F for the tiled walk; use instruction_set::scalar or automatic");
-    return requested;
-}
 
 namespace detail {
 
@@ -2787,14 +2988,6 @@ private:
 #include <cstdint>
 
 namespace hairshadow::detail::avx512 {
-
-#define HAIRSHADOW_AVX512_TARGET __attribute__((target("avx512f")))
-
-/// x itself: the multiplication that made x is not fused with a later addition (see rounded()).
-HAIRSHADOW_AVX512_TARGET inline __m512 rounded(__m512 x) noexcept {
-    __asm__("" : "+v"(x));
-    return x;
-}
 
 /// inside_diamond (line_rule.hpp) for sixteen points and texels.
 HAIRSHADOW_AVX512_TARGET inline __mmask16 inside_diamond(__m512i px, __m512i py, __m512i c, __m512i r) noexcept {
@@ -3021,8 +3214,6 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
         }
     }
 }
-
-#undef HAIRSHADOW_AVX512_TARGET
 
 } // namespace hairshadow::detail
 // ---- end hairshadow/raster/tile_walk_avx512.hpp

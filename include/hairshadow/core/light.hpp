@@ -72,6 +72,18 @@ inline void check_resolution(long long resolution) {
         throw argument_error("resolution " + std::to_string(resolution) + " is outside 1.." + std::to_string(HAIRSHADOW_MAX_RESOLUTION));
 }
 
+namespace detail {
+/// x itself, as a rounded float: a fence that keeps the compiler from fusing the multiplication that
+/// made x with a later addition. A fused multiply-add rounds once, not twice, so fusing would make
+/// the vector and scalar paths of the tiled build, or builds with and without -mfma, differ.
+HAIRSHADOW_ALWAYS_INLINE inline float rounded(float x) noexcept {
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+    __asm__("" : "+x"(x));
+#endif
+    return x;
+}
+} // namespace detail
+
 /// A world point seen from the light: window coordinates in texels, linear depth in [0, 1] inside the
 /// frustum, and the clip-space w (1 for orthographic lights).
 struct light_point {
@@ -208,10 +220,19 @@ public:
 
 private:
     /// Row i of m * (p, 1), summed in the order of GLM's matrix-vector product, inlined: the
-    /// rasteriser projects every point of the model.
+    /// rasteriser projects every point of the model. Every product is rounded before it is summed,
+    /// as the vector projection of the tiled build rounds it (detail::rounded).
     HAIRSHADOW_ALWAYS_INLINE static float row(const glm::mat4& m, int i, const glm::vec3& p) noexcept {
-        return (m[0][i] * p.x + m[1][i] * p.y) + (m[2][i] * p.z + m[3][i]);
+        using detail::rounded;
+        return (rounded(m[0][i] * p.x) + rounded(m[1][i] * p.y)) + (rounded(m[2][i] * p.z) + m[3][i]);
     }
+
+public:
+    /// The coefficients of row(view_projection(), i) for i = 0, 1, 3 and of row(view(), 2), for the
+    /// vector projection: {m[0][i], m[1][i], m[2][i], m[3][i]}.
+    std::array<float, 4> row_coefficients(const glm::mat4& m, int i) const noexcept { return {m[0][i], m[1][i], m[2][i], m[3][i]}; }
+
+private:
 
     int resolution_ = 1;
     light_type type_ = light_type::directional;

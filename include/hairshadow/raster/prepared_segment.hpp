@@ -56,16 +56,6 @@ HAIRSHADOW_ALWAYS_INLINE inline projected_point project_point(const light_space&
     return {distance, ls.project(p, distance)};
 }
 
-/// x itself, as a rounded float: a fence that keeps the compiler from fusing the multiplication that
-/// made x with a later addition. A fused multiply-add rounds once, not twice, so fusing would make
-/// the vector and scalar walks, or builds with and without -mfma, give different depths.
-HAIRSHADOW_ALWAYS_INLINE inline float rounded(float x) noexcept {
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-    __asm__("" : "+x"(x));
-#endif
-    return x;
-}
-
 /// a + (b - a) s: exact at s = 0, and exactly a wherever a == b, so that a strand of constant
 /// thickness and opacity gives every fragment the same alpha.
 HAIRSHADOW_ALWAYS_INLINE inline float lerp_exact(float a, float b, float s) noexcept { return a + rounded((b - a) * s); }

@@ -11,9 +11,11 @@
 #include <hairshadow/core/light.hpp>
 #include <hairshadow/core/parallel.hpp>
 #include <hairshadow/placement/layer_position.hpp>
+#include <hairshadow/raster/instruction_set.hpp>
 #include <hairshadow/raster/prepared_segment.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -147,6 +149,10 @@ private:
         cursor_.assign(chunks * tiles, 0);
         chunk_extent_.assign(chunks, depth_extent{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()});
         const auto reach = this->reach();
+        // The vector projection covers segments of one thickness and opacity, in tiles whose side is
+        // a power of two.
+        const bool vector = resolve(opt_.instructions) == instruction_set::avx512 && !per_point && std::has_single_bit(unsigned(opt_.tile_size));
+        (void)vector;
         parallel_for(chunks, opt_.exec, [&](std::size_t c) {
             // Raw pointers: stores through a member vector would make the compiler reload its data pointer.
             prepared_segment* out = segments_.data();
@@ -159,6 +165,12 @@ private:
                 const std::size_t p0 = model.strand_offsets[strand], n = model.strand_size(strand);
                 if (n < 2) continue;
                 const glm::vec3* points = model.points.data() + p0;
+#if HAIRSHADOW_AVX512_WALK
+                if (vector) {
+                    project_strand_avx512(points, n, first_segment_[strand], counts, e, reach);
+                    continue;
+                }
+#endif
                 projected_point from = project_point(light, points[0]);
                 for (std::size_t i = 0; i + 1 < n; ++i) {
                     const projected_point to = project_point(light, points[i + 1]); // each point projected once
@@ -170,18 +182,7 @@ private:
                     prepare_segment(light, points[i], points[i + 1], from, to, at, s);
                     if (out_attributes) out_attributes[seg] = at;
                     from = to;
-                    std::uint32_t first = no_tile;
-                    if (!s.empty()) {
-                        visit_tiles(s, reach, [&](std::size_t tile) HAIRSHADOW_ALWAYS_INLINE {
-                            ++counts[tile];
-                            first = first == no_tile ? std::uint32_t(tile) : (first | more_tiles);
-                        });
-                        if (first != no_tile) { // the segment reaches the map
-                            e.nearest = std::min({e.nearest, s.depth_a, s.depth_b});
-                            e.furthest = std::max({e.furthest, s.depth_a, s.depth_b});
-                        }
-                    }
-                    first_tile[seg] = first;
+                    first_tile[seg] = count_tiles(s, reach, counts, e);
                 }
             }
             chunk_extent_[c] = e;
@@ -218,6 +219,29 @@ private:
         std::iota(by_load_.begin(), by_load_.end(), 0u);
         std::stable_sort(by_load_.begin(), by_load_.end(), [&](std::uint32_t a, std::uint32_t b) { return tile_load(a) > tile_load(b); });
     }
+
+    /// Counts segment s in each tile it reaches and returns its first tile (with more_tiles set when
+    /// it reaches others too), or no_tile; widens e by its ends when it reaches the map.
+    HAIRSHADOW_ALWAYS_INLINE std::uint32_t count_tiles(const prepared_segment& s, std::int64_t reach, std::uint64_t* counts, depth_extent& e) const noexcept {
+        std::uint32_t first = no_tile;
+        if (s.empty()) return first;
+        visit_tiles(s, reach, [&](std::size_t tile) HAIRSHADOW_ALWAYS_INLINE {
+            ++counts[tile];
+            first = first == no_tile ? std::uint32_t(tile) : (first | more_tiles);
+        });
+        if (first != no_tile) { // the segment reaches the map
+            e.nearest = std::min({e.nearest, s.depth_a, s.depth_b});
+            e.furthest = std::max({e.furthest, s.depth_a, s.depth_b});
+        }
+        return first;
+    }
+
+#if HAIRSHADOW_AVX512_WALK
+    /// project_and_bin's loop over one strand of n points, whose first segment is first_seg, in
+    /// AVX-512 (raster/segment_project_avx512.hpp).
+    void project_strand_avx512(const glm::vec3* points, std::size_t n, std::size_t first_seg, std::uint64_t* counts, depth_extent& e,
+                               std::int64_t reach);
+#endif
 
     /// Texels around a segment that it may touch, in sub-pixel units.
     std::int64_t reach() const noexcept { return std::int64_t(std::ceil((1.0 + 0.5 * double(opt_.wide_line_width)) * double(subpixel_scale))); }
@@ -279,3 +303,7 @@ private:
 };
 
 } // namespace hairshadow::detail
+
+#if HAIRSHADOW_AVX512_WALK
+#include <hairshadow/raster/segment_project_avx512.hpp>
+#endif

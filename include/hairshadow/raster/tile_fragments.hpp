@@ -11,6 +11,7 @@
 #include <hairshadow/core/huge_pages.hpp>
 #include <hairshadow/raster/fragment.hpp>
 #include <hairshadow/raster/line_rule.hpp>
+#include <hairshadow/raster/instruction_set.hpp>
 #include <hairshadow/raster/segment_bins.hpp>
 
 #include <algorithm>
@@ -19,46 +20,7 @@
 #include <span>
 #include <vector>
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(HAIRSHADOW_NO_AVX512)
-#define HAIRSHADOW_AVX512_WALK 1
-// GCC 12's intrinsics make their "undefined" vectors by self-initialisation, which -Wuninitialized
-// reports wherever they inline (GCC bug 105593); the warning is located in the header, so it is
-// silenced there.
-#if defined(__clang__)
-#include <immintrin.h>
-#else
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#include <immintrin.h>
-#pragma GCC diagnostic pop
-#endif
-#else
-#define HAIRSHADOW_AVX512_WALK 0
-#endif
-
 namespace hairshadow {
-
-namespace detail {
-/// Does this CPU (and this compiler) run the AVX-512 walk?
-inline bool cpu_has_avx512() noexcept {
-#if HAIRSHADOW_AVX512_WALK
-    static const bool has = __builtin_cpu_supports("avx512f");
-    return has;
-#else
-    return false;
-#endif
-}
-} // namespace detail
-
-/// The instruction set `requested` resolves to on this CPU: automatic picks the best there is.
-/// Throws argument_error for avx512 where the CPU or the compiler has none.
-inline instruction_set resolve(instruction_set requested) {
-    if (requested == instruction_set::automatic) return detail::cpu_has_avx512() ? instruction_set::avx512 : instruction_set::scalar;
-    if (requested == instruction_set::avx512 && !detail::cpu_has_avx512())
-        throw argument_error("this CPU (or this build) has no AVX-512F for the tiled walk; use instruction_set::scalar or automatic");
-    return requested;
-}
 
 namespace detail {
 

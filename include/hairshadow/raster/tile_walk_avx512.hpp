@@ -15,14 +15,6 @@
 
 namespace hairshadow::detail::avx512 {
 
-#define HAIRSHADOW_AVX512_TARGET __attribute__((target("avx512f")))
-
-/// x itself: the multiplication that made x is not fused with a later addition (see rounded()).
-HAIRSHADOW_AVX512_TARGET inline __m512 rounded(__m512 x) noexcept {
-    __asm__("" : "+v"(x));
-    return x;
-}
-
 /// inside_diamond (line_rule.hpp) for sixteen points and texels.
 HAIRSHADOW_AVX512_TARGET inline __mmask16 inside_diamond(__m512i px, __m512i py, __m512i c, __m512i r) noexcept {
     const __m512i half = _mm512_set1_epi32(std::int32_t(subpixel_scale / 2));
@@ -248,7 +240,5 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
         }
     }
 }
-
-#undef HAIRSHADOW_AVX512_TARGET
 
 } // namespace hairshadow::detail
