@@ -92,6 +92,16 @@ TEMPLATE_TEST_CASE("the tiled build gives the fragment-buffer build's maps, bit 
     check_tiled_equals_buffer<TestType>(model, light);
 }
 
+TEST_CASE("the tiled build gives the fragment-buffer build's maps on the 1.5M-segment curly model", "[tiled][.slow]") {
+    // The benchmark's model (12.26 M fragments at 512x512): too slow for every run of the suite.
+    const hair_model curly = make_procedural({.style = hair_style::curly, .strands = 10000, .segments = 150, .seed = 1});
+    const auto light = light_space::fit(light_spec::directional({0, -1, -1}), curly.bounds(), 512);
+    check_tiled_equals_buffer<deep_opacity_maps<3>>(curly, light);
+    check_tiled_equals_buffer<occupancy_maps<128, 4>>(curly, light);
+    check_tiled_equals_buffer<opacity_shadow_maps<16>>(curly, light);
+    check_tiled_equals_buffer<density_clustering<4>>(curly, light);
+}
+
 TEST_CASE("the tiled build matches on the scalar paths: perspective lights, per-point attributes, fixed alpha, wide lines", "[tiled]") {
     const auto& sintel = test_model("sintel");
     SECTION("a point light (coverage weighted by depth)") {
