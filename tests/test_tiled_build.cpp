@@ -132,6 +132,31 @@ TEST_CASE("the tiled build matches on the scalar paths: perspective lights, per-
     }
 }
 
+TEST_CASE("maps that see part of the model, and segments clipped at the near plane, come out the same for every tile size", "[tiled]") {
+    // A spot light inside the hair: segments behind it, crossing its near plane, and leaving its map.
+    const auto& sintel = test_model("sintel");
+    const auto centre = sintel.bounds().center();
+    const auto light = light_space::fit(light_spec::spot(centre + glm::vec3(0.0f, 0.05f, 0.0f), {0.2f, -1.0f, 0.1f}, 35.0f), sintel.bounds(), 300);
+    raster_options scalar;
+    scalar.instructions = instruction_set::scalar;
+    scalar.tile_size = 16;
+    opacity_shadow_maps<16> reference;
+    reference.build(sintel, light, scalar);
+    CHECK(reference.fragment_count() > 10000);
+    for (const int tile : {8, 24, 64, 128, 301}) {
+        CAPTURE(tile);
+        raster_options o;
+        o.tile_size = tile;
+        opacity_shadow_maps<16> osm;
+        osm.build(sintel, light, o);
+        CHECK(osm.map_extent().nearest == reference.map_extent().nearest);
+        CHECK(osm.map_extent().furthest == reference.map_extent().furthest);
+        CHECK(osm.fragment_count() == reference.fragment_count());
+        CHECK(same_maps(osm, reference));
+    }
+    check_tiled_equals_buffer<occupancy_maps<128, 4>>(sintel, light);
+}
+
 TEST_CASE("the whole-map extent from the segments holds every fragment, and is close to the fragments' own", "[tiled][extent]") {
     const std::string name = GENERATE("sintel", "curly");
     CAPTURE(name);

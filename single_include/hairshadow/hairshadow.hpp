@@ -580,6 +580,7 @@ public:
     /// returned. Returns false, having called nothing, when the pool is busy with another job.
     template <class Job>
     bool run(unsigned threads, Job& job) {
+        if (threads < 2) return job(), true;
         std::unique_lock lock(mutex_);
         if (busy_) return false;
         busy_ = true;
@@ -652,16 +653,20 @@ private:
 
 namespace hairshadow {
 
+namespace detail {
+/// The hardware threads, asked once: a loop sizes per-thread memory by it, then runs by it.
+inline unsigned hardware_threads() noexcept {
+    static const unsigned count = std::max(1u, std::thread::hardware_concurrency());
+    return count;
+}
+} // namespace detail
+
 /// Thread count for the CPU kernels: 0 means every hardware thread.
 struct execution {
     unsigned threads = 0;
     friend bool operator==(const execution&, const execution&) = default;
 
-    unsigned resolved() const noexcept {
-        if (threads != 0) return threads;
-        const unsigned hw = std::thread::hardware_concurrency();
-        return hw == 0 ? 1u : hw;
-    }
+    unsigned resolved() const noexcept { return threads != 0 ? threads : detail::hardware_threads(); }
 };
 
 /// Threads a loop of `count` items in chunks of `grain` runs on: at most exec.resolved(), the chunk
@@ -671,7 +676,7 @@ inline unsigned parallel_slots(std::size_t count, const execution& exec, std::si
     if (count == 0) return 1;
     grain = std::max<std::size_t>(grain, 1);
     const std::size_t chunks = (count + grain - 1) / grain;
-    const std::size_t useful = 4 * std::size_t(std::max(1u, std::thread::hardware_concurrency()));
+    const std::size_t useful = 4 * std::size_t(detail::hardware_threads());
     return static_cast<unsigned>(std::max<std::size_t>(1, std::min({std::size_t(exec.resolved()), chunks, useful})));
 }
 
@@ -1682,7 +1687,7 @@ struct huge_page_allocator {
     T* allocate(std::size_t n) {
         if (n > std::numeric_limits<std::size_t>::max() / sizeof(T)) throw std::bad_array_new_length();
         const std::size_t bytes = n * sizeof(T);
-        if (bytes < huge_page) return static_cast<T*>(::operator new(bytes));
+        if (bytes < huge_page) return static_cast<T*>(::operator new(bytes, std::align_val_t(alignof(T))));
         const std::size_t rounded = (bytes + huge_page - 1) / huge_page * huge_page;
         void* p = std::aligned_alloc(huge_page, rounded);
         if (!p) throw std::bad_alloc();
@@ -1692,7 +1697,7 @@ struct huge_page_allocator {
         return static_cast<T*>(p);
     }
     void deallocate(T* p, std::size_t n) noexcept {
-        if (n * sizeof(T) < huge_page) ::operator delete(p);
+        if (n * sizeof(T) < huge_page) ::operator delete(p, std::align_val_t(alignof(T)));
         else std::free(p);
     }
     template <class U>
@@ -2084,9 +2089,10 @@ public:
     const std::vector<std::uint32_t>& tiles_by_load() const noexcept { return by_load_; }
     std::size_t tile_load(std::size_t t) const noexcept { return std::size_t(tile_begin_[t + 1] - tile_begin_[t]); }
 
-    /// The whole-map pre-pass: nearest and furthest end of every segment that reaches the map. Each
-    /// fragment's depth lies between its segment's end depths, so this range holds every fragment's;
-    /// it can be wider, by the parts of segments that leave the map or cross no texel centre.
+    /// The whole-map pre-pass: nearest and furthest end of every segment whose box meets the map
+    /// (meets_map). Each fragment's depth lies between its segment's end depths, so this range holds
+    /// every fragment's; it can be wider, by the parts of segments that leave the map or cross no
+    /// texel centre. Nothing about it depends on the tile size.
     depth_extent extent() const noexcept { return extent_; }
 
     texel_rect tile_rect(std::size_t t) const noexcept {
@@ -2146,10 +2152,14 @@ public:
     }
 
 private:
-    static constexpr std::size_t chunks = 64; // fixed, so that binning does not depend on the thread count
+    /// Chunks of the segment range, counted and written apart (at most 64, and fewer where the tiles
+    /// are so many that each chunk's count per tile would take more than 32 MiB together). The lists
+    /// come out in segment order for any chunk count, so the result depends on neither it nor the
+    /// threads.
+    static std::size_t chunk_count(std::size_t tiles) noexcept { return std::clamp<std::size_t>((std::size_t(1) << 22) / std::max<std::size_t>(tiles, 1), 1, 64); }
 
-    // Each of a fixed number of chunks (strand ranges of about equal segment counts, so that nothing
-    // depends on the thread count) runs two passes over its segments:
+    // Each chunk (a strand range of about equal segment count, so that nothing depends on the thread
+    // count) runs two passes over its segments:
     // 1. project and snap each segment, strand by strand, and count it in the tiles it reaches, noting
     //    its first tile (while the segment is in registers: the segments are read from memory once,
     //    in the walk, and never re-read to bin them);
@@ -2178,6 +2188,7 @@ private:
         uniform_ = {t, t, o, o};
         attributes_.resize(per_point ? count : 0);
         // Chunk c: the strands whose first segment lies in [c count / chunks, (c + 1) count / chunks).
+        const std::size_t chunks = chunk_count(tiles);
         chunk_strand_.resize(chunks + 1);
         for (std::size_t c = 0; c <= chunks; ++c)
             chunk_strand_[c] = std::size_t(std::lower_bound(first_segment_.begin(), first_segment_.end() - 1, c * count / chunks) - first_segment_.begin());
@@ -2257,19 +2268,32 @@ private:
     }
 
     /// Counts segment s in each tile it reaches and returns its first tile (with more_tiles set when
-    /// it reaches others too), or no_tile; widens e by its ends when it reaches the map.
+    /// it reaches others too), or no_tile; widens e by its ends when its box meets the map.
     HAIRSHADOW_ALWAYS_INLINE std::uint32_t count_tiles(const prepared_segment& s, std::int64_t reach, std::uint64_t* counts, depth_extent& e) const noexcept {
         std::uint32_t first = no_tile;
-        if (s.empty()) return first;
+        if (s.empty() || !meets_map(s, reach)) return first;
+        e.nearest = std::min({e.nearest, s.depth_a, s.depth_b});
+        e.furthest = std::max({e.furthest, s.depth_a, s.depth_b});
         visit_tiles(s, reach, [&](std::size_t tile) HAIRSHADOW_ALWAYS_INLINE {
             ++counts[tile];
             first = first == no_tile ? std::uint32_t(tile) : (first | more_tiles);
         });
-        if (first != no_tile) { // the segment reaches the map
-            e.nearest = std::min({e.nearest, s.depth_a, s.depth_b});
-            e.furthest = std::max({e.furthest, s.depth_a, s.depth_b});
-        }
         return first;
+    }
+
+    /// One segment of project_strand_avx512 that the vector code leaves alone, prepared and counted
+    /// by the scalar code, compiled apart from the AVX-512 function: inlined there, the compiler could
+    /// fuse its multiplications and additions and prepare or bin the segment differently.
+#if defined(__GNUC__)
+    __attribute__((noinline))
+#endif
+    std::uint32_t prepare_and_count(const glm::vec3& p0, const glm::vec3& p1, bool prepared, std::size_t seg, std::int64_t reach,
+                                    std::uint64_t* counts, depth_extent& e) {
+        if (!prepared) {
+            segment_attributes at = uniform_;
+            prepare_segment(light_, p0, p1, project_point(light_, p0), project_point(light_, p1), at, segments_[seg]);
+        }
+        return count_tiles(segments_[seg], reach, counts, e);
     }
 
 #if HAIRSHADOW_AVX512_WALK
@@ -2288,17 +2312,27 @@ private:
     /// end per segment cost a fifth of the binning.
     HAIRSHADOW_ALWAYS_INLINE int tile_of(std::int64_t texel) const noexcept { return int((std::uint64_t(texel) * tile_magic_) >> 32); }
 
+    /// Does the segment's bounding box, widened by `reach`, meet the map? The whole-map extent counts
+    /// the segments that do, whatever the tiles.
+    HAIRSHADOW_ALWAYS_INLINE bool meets_map(const prepared_segment& s, std::int64_t reach) const noexcept {
+        const std::int64_t hi_x = (std::max<std::int64_t>(s.ax, s.bx) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        const std::int64_t hi_y = (std::max<std::int64_t>(s.ay, s.by) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        const std::int64_t lo_x = (std::min<std::int64_t>(s.ax, s.bx) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        const std::int64_t lo_y = (std::min<std::int64_t>(s.ay, s.by) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        return !(hi_x < 0 || hi_y < 0 || lo_x >= res_ || lo_y >= res_);
+    }
+
     /// Calls visit(tile) for each tile within `reach` (sub-pixel units) of the segment; a long diagonal
-    /// segment visits O(its length) tiles rather than its whole bounding box.
+    /// segment visits O(its length) tiles rather than its whole bounding box. Integer arithmetic only,
+    /// so that the counting and the writing pass, wherever the compiler puts them, visit the same tiles.
     template <class Visit>
     HAIRSHADOW_ALWAYS_INLINE void visit_tiles(const prepared_segment& s, std::int64_t reach, Visit&& visit) const {
+        if (!meets_map(s, reach)) return;
         // Texel bounds of the segment plus its reach; arithmetic shifts floor negative values.
         const std::int64_t lo_x = (std::min<std::int64_t>(s.ax, s.bx) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
         const std::int64_t hi_x = (std::max<std::int64_t>(s.ax, s.bx) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
         const std::int64_t lo_y = (std::min<std::int64_t>(s.ay, s.by) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
         const std::int64_t hi_y = (std::max<std::int64_t>(s.ay, s.by) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
-        if (hi_x < 0 || hi_y < 0 || lo_x >= res_ || lo_y >= res_) return;
-        const int tile = opt_.tile_size;
         const int tx0 = tile_of(std::max<std::int64_t>(lo_x, 0)), tx1 = tile_of(std::min<std::int64_t>(hi_x, res_ - 1));
         const int ty0 = tile_of(std::max<std::int64_t>(lo_y, 0)), ty1 = tile_of(std::min<std::int64_t>(hi_y, res_ - 1));
         if (ty0 == ty1 || tx0 == tx1) { // most hair segments: one row or column of tiles, as the box says
@@ -2307,17 +2341,22 @@ private:
             return;
         }
         // A segment across several rows and columns: per row of tiles, only the columns that the
-        // segment's piece in that row (widened by reach) spans.
-        const double scale = 1.0 / double(subpixel_scale), r = double(reach) * scale;
-        const double ax = double(s.ax) * scale, ay = double(s.ay) * scale, bx = double(s.bx) * scale, by = double(s.by) * scale;
+        // segment's piece in that row's band (widened by reach) spans, floored and ceiled outwards.
+        const std::int64_t side = std::int64_t(opt_.tile_size) * subpixel_scale;
+        const std::int64_t dy = std::int64_t(s.by) - s.ay, dx = std::int64_t(s.bx) - s.ax;
+        const std::int64_t y_lo = std::min<std::int64_t>(s.ay, s.by), y_hi = std::max<std::int64_t>(s.ay, s.by);
+        auto x_at = [&](std::int64_t y, bool up) { // x on the segment at height y, rounded down or up
+            if (dy == 0) return up ? std::max<std::int64_t>(s.ax, s.bx) : std::min<std::int64_t>(s.ax, s.bx); // a level segment whose reach spans rows
+            const std::int64_t num = (y - s.ay) * dx * (dy > 0 ? 1 : -1), den = dy > 0 ? dy : -dy;
+            const std::int64_t q = floor_div(num, den);
+            return s.ax + q + (up && q * den != num ? 1 : 0);
+        };
         for (int ty = ty0; ty <= ty1; ++ty) {
-            const double band_lo = double(ty * tile) - r, band_hi = double((ty + 1) * tile) + r;
-            const double u = (band_lo - ay) / (by - ay), v = (band_hi - ay) / (by - ay); // by != ay: the box spans rows
-            const double s0 = std::max(0.0, std::min(u, v)), s1 = std::min(1.0, std::max(u, v));
-            if (s0 > s1) continue;
-            const double x0 = ax + s0 * (bx - ax), x1 = ax + s1 * (bx - ax);
-            const int c0 = std::max(tx0, int(std::floor((std::min(x0, x1) - r) / tile)));
-            const int c1 = std::min(tx1, int(std::floor((std::max(x0, x1) + r) / tile)));
+            const std::int64_t band_lo = std::max(std::int64_t(ty) * side - reach, y_lo), band_hi = std::min(std::int64_t(ty + 1) * side + reach, y_hi);
+            if (band_lo > band_hi) continue;
+            const std::int64_t x_lo = std::min(x_at(band_lo, false), x_at(band_hi, false)) - reach;
+            const std::int64_t x_hi = std::max(x_at(band_lo, true), x_at(band_hi, true)) + reach;
+            const int c0 = int(std::max<std::int64_t>(tx0, floor_div(x_lo, side))), c1 = int(std::min<std::int64_t>(tx1, floor_div(x_hi, side)));
             for (int tx = c0; tx <= c1; ++tx) visit(std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx));
         }
     }
@@ -2364,6 +2403,11 @@ HAIRSHADOW_AVX512_TARGET inline __m512 product(float c, __m512 v) noexcept { ret
 /// Row i of m (p, 1) for sixteen points, as light_space::row rounds it.
 HAIRSHADOW_AVX512_TARGET inline __m512 project_row(const std::array<float, 4>& m, __m512 x, __m512 y, __m512 z) noexcept {
     return _mm512_add_ps(_mm512_add_ps(product(m[0], x), product(m[1], y)), _mm512_add_ps(product(m[2], z), _mm512_set1_ps(m[3])));
+}
+
+/// -v, exactly as the scalar negation (the sign bit flipped; 0 - v would give +0 for +0).
+HAIRSHADOW_AVX512_TARGET inline __m512 negate(__m512 v) noexcept {
+    return _mm512_castsi512_ps(_mm512_xor_epi32(_mm512_castps_si512(v), _mm512_set1_epi32(std::int32_t(0x80000000u))));
 }
 
 /// snap() for eight window coordinates: x S + copysign(1/2, x), truncated, in doubles.
@@ -2416,7 +2460,7 @@ HAIRSHADOW_AVX512_TARGET inline void segment_bins::project_strand_avx512(const g
         const float* from = &points[base].x;
         const __m512 x0 = gather_floats(from, lane3, 0, valid), y0 = gather_floats(from, lane3, 1, valid), z0 = gather_floats(from, lane3, 2, valid);
         const __m512 x1 = gather_floats(from, lane3, 3, valid), y1 = gather_floats(from, lane3, 4, valid), z1 = gather_floats(from, lane3, 5, valid);
-        const __m512 d0 = _mm512_sub_ps(zero, project_row(view_z, x0, y0, z0)), d1 = _mm512_sub_ps(zero, project_row(view_z, x1, y1, z1));
+        const __m512 d0 = negate(project_row(view_z, x0, y0, z0)), d1 = negate(project_row(view_z, x1, y1, z1));
         // No clipping at the near and far planes (prepare_segment's tests, in its own arithmetic).
         auto simple = __mmask16(valid & _mm512_cmp_ps_mask(_mm512_sub_ps(d0, near_plane), zero, _CMP_GE_OQ) &
                            _mm512_cmp_ps_mask(_mm512_sub_ps(d1, near_plane), zero, _CMP_GE_OQ) &
@@ -2453,8 +2497,9 @@ HAIRSHADOW_AVX512_TARGET inline void segment_bins::project_strand_avx512(const g
         const __mmask16 one_tile = simple & __mmask16(~empty) & in_map & _mm512_cmpeq_epi32_mask(tx0, tx1) & _mm512_cmpeq_epi32_mask(ty0, ty1);
         const __mmask16 off_map = simple & __mmask16(~empty) & __mmask16(~in_map);
         _mm512_store_si512(tile, _mm512_add_epi32(_mm512_mullo_epi32(ty0, tiles_x), tx0));
-        nearest = _mm512_mask_min_ps(nearest, one_tile, nearest, _mm512_min_ps(dep0, dep1));
-        furthest = _mm512_mask_max_ps(furthest, one_tile, furthest, _mm512_max_ps(dep0, dep1));
+        const __mmask16 meets_map = simple & __mmask16(~empty) & in_map; // the extent counts these (segment_bins::meets_map)
+        nearest = _mm512_mask_min_ps(nearest, meets_map, nearest, _mm512_min_ps(dep0, dep1));
+        furthest = _mm512_mask_max_ps(furthest, meets_map, furthest, _mm512_max_ps(dep0, dep1));
         for (int l = 0; l < lanes; ++l) {
             const std::size_t i = base + std::size_t(l), seg = first_seg + i;
             const std::uint32_t bit = 1u << l;
@@ -2469,11 +2514,8 @@ HAIRSHADOW_AVX512_TARGET inline void segment_bins::project_strand_avx512(const g
                     first_tile_[seg] = no_tile;
                     continue;
                 }
-            } else {
-                segment_attributes at = uniform_;
-                prepare_segment(ls, points[i], points[i + 1], project_point(ls, points[i]), project_point(ls, points[i + 1]), at, segments_[seg]);
             }
-            first_tile_[seg] = count_tiles(segments_[seg], reach, counts, e);
+            first_tile_[seg] = prepare_and_count(points[i], points[i + 1], (simple & bit) != 0, seg, reach, counts, e);
         }
     }
     e.nearest = std::min(e.nearest, _mm512_reduce_min_ps(nearest));
@@ -3359,17 +3401,19 @@ public:
     void build(const hair_model& model, const light_space& light, const raster_options& options = {}) {
         auto& w = workspace_.get();
         w.bins.prepare(model, light, options); // bins first: the placement needs the extent before any tile
-        light_ = light;
-        extent_ = w.bins.extent();
-        placement_.prepare(extent_);
-        const std::size_t res = std::size_t(light.resolution());
-        texels_.resize(res * res);
-        fragments_ = detail::build_tiles(w, [&](int x, int y, std::span<const optical_fragment> in) HAIRSHADOW_ALWAYS_INLINE {
-            auto& out = texels_[std::size_t(y) * res + std::size_t(x)];
-            out = texel_maps{};
-            if (in.empty()) return;
-            placement_.prepare_texel(in, out.placement);
-            Reconstruction::template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
+        built_or_reset([&] {
+            light_ = light;
+            extent_ = w.bins.extent();
+            placement_.prepare(extent_);
+            const std::size_t res = std::size_t(light.resolution());
+            texels_.resize(res * res);
+            fragments_ = detail::build_tiles(w, [&](int x, int y, std::span<const optical_fragment> in) HAIRSHADOW_ALWAYS_INLINE {
+                auto& out = texels_[std::size_t(y) * res + std::size_t(x)];
+                out = texel_maps{};
+                if (in.empty()) return;
+                placement_.prepare_texel(in, out.placement);
+                Reconstruction::template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
+            });
         });
     }
 
@@ -3383,18 +3427,20 @@ public:
     /// map_extent() gives the tiled build's maps.
     void build(const fragment_buffer& fragments, const light_space& light, const depth_extent& extent, const execution& exec = {}) {
         if (fragments.resolution() != light.resolution()) throw argument_error("fragment buffer and light differ in resolution");
-        light_ = light;
-        extent_ = extent;
-        placement_.prepare(extent);
-        fragments_ = fragments.size();
-        texels_.assign(fragments.texel_count(), texel_maps{});
-        parallel_for(texels_.size(), exec, [&](std::size_t t) {
-            const auto in = fragments.texel(t);
-            if (in.empty()) return;
-            auto& out = texels_[t];
-            placement_.prepare_texel(in, out.placement);
-            Reconstruction::template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
-        }, 512);
+        built_or_reset([&] {
+            light_ = light;
+            extent_ = extent;
+            placement_.prepare(extent);
+            fragments_ = fragments.size();
+            texels_.assign(fragments.texel_count(), texel_maps{});
+            parallel_for(texels_.size(), exec, [&](std::size_t t) {
+                const auto in = fragments.texel(t);
+                if (in.empty()) return;
+                auto& out = texels_[t];
+                placement_.prepare_texel(in, out.placement);
+                Reconstruction::template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
+            }, 512);
+        });
     }
 
     /// Takes maps built elsewhere (on GL: interpolated_maps_gl::to_cpu()) for CPU queries: one texel per
@@ -3437,6 +3483,21 @@ public:
     static constexpr std::size_t texel_bytes() noexcept { return sizeof(texel_maps); }
 
 private:
+    /// Runs a build; if it throws (out of memory, say), the maps go back to the unbuilt state, never to
+    /// a light whose resolution the texels do not match.
+    template <class Build>
+    void built_or_reset(Build&& build) {
+        try {
+            build();
+        } catch (...) {
+            light_ = light_space();
+            texels_.assign(1, texel_maps{});
+            extent_ = {};
+            fragments_ = 0;
+            throw;
+        }
+    }
+
     Placement placement_;
     light_space light_;                                  // 1x1 until built, so early queries see no shadow
     std::vector<texel_maps, detail::huge_page_allocator<texel_maps>> texels_ = decltype(texels_)(1);

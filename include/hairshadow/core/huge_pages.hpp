@@ -30,7 +30,7 @@ struct huge_page_allocator {
     T* allocate(std::size_t n) {
         if (n > std::numeric_limits<std::size_t>::max() / sizeof(T)) throw std::bad_array_new_length();
         const std::size_t bytes = n * sizeof(T);
-        if (bytes < huge_page) return static_cast<T*>(::operator new(bytes));
+        if (bytes < huge_page) return static_cast<T*>(::operator new(bytes, std::align_val_t(alignof(T))));
         const std::size_t rounded = (bytes + huge_page - 1) / huge_page * huge_page;
         void* p = std::aligned_alloc(huge_page, rounded);
         if (!p) throw std::bad_alloc();
@@ -40,7 +40,7 @@ struct huge_page_allocator {
         return static_cast<T*>(p);
     }
     void deallocate(T* p, std::size_t n) noexcept {
-        if (n * sizeof(T) < huge_page) ::operator delete(p);
+        if (n * sizeof(T) < huge_page) ::operator delete(p, std::align_val_t(alignof(T)));
         else std::free(p);
     }
     template <class U>

@@ -15,16 +15,20 @@
 
 namespace hairshadow {
 
+namespace detail {
+/// The hardware threads, asked once: a loop sizes per-thread memory by it, then runs by it.
+inline unsigned hardware_threads() noexcept {
+    static const unsigned count = std::max(1u, std::thread::hardware_concurrency());
+    return count;
+}
+} // namespace detail
+
 /// Thread count for the CPU kernels: 0 means every hardware thread.
 struct execution {
     unsigned threads = 0;
     friend bool operator==(const execution&, const execution&) = default;
 
-    unsigned resolved() const noexcept {
-        if (threads != 0) return threads;
-        const unsigned hw = std::thread::hardware_concurrency();
-        return hw == 0 ? 1u : hw;
-    }
+    unsigned resolved() const noexcept { return threads != 0 ? threads : detail::hardware_threads(); }
 };
 
 /// Threads a loop of `count` items in chunks of `grain` runs on: at most exec.resolved(), the chunk
@@ -34,7 +38,7 @@ inline unsigned parallel_slots(std::size_t count, const execution& exec, std::si
     if (count == 0) return 1;
     grain = std::max<std::size_t>(grain, 1);
     const std::size_t chunks = (count + grain - 1) / grain;
-    const std::size_t useful = 4 * std::size_t(std::max(1u, std::thread::hardware_concurrency()));
+    const std::size_t useful = 4 * std::size_t(detail::hardware_threads());
     return static_cast<unsigned>(std::max<std::size_t>(1, std::min({std::size_t(exec.resolved()), chunks, useful})));
 }
 

@@ -32,6 +32,7 @@ public:
     /// returned. Returns false, having called nothing, when the pool is busy with another job.
     template <class Job>
     bool run(unsigned threads, Job& job) {
+        if (threads < 2) return job(), true;
         std::unique_lock lock(mutex_);
         if (busy_) return false;
         busy_ = true;

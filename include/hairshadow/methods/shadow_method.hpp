@@ -65,17 +65,19 @@ public:
     void build(const hair_model& model, const light_space& light, const raster_options& options = {}) {
         auto& w = workspace_.get();
         w.bins.prepare(model, light, options); // bins first: the placement needs the extent before any tile
-        light_ = light;
-        extent_ = w.bins.extent();
-        placement_.prepare(extent_);
-        const std::size_t res = std::size_t(light.resolution());
-        texels_.resize(res * res);
-        fragments_ = detail::build_tiles(w, [&](int x, int y, std::span<const optical_fragment> in) HAIRSHADOW_ALWAYS_INLINE {
-            auto& out = texels_[std::size_t(y) * res + std::size_t(x)];
-            out = texel_maps{};
-            if (in.empty()) return;
-            placement_.prepare_texel(in, out.placement);
-            Reconstruction::template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
+        built_or_reset([&] {
+            light_ = light;
+            extent_ = w.bins.extent();
+            placement_.prepare(extent_);
+            const std::size_t res = std::size_t(light.resolution());
+            texels_.resize(res * res);
+            fragments_ = detail::build_tiles(w, [&](int x, int y, std::span<const optical_fragment> in) HAIRSHADOW_ALWAYS_INLINE {
+                auto& out = texels_[std::size_t(y) * res + std::size_t(x)];
+                out = texel_maps{};
+                if (in.empty()) return;
+                placement_.prepare_texel(in, out.placement);
+                Reconstruction::template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
+            });
         });
     }
 
@@ -89,18 +91,20 @@ public:
     /// map_extent() gives the tiled build's maps.
     void build(const fragment_buffer& fragments, const light_space& light, const depth_extent& extent, const execution& exec = {}) {
         if (fragments.resolution() != light.resolution()) throw argument_error("fragment buffer and light differ in resolution");
-        light_ = light;
-        extent_ = extent;
-        placement_.prepare(extent);
-        fragments_ = fragments.size();
-        texels_.assign(fragments.texel_count(), texel_maps{});
-        parallel_for(texels_.size(), exec, [&](std::size_t t) {
-            const auto in = fragments.texel(t);
-            if (in.empty()) return;
-            auto& out = texels_[t];
-            placement_.prepare_texel(in, out.placement);
-            Reconstruction::template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
-        }, 512);
+        built_or_reset([&] {
+            light_ = light;
+            extent_ = extent;
+            placement_.prepare(extent);
+            fragments_ = fragments.size();
+            texels_.assign(fragments.texel_count(), texel_maps{});
+            parallel_for(texels_.size(), exec, [&](std::size_t t) {
+                const auto in = fragments.texel(t);
+                if (in.empty()) return;
+                auto& out = texels_[t];
+                placement_.prepare_texel(in, out.placement);
+                Reconstruction::template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
+            }, 512);
+        });
     }
 
     /// Takes maps built elsewhere (on GL: interpolated_maps_gl::to_cpu()) for CPU queries: one texel per
@@ -143,6 +147,21 @@ public:
     static constexpr std::size_t texel_bytes() noexcept { return sizeof(texel_maps); }
 
 private:
+    /// Runs a build; if it throws (out of memory, say), the maps go back to the unbuilt state, never to
+    /// a light whose resolution the texels do not match.
+    template <class Build>
+    void built_or_reset(Build&& build) {
+        try {
+            build();
+        } catch (...) {
+            light_ = light_space();
+            texels_.assign(1, texel_maps{});
+            extent_ = {};
+            fragments_ = 0;
+            throw;
+        }
+    }
+
     Placement placement_;
     light_space light_;                                  // 1x1 until built, so early queries see no shadow
     std::vector<texel_maps, detail::huge_page_allocator<texel_maps>> texels_ = decltype(texels_)(1);

@@ -48,9 +48,10 @@ public:
     const std::vector<std::uint32_t>& tiles_by_load() const noexcept { return by_load_; }
     std::size_t tile_load(std::size_t t) const noexcept { return std::size_t(tile_begin_[t + 1] - tile_begin_[t]); }
 
-    /// The whole-map pre-pass: nearest and furthest end of every segment that reaches the map. Each
-    /// fragment's depth lies between its segment's end depths, so this range holds every fragment's;
-    /// it can be wider, by the parts of segments that leave the map or cross no texel centre.
+    /// The whole-map pre-pass: nearest and furthest end of every segment whose box meets the map
+    /// (meets_map). Each fragment's depth lies between its segment's end depths, so this range holds
+    /// every fragment's; it can be wider, by the parts of segments that leave the map or cross no
+    /// texel centre. Nothing about it depends on the tile size.
     depth_extent extent() const noexcept { return extent_; }
 
     texel_rect tile_rect(std::size_t t) const noexcept {
@@ -110,10 +111,14 @@ public:
     }
 
 private:
-    static constexpr std::size_t chunks = 64; // fixed, so that binning does not depend on the thread count
+    /// Chunks of the segment range, counted and written apart (at most 64, and fewer where the tiles
+    /// are so many that each chunk's count per tile would take more than 32 MiB together). The lists
+    /// come out in segment order for any chunk count, so the result depends on neither it nor the
+    /// threads.
+    static std::size_t chunk_count(std::size_t tiles) noexcept { return std::clamp<std::size_t>((std::size_t(1) << 22) / std::max<std::size_t>(tiles, 1), 1, 64); }
 
-    // Each of a fixed number of chunks (strand ranges of about equal segment counts, so that nothing
-    // depends on the thread count) runs two passes over its segments:
+    // Each chunk (a strand range of about equal segment count, so that nothing depends on the thread
+    // count) runs two passes over its segments:
     // 1. project and snap each segment, strand by strand, and count it in the tiles it reaches, noting
     //    its first tile (while the segment is in registers: the segments are read from memory once,
     //    in the walk, and never re-read to bin them);
@@ -142,6 +147,7 @@ private:
         uniform_ = {t, t, o, o};
         attributes_.resize(per_point ? count : 0);
         // Chunk c: the strands whose first segment lies in [c count / chunks, (c + 1) count / chunks).
+        const std::size_t chunks = chunk_count(tiles);
         chunk_strand_.resize(chunks + 1);
         for (std::size_t c = 0; c <= chunks; ++c)
             chunk_strand_[c] = std::size_t(std::lower_bound(first_segment_.begin(), first_segment_.end() - 1, c * count / chunks) - first_segment_.begin());
@@ -221,19 +227,32 @@ private:
     }
 
     /// Counts segment s in each tile it reaches and returns its first tile (with more_tiles set when
-    /// it reaches others too), or no_tile; widens e by its ends when it reaches the map.
+    /// it reaches others too), or no_tile; widens e by its ends when its box meets the map.
     HAIRSHADOW_ALWAYS_INLINE std::uint32_t count_tiles(const prepared_segment& s, std::int64_t reach, std::uint64_t* counts, depth_extent& e) const noexcept {
         std::uint32_t first = no_tile;
-        if (s.empty()) return first;
+        if (s.empty() || !meets_map(s, reach)) return first;
+        e.nearest = std::min({e.nearest, s.depth_a, s.depth_b});
+        e.furthest = std::max({e.furthest, s.depth_a, s.depth_b});
         visit_tiles(s, reach, [&](std::size_t tile) HAIRSHADOW_ALWAYS_INLINE {
             ++counts[tile];
             first = first == no_tile ? std::uint32_t(tile) : (first | more_tiles);
         });
-        if (first != no_tile) { // the segment reaches the map
-            e.nearest = std::min({e.nearest, s.depth_a, s.depth_b});
-            e.furthest = std::max({e.furthest, s.depth_a, s.depth_b});
-        }
         return first;
+    }
+
+    /// One segment of project_strand_avx512 that the vector code leaves alone, prepared and counted
+    /// by the scalar code, compiled apart from the AVX-512 function: inlined there, the compiler could
+    /// fuse its multiplications and additions and prepare or bin the segment differently.
+#if defined(__GNUC__)
+    __attribute__((noinline))
+#endif
+    std::uint32_t prepare_and_count(const glm::vec3& p0, const glm::vec3& p1, bool prepared, std::size_t seg, std::int64_t reach,
+                                    std::uint64_t* counts, depth_extent& e) {
+        if (!prepared) {
+            segment_attributes at = uniform_;
+            prepare_segment(light_, p0, p1, project_point(light_, p0), project_point(light_, p1), at, segments_[seg]);
+        }
+        return count_tiles(segments_[seg], reach, counts, e);
     }
 
 #if HAIRSHADOW_AVX512_WALK
@@ -252,17 +271,27 @@ private:
     /// end per segment cost a fifth of the binning.
     HAIRSHADOW_ALWAYS_INLINE int tile_of(std::int64_t texel) const noexcept { return int((std::uint64_t(texel) * tile_magic_) >> 32); }
 
+    /// Does the segment's bounding box, widened by `reach`, meet the map? The whole-map extent counts
+    /// the segments that do, whatever the tiles.
+    HAIRSHADOW_ALWAYS_INLINE bool meets_map(const prepared_segment& s, std::int64_t reach) const noexcept {
+        const std::int64_t hi_x = (std::max<std::int64_t>(s.ax, s.bx) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        const std::int64_t hi_y = (std::max<std::int64_t>(s.ay, s.by) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        const std::int64_t lo_x = (std::min<std::int64_t>(s.ax, s.bx) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        const std::int64_t lo_y = (std::min<std::int64_t>(s.ay, s.by) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        return !(hi_x < 0 || hi_y < 0 || lo_x >= res_ || lo_y >= res_);
+    }
+
     /// Calls visit(tile) for each tile within `reach` (sub-pixel units) of the segment; a long diagonal
-    /// segment visits O(its length) tiles rather than its whole bounding box.
+    /// segment visits O(its length) tiles rather than its whole bounding box. Integer arithmetic only,
+    /// so that the counting and the writing pass, wherever the compiler puts them, visit the same tiles.
     template <class Visit>
     HAIRSHADOW_ALWAYS_INLINE void visit_tiles(const prepared_segment& s, std::int64_t reach, Visit&& visit) const {
+        if (!meets_map(s, reach)) return;
         // Texel bounds of the segment plus its reach; arithmetic shifts floor negative values.
         const std::int64_t lo_x = (std::min<std::int64_t>(s.ax, s.bx) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
         const std::int64_t hi_x = (std::max<std::int64_t>(s.ax, s.bx) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
         const std::int64_t lo_y = (std::min<std::int64_t>(s.ay, s.by) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
         const std::int64_t hi_y = (std::max<std::int64_t>(s.ay, s.by) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
-        if (hi_x < 0 || hi_y < 0 || lo_x >= res_ || lo_y >= res_) return;
-        const int tile = opt_.tile_size;
         const int tx0 = tile_of(std::max<std::int64_t>(lo_x, 0)), tx1 = tile_of(std::min<std::int64_t>(hi_x, res_ - 1));
         const int ty0 = tile_of(std::max<std::int64_t>(lo_y, 0)), ty1 = tile_of(std::min<std::int64_t>(hi_y, res_ - 1));
         if (ty0 == ty1 || tx0 == tx1) { // most hair segments: one row or column of tiles, as the box says
@@ -271,17 +300,22 @@ private:
             return;
         }
         // A segment across several rows and columns: per row of tiles, only the columns that the
-        // segment's piece in that row (widened by reach) spans.
-        const double scale = 1.0 / double(subpixel_scale), r = double(reach) * scale;
-        const double ax = double(s.ax) * scale, ay = double(s.ay) * scale, bx = double(s.bx) * scale, by = double(s.by) * scale;
+        // segment's piece in that row's band (widened by reach) spans, floored and ceiled outwards.
+        const std::int64_t side = std::int64_t(opt_.tile_size) * subpixel_scale;
+        const std::int64_t dy = std::int64_t(s.by) - s.ay, dx = std::int64_t(s.bx) - s.ax;
+        const std::int64_t y_lo = std::min<std::int64_t>(s.ay, s.by), y_hi = std::max<std::int64_t>(s.ay, s.by);
+        auto x_at = [&](std::int64_t y, bool up) { // x on the segment at height y, rounded down or up
+            if (dy == 0) return up ? std::max<std::int64_t>(s.ax, s.bx) : std::min<std::int64_t>(s.ax, s.bx); // a level segment whose reach spans rows
+            const std::int64_t num = (y - s.ay) * dx * (dy > 0 ? 1 : -1), den = dy > 0 ? dy : -dy;
+            const std::int64_t q = floor_div(num, den);
+            return s.ax + q + (up && q * den != num ? 1 : 0);
+        };
         for (int ty = ty0; ty <= ty1; ++ty) {
-            const double band_lo = double(ty * tile) - r, band_hi = double((ty + 1) * tile) + r;
-            const double u = (band_lo - ay) / (by - ay), v = (band_hi - ay) / (by - ay); // by != ay: the box spans rows
-            const double s0 = std::max(0.0, std::min(u, v)), s1 = std::min(1.0, std::max(u, v));
-            if (s0 > s1) continue;
-            const double x0 = ax + s0 * (bx - ax), x1 = ax + s1 * (bx - ax);
-            const int c0 = std::max(tx0, int(std::floor((std::min(x0, x1) - r) / tile)));
-            const int c1 = std::min(tx1, int(std::floor((std::max(x0, x1) + r) / tile)));
+            const std::int64_t band_lo = std::max(std::int64_t(ty) * side - reach, y_lo), band_hi = std::min(std::int64_t(ty + 1) * side + reach, y_hi);
+            if (band_lo > band_hi) continue;
+            const std::int64_t x_lo = std::min(x_at(band_lo, false), x_at(band_hi, false)) - reach;
+            const std::int64_t x_hi = std::max(x_at(band_lo, true), x_at(band_hi, true)) + reach;
+            const int c0 = int(std::max<std::int64_t>(tx0, floor_div(x_lo, side))), c1 = int(std::min<std::int64_t>(tx1, floor_div(x_hi, side)));
             for (int tx = c0; tx <= c1; ++tx) visit(std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx));
         }
     }

@@ -25,6 +25,11 @@ HAIRSHADOW_AVX512_TARGET inline __m512 project_row(const std::array<float, 4>& m
     return _mm512_add_ps(_mm512_add_ps(product(m[0], x), product(m[1], y)), _mm512_add_ps(product(m[2], z), _mm512_set1_ps(m[3])));
 }
 
+/// -v, exactly as the scalar negation (the sign bit flipped; 0 - v would give +0 for +0).
+HAIRSHADOW_AVX512_TARGET inline __m512 negate(__m512 v) noexcept {
+    return _mm512_castsi512_ps(_mm512_xor_epi32(_mm512_castps_si512(v), _mm512_set1_epi32(std::int32_t(0x80000000u))));
+}
+
 /// snap() for eight window coordinates: x S + copysign(1/2, x), truncated, in doubles.
 HAIRSHADOW_AVX512_TARGET inline __m256i snap8(__m256 window) noexcept {
     const __m512d x = _mm512_mul_pd(_mm512_cvtps_pd(window), _mm512_set1_pd(double(subpixel_scale)));
@@ -75,7 +80,7 @@ HAIRSHADOW_AVX512_TARGET inline void segment_bins::project_strand_avx512(const g
         const float* from = &points[base].x;
         const __m512 x0 = gather_floats(from, lane3, 0, valid), y0 = gather_floats(from, lane3, 1, valid), z0 = gather_floats(from, lane3, 2, valid);
         const __m512 x1 = gather_floats(from, lane3, 3, valid), y1 = gather_floats(from, lane3, 4, valid), z1 = gather_floats(from, lane3, 5, valid);
-        const __m512 d0 = _mm512_sub_ps(zero, project_row(view_z, x0, y0, z0)), d1 = _mm512_sub_ps(zero, project_row(view_z, x1, y1, z1));
+        const __m512 d0 = negate(project_row(view_z, x0, y0, z0)), d1 = negate(project_row(view_z, x1, y1, z1));
         // No clipping at the near and far planes (prepare_segment's tests, in its own arithmetic).
         auto simple = __mmask16(valid & _mm512_cmp_ps_mask(_mm512_sub_ps(d0, near_plane), zero, _CMP_GE_OQ) &
                            _mm512_cmp_ps_mask(_mm512_sub_ps(d1, near_plane), zero, _CMP_GE_OQ) &
@@ -112,8 +117,9 @@ HAIRSHADOW_AVX512_TARGET inline void segment_bins::project_strand_avx512(const g
         const __mmask16 one_tile = simple & __mmask16(~empty) & in_map & _mm512_cmpeq_epi32_mask(tx0, tx1) & _mm512_cmpeq_epi32_mask(ty0, ty1);
         const __mmask16 off_map = simple & __mmask16(~empty) & __mmask16(~in_map);
         _mm512_store_si512(tile, _mm512_add_epi32(_mm512_mullo_epi32(ty0, tiles_x), tx0));
-        nearest = _mm512_mask_min_ps(nearest, one_tile, nearest, _mm512_min_ps(dep0, dep1));
-        furthest = _mm512_mask_max_ps(furthest, one_tile, furthest, _mm512_max_ps(dep0, dep1));
+        const __mmask16 meets_map = simple & __mmask16(~empty) & in_map; // the extent counts these (segment_bins::meets_map)
+        nearest = _mm512_mask_min_ps(nearest, meets_map, nearest, _mm512_min_ps(dep0, dep1));
+        furthest = _mm512_mask_max_ps(furthest, meets_map, furthest, _mm512_max_ps(dep0, dep1));
         for (int l = 0; l < lanes; ++l) {
             const std::size_t i = base + std::size_t(l), seg = first_seg + i;
             const std::uint32_t bit = 1u << l;
@@ -128,11 +134,8 @@ HAIRSHADOW_AVX512_TARGET inline void segment_bins::project_strand_avx512(const g
                     first_tile_[seg] = no_tile;
                     continue;
                 }
-            } else {
-                segment_attributes at = uniform_;
-                prepare_segment(ls, points[i], points[i + 1], project_point(ls, points[i]), project_point(ls, points[i + 1]), at, segments_[seg]);
             }
-            first_tile_[seg] = count_tiles(segments_[seg], reach, counts, e);
+            first_tile_[seg] = prepare_and_count(points[i], points[i + 1], (simple & bit) != 0, seg, reach, counts, e);
         }
     }
     e.nearest = std::min(e.nearest, _mm512_reduce_min_ps(nearest));
