@@ -1,10 +1,13 @@
 // The `hairshadow` command: inspect hair models, build any method's shadow maps, query, render and
 // compare them with the exact reference. Errors go to stderr as `error: ...` with exit status 1;
-// usage errors (bad specs, unknown options) exit 2.
+// usage errors exit 2: unknown options, bad specs, and any option value that is malformed, not finite
+// or out of its range, for every command. Errors that depend on the input (a file, a light that does
+// not fit the model) exit 1.
 
 #include <hairshadow/hairshadow.hpp>
 #include <hairshadow/io/load.hpp>
 #include <hairshadow/io/png.hpp>
+#include <hairshadow/io/points_file.hpp>
 #include <hairshadow/methods/registry.hpp>
 
 #include <CLI/CLI.hpp>
@@ -17,6 +20,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -25,6 +30,15 @@
 namespace {
 
 using namespace hairshadow;
+
+/// Rejects NaN and infinities (CLI11's Range lets NaN through): a non-finite option value is a usage
+/// error, like any out-of-range one.
+const CLI::Validator finite_number(
+    [](std::string& text) -> std::string {
+        const double value = std::strtod(text.c_str(), nullptr);
+        return std::isfinite(value) ? std::string() : "'" + text + "' is not a finite number";
+    },
+    "FINITE", "finite");
 
 /// A usage error: exit status 2.
 struct usage_error : std::runtime_error {
@@ -137,33 +151,6 @@ std::unique_ptr<any_shadow_map> build_map(const method_spec& spec, const lit_mod
     return map;
 }
 
-std::vector<glm::vec3> read_points(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw io_error(path, "cannot open for reading");
-    std::vector<glm::vec3> points;
-    std::string line;
-    for (std::size_t number = 1; std::getline(in, line); ++number) {
-        const auto first = line.find_first_not_of(" \t\r");
-        if (first == std::string::npos || line[first] == '#') continue;
-        std::istringstream fields(line);
-        std::string token;
-        glm::vec3 p;
-        int count = 0;
-        while (fields >> token) {
-            if (count == 3) throw io_error(path, "line " + std::to_string(number) + ": more than three numbers");
-            try {
-                p[count++] = detail::parse_number<float>(token, "coordinate");
-            } catch (const argument_error& e) {
-                throw io_error(path, "line " + std::to_string(number) + ": " + e.what());
-            }
-        }
-        if (count != 3) throw io_error(path, "line " + std::to_string(number) + ": expected three numbers 'x y z'");
-        points.push_back(p);
-    }
-    if (in.bad()) throw io_error(path, "read failed");
-    return points;
-}
-
 /// Writes a grey image of `value(x, y)` in [0, 1], top row first.
 template <class Value>
 void write_grey(const std::string& path, int res, const execution& exec, Value value) {
@@ -185,6 +172,14 @@ int run_info(const map_options& o) {
     const auto model = load(o.model);
     const auto b = model.bounds();
     std::printf("model:    %s\n", o.model.c_str());
+    if (!is_procedural_spec(o.model) && std::filesystem::path(o.model).extension() == ".tfx") {
+        const auto tfx = parse_tfx_file(detail::read_file_bytes(o.model), o.model);
+        std::printf("format:   TressFX %d (version %g)", tfx.major_version, double(tfx.version));
+        if (tfx.major_version == 3)
+            std::printf(", guide strands only: %u follow hairs per guide (not grown)%s", tfx.follow_hairs_per_guide,
+                        tfx.both_ends_immovable ? ", both ends immovable" : "");
+        std::printf("\n");
+    }
     std::printf("strands:  %zu\npoints:   %zu\nsegments: %zu\n", model.strand_count(), model.point_count(), model.segment_count());
     std::printf("bounds:   x [%.6g, %.6g]  y [%.6g, %.6g]  z [%.6g, %.6g]\n", b.min.x, b.max.x, b.min.y, b.max.y, b.min.z, b.max.z);
     std::printf("thickness: %s\n", model.thickness.empty() ? ("default " + std::to_string(model.default_thickness)).c_str() : "per point");
@@ -402,10 +397,11 @@ void add_model(CLI::App* cmd, map_options& o, bool required = true) {
 void add_map_options(CLI::App* cmd, map_options& o, bool with_method = true) {
     if (with_method) cmd->add_option("--method", o.method, "method spec: " + std::string(method_grammar));
     cmd->add_option("--light", o.light, "light spec: " + std::string(light_grammar));
-    cmd->add_option("--res", o.resolution, "shadow map resolution, 1.." + std::to_string(HAIRSHADOW_MAX_RESOLUTION));
-    cmd->add_option("--alpha", o.alpha, "use this alpha for every fragment instead of the strand coverage")->check(CLI::Range(0.0f, 1.0f));
+    cmd->add_option("--res", o.resolution, "shadow map resolution")->check(CLI::Range(1, HAIRSHADOW_MAX_RESOLUTION));
+    cmd->add_option("--alpha", o.alpha, "use this alpha for every fragment instead of the strand coverage")
+        ->check(finite_number & CLI::Range(0.0f, 1.0f));
     cmd->add_option("--wide", o.wide, "pre-filtered wide lines of this width in texels, 2 to 64 (Mertens et al. 3.4); 0 = aliased lines")
-        ->check(CLI::Range(0.0f, 64.0f));
+        ->check(finite_number & CLI::Range(0.0f, 64.0f));
 }
 
 void add_backend_options(CLI::App* cmd, map_options& o) {
@@ -415,7 +411,8 @@ void add_backend_options(CLI::App* cmd, map_options& o) {
 }
 
 void add_query_options(CLI::App* cmd, map_options& o) {
-    cmd->add_option("--bias", o.bias, "depth bias towards the light, in linear depth units");
+    cmd->add_option("--bias", o.bias, "depth bias towards the light, in linear depth units (the map's depth is 0..1)")
+        ->check(finite_number & CLI::Range(-1.0f, 1.0f));
     cmd->add_flag("--filter", o.box_filter, "3x3 box filter of the optical depth (Kim & Neumann)");
     cmd->add_flag("--jitter", o.jitter, "half-texel jitter of each look-up (Sintorn & Assarsson 3.3)");
 }
@@ -425,6 +422,9 @@ void add_query_options(CLI::App* cmd, map_options& o) {
 int main(int argc, char** argv) {
     CLI::App app{"hairshadow: self-shadowing of hair - build, query, render and compare shadow maps"};
     app.require_subcommand(1);
+    app.failure_message([](const CLI::App* command, const CLI::Error& e) {
+        return "error: " + CLI::FailureMessage::simple(command, e); // as every other error is reported
+    });
     map_options o;
     app.add_option("--threads", o.threads, "worker threads; 0 = all cores");
 
@@ -450,14 +450,14 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"camera", "light"}));
     render->add_option("--mesh", view.mesh, "an OBJ whose faces are the opaque mesh (procedural models stand on their sphere)");
     render->add_option("--fill-light", view.fill_lights, "another light, dimmer, with its own maps (repeatable)");
-    render->add_option("--azimuth", view.azimuth, "camera azimuth in degrees about +y");
-    render->add_option("--elevation", view.elevation, "camera elevation in degrees")->check(CLI::Range(-89.0f, 89.0f));
+    render->add_option("--azimuth", view.azimuth, "camera azimuth in degrees about +y")->check(finite_number);
+    render->add_option("--elevation", view.elevation, "camera elevation in degrees")->check(finite_number & CLI::Range(-89.0f, 89.0f));
     render->add_option("--size", view.size, "image size in pixels")->check(CLI::Range(1, HAIRSHADOW_MAX_RESOLUTION));
     render->add_option("--transparency", view.transparency,
                        "none (opaque hair), occupancy (Sintorn & Assarsson 3.4), weighted (Bavoil & Myers), exact (sorted)")
         ->check(CLI::IsMember({"none", "occupancy", "weighted", "exact"}));
     render->add_option("--hair-opacity", view.hair_opacity, "each strand's alpha over a pixel it covers, with --transparency")
-        ->check(CLI::Range(0.001f, 1.0f));
+        ->check(finite_number & CLI::Range(0.001f, 1.0f));
     render->add_option("--maps", maps_dir, "with --view light: also write each stored map (layer, bin or slab) as a PNG into this folder");
 
     auto* memory = app.add_subcommand("memory", "print the bytes a method's maps hold at a resolution");
@@ -490,15 +490,15 @@ int main(int argc, char** argv) {
     figure->add_option("--mesh", fig.mesh, "an OBJ whose faces are the opaque mesh (e.g. the Sintel head)");
     figure->add_option("--light", fig.light, "light spec: " + std::string(light_grammar));
     figure->add_option("--methods", fig.methods, "comma-separated method specs between 'no shadows' and the exact reference");
-    figure->add_option("--res", fig.resolution, "shadow map resolution");
+    figure->add_option("--res", fig.resolution, "shadow map resolution")->check(CLI::Range(1, HAIRSHADOW_MAX_RESOLUTION));
     figure->add_option("--size", fig.size, "panel size in pixels")->check(CLI::Range(16, 4096));
-    figure->add_option("--azimuth", fig.azimuth, "camera azimuth in degrees about +y");
-    figure->add_option("--elevation", fig.elevation, "camera elevation in degrees")->check(CLI::Range(-89.0f, 89.0f));
+    figure->add_option("--azimuth", fig.azimuth, "camera azimuth in degrees about +y")->check(finite_number);
+    figure->add_option("--elevation", fig.elevation, "camera elevation in degrees")->check(finite_number & CLI::Range(-89.0f, 89.0f));
     figure->add_option("--out", fig.out, "output folder");
     float figure_opacity = 0.0f;
     figure->add_option("--transparency", figure_opacity,
                        "instead: the transparency figure (exact, occupancy-ordered, weighted, opaque) with this hair opacity")
-        ->check(CLI::Range(0.001f, 1.0f));
+        ->check(finite_number & CLI::Range(0.001f, 1.0f));
 
     try {
         app.parse(argc, argv);

@@ -312,7 +312,9 @@ T parse_number(std::string_view text, std::string_view what) {
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 
+#include <algorithm>
 #include <array>
+#include <limits>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -363,6 +365,21 @@ inline light_spec parse_light_spec(std::string_view spec) {
     throw argument_error("bad light spec '" + std::string(spec) + "'; expected " + std::string(light_grammar));
 }
 
+/// Farthest a point or spot light may be from the model's centre, in radii of its bounding sphere:
+/// farther, the model's depth span is a few float steps of the distance (use a directional light).
+inline constexpr float max_light_distance_in_radii = 1.0e4f;
+
+namespace detail {
+/// `v` scaled to unit length; scaled down first, so that a huge direction does not overflow.
+inline glm::vec3 unit_direction(const glm::vec3& v, const char* what) {
+    const float largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    if (!std::isfinite(largest) || !(largest > 0.0f)) throw argument_error(std::string(what) + " is zero or not finite");
+    const glm::vec3 unit = glm::normalize(v / largest);
+    if (!(std::isfinite(unit.x) && std::isfinite(unit.y) && std::isfinite(unit.z))) throw argument_error(std::string(what) + " is not usable");
+    return unit;
+}
+} // namespace detail
+
 /// Throws argument_error unless 1 <= resolution <= HAIRSHADOW_MAX_RESOLUTION.
 inline void check_resolution(long long resolution) {
     if (resolution < 1 || resolution > HAIRSHADOW_MAX_RESOLUTION)
@@ -412,19 +429,21 @@ public:
         glm::vec3 forward;
         glm::vec3 eye;
         if (light.type == light_type::directional) {
-            if (!finite3(light.direction) || glm::length(light.direction) == 0.0f)
-                throw argument_error("the light direction is zero or not finite");
-            forward = glm::normalize(light.direction);
+            forward = detail::unit_direction(light.direction, "the light direction");
             eye = center - forward * (2.0f * radius);
         } else {
             if (!finite3(light.position)) throw argument_error("the light position is not finite");
             eye = light.position;
+            // Depth is a float distance from the light: from too far away, the model's whole depth
+            // span falls within a few of its steps (and the frustum's products overflow).
+            const double distance = glm::length(glm::dvec3(center) - glm::dvec3(eye));
+            if (!(distance <= double(max_light_distance_in_radii) * double(radius)))
+                throw argument_error("the light is more than " + std::to_string(int(max_light_distance_in_radii)) +
+                                     " model radii away, too far for float depth; use a directional light (dir:X,Y,Z)");
             if (light.type == light_type::spot) {
-                if (!finite3(light.direction) || glm::length(light.direction) == 0.0f)
-                    throw argument_error("the spot light direction is zero or not finite");
                 if (!(light.spot_half_angle_degrees > 0.0f && light.spot_half_angle_degrees < 89.0f))
                     throw argument_error("the spot light half-angle must be in (0, 89) degrees");
-                forward = glm::normalize(light.direction);
+                forward = detail::unit_direction(light.direction, "the spot light direction");
             } else {
                 if (glm::length(center - eye) <= radius * 1.0001f)
                     throw argument_error("the point light is inside the model's bounding sphere; a single perspective map cannot cover it");
@@ -471,6 +490,15 @@ public:
                                           ls.near_, ls.far_);
         }
         ls.view_projection_ = ls.projection_ * ls.view_;
+        const auto finite_matrix = [](const glm::mat4& m) {
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r)
+                    if (!std::isfinite(m[c][r])) return false;
+            return true;
+        };
+        if (!finite_matrix(ls.view_projection_) || !std::isfinite(ls.near_) || !std::isfinite(ls.far_) || !(ls.far_ > ls.near_) ||
+            !(ls.half_extent_ > 0.0f) || !std::isfinite(ls.half_extent_))
+            throw argument_error("the light and the model's bounds give no usable frustum (too far apart, or too large for float)");
         return ls;
     }
 
@@ -795,6 +823,7 @@ struct triangle_mesh {
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -821,7 +850,7 @@ inline std::vector<unsigned char> read_file_bytes(const std::string& path) {
 /// A cursor over a byte buffer; every read is checked against the end.
 class byte_reader {
 public:
-    byte_reader(const std::vector<unsigned char>& bytes, std::string file) : bytes_(bytes), file_(std::move(file)) {}
+    byte_reader(std::span<const unsigned char> bytes, std::string file) : bytes_(bytes), file_(std::move(file)) {}
 
     std::size_t position() const noexcept { return pos_; }
     std::size_t remaining() const noexcept { return bytes_.size() - pos_; }
@@ -850,17 +879,25 @@ public:
     /// Reads `count` values of T after checking that the file holds them.
     template <class T>
     std::vector<T> read_array(std::uint64_t count, const std::string& what) {
+        std::vector<T> values;
+        append_array(count, values, what);
+        return values;
+    }
+    /// Appends `count` values of T to `values` after checking that the file holds them.
+    template <class T>
+    void append_array(std::uint64_t count, std::vector<T>& values, const std::string& what) {
         static_assert(std::is_trivially_copyable_v<T>);
         require(count, sizeof(T), what);
-        std::vector<T> values(static_cast<std::size_t>(count));
-        if (count) std::memcpy(values.data(), bytes_.data() + pos_, sizeof(T) * values.size());
-        pos_ += sizeof(T) * values.size();
-        return values;
+        if (count == 0) return; // no memcpy from or to a null pointer
+        const std::size_t before = values.size();
+        values.resize(before + static_cast<std::size_t>(count));
+        std::memcpy(values.data() + before, bytes_.data() + pos_, sizeof(T) * static_cast<std::size_t>(count));
+        pos_ += sizeof(T) * static_cast<std::size_t>(count);
     }
     [[noreturn]] void fail(const std::string& reason) const { throw io_error(file_, reason); }
 
 private:
-    const std::vector<unsigned char>& bytes_;
+    std::span<const unsigned char> bytes_;
     std::string file_;
     std::size_t pos_ = 0;
 };
@@ -906,14 +943,15 @@ Model validated(Model model, const std::string& file) {
 // ---- end hairshadow/io/binary_file.hpp
 
 #include <limits>
+#include <span>
 
 namespace hairshadow {
 
-/// Reads a USC-HairSalon `.data` file. Throws io_error naming the file on malformed content.
-inline hair_model read_data(const std::string& path) {
+/// Parses the bytes of a USC-HairSalon `.data` file; `name` names it in errors. Throws io_error on
+/// malformed content.
+inline hair_model parse_data(std::span<const unsigned char> bytes, const std::string& name) {
     using namespace detail;
-    const auto bytes = read_file_bytes(path);
-    byte_reader in(bytes, path);
+    byte_reader in(bytes, name);
     const auto strands = in.read<std::int32_t>("strand count");
     if (strands <= 0) in.fail("strand count is " + std::to_string(strands) + "; at least 1 is needed");
     in.require(std::uint64_t(strands), 4, "strand headers"); // each strand needs at least its count
@@ -923,17 +961,17 @@ inline hair_model read_data(const std::string& path) {
         const auto n = in.read<std::int32_t>("point count");
         if (n < 0) in.fail("strand " + std::to_string(s) + " has a negative point count");
         in.require(std::uint64_t(n), 12, "strand " + std::to_string(s));
-        const auto before = model.points.size();
-        model.points.resize(before + std::size_t(n));
-        std::memcpy(model.points.data() + before, bytes.data() + in.position(), std::size_t(n) * 12);
-        in.seek(in.position() + std::size_t(n) * 12, "points");
-        if (model.points.size() > std::numeric_limits<std::uint32_t>::max()) in.fail("too many points");
+        if (model.points.size() + std::size_t(n) > std::numeric_limits<std::uint32_t>::max()) in.fail("too many points");
+        in.append_array(std::uint64_t(n), model.points, "strand " + std::to_string(s));
         model.strand_offsets.push_back(static_cast<std::uint32_t>(model.points.size()));
     }
     if (in.remaining() != 0) in.fail(std::to_string(in.remaining()) + " trailing bytes after the last strand");
     ensure_thickness(model);
-    return validated(std::move(model), path);
+    return validated(std::move(model), name);
 }
+
+/// Reads a USC-HairSalon `.data` file. Throws io_error naming the file on malformed content.
+inline hair_model read_data(const std::string& path) { return parse_data(detail::read_file_bytes(path), path); }
 
 /// Writes a USC-HairSalon `.data` file (positions only; the format has no other arrays).
 inline void write_data(const hair_model& model, const std::string& path) {
@@ -962,6 +1000,7 @@ inline void write_data(const hair_model& model, const std::string& path) {
 #include <bit>
 #include <cstring>
 #include <limits>
+#include <span>
 
 namespace hairshadow {
 
@@ -974,11 +1013,11 @@ inline constexpr std::uint32_t hair_has_transparency = 1u << 3;
 inline constexpr std::uint32_t hair_has_color = 1u << 4;
 } // namespace detail
 
-/// Reads a `.hair` file. Throws io_error naming the file on any malformed or truncated content.
-inline hair_model read_hair(const std::string& path) {
+/// Parses the bytes of a `.hair` file; `name` names it in errors. Throws io_error on any malformed or
+/// truncated content.
+inline hair_model parse_hair(std::span<const unsigned char> bytes, const std::string& name) {
     using namespace detail;
-    const auto bytes = read_file_bytes(path);
-    byte_reader in(bytes, path);
+    byte_reader in(bytes, name);
     if (bytes.size() < 128) in.fail("truncated: the header needs 128 bytes but the file has " + std::to_string(bytes.size()));
     char magic[4];
     std::memcpy(magic, bytes.data(), 4);
@@ -1029,8 +1068,11 @@ inline hair_model read_hair(const std::string& path) {
     for (std::uint32_t s = 0; s < strands; ++s)
         model.strand_offsets[s + 1] = model.strand_offsets[s] + (segments.empty() ? default_segments : segments[s]) + 1;
     ensure_thickness(model);
-    return validated(std::move(model), path);
+    return validated(std::move(model), name);
 }
+
+/// Reads a `.hair` file. Throws io_error naming the file on any malformed or truncated content.
+inline hair_model read_hair(const std::string& path) { return parse_hair(detail::read_file_bytes(path), path); }
 
 /// Writes a `.hair` file holding every array the model has. Strands of more than 65536 points or of
 /// none cannot be stored in the format and raise io_error.
@@ -1108,8 +1150,8 @@ struct procedural_options {
     float clump_strength = 0.85f;     ///< clumped: pull towards the clump's centre at the tip, 0..1
 };
 
-/// Largest strand and segment totals a generator accepts (about 1.6 GB of points).
-inline constexpr std::size_t max_procedural_segments = std::size_t(1) << 27;
+/// Most points a generator makes: 2^25, 384 MiB of positions (the 1.5M-segment curly model has 1.51M).
+inline constexpr std::size_t max_procedural_points = std::size_t(1) << 25;
 
 namespace detail {
 inline glm::vec3 any_perpendicular(const glm::vec3& d) {
@@ -1148,8 +1190,8 @@ inline hair_model make_procedural(const procedural_options& o) {
     if (o.strands == 0) throw argument_error("procedural model: strands must be at least 1");
     if (o.segments == 0) throw argument_error("procedural model: segments must be at least 1");
     if (o.segments > 65535) throw argument_error("procedural model: segments per strand must be at most 65535");
-    if (o.strands > max_procedural_segments / o.segments)
-        throw argument_error("procedural model: strands x segments exceeds " + std::to_string(max_procedural_segments));
+    if (o.strands > max_procedural_points / (o.segments + 1))
+        throw argument_error("procedural model: strands x (segments + 1) points exceeds " + std::to_string(max_procedural_points));
     if (!(o.head_radius > 0) || !(o.length > 0) || !std::isfinite(o.head_radius) || !std::isfinite(o.length) ||
         !std::isfinite(o.wave_amplitude) || !(o.wave_length > 0) || !std::isfinite(o.wave_length))
         throw argument_error("procedural model: radius, length and wave length must be positive and finite");
@@ -1207,6 +1249,12 @@ inline hair_model make_procedural(const procedural_options& o) {
         model.add_strand(pts);
     }
     model.default_thickness = suggested_thickness(model.bounds());
+    try { // extreme shapes (a huge amplitude, say) overflow the points or the bounds: say so here
+        validate(model);
+    } catch (const model_error& e) {
+        throw argument_error(std::string("procedural model: these options give no usable model: ") + e.what());
+    }
+    if (!(model.default_thickness > 0.0f)) throw argument_error("procedural model: these options give a model with no extent");
     return model;
 }
 
@@ -1217,8 +1265,8 @@ inline hair_model grow_follow_hair(const hair_model& guides, std::size_t per_gui
                                    float tip_spread = 1.5f) {
     if (per_guide == 0) throw argument_error("follow hair: at least 1 strand per guide is needed");
     if (!(radius >= 0) || !std::isfinite(radius) || !std::isfinite(tip_spread)) throw argument_error("follow hair: radius must be finite and >= 0");
-    if (guides.point_count() > max_procedural_segments / per_guide)
-        throw argument_error("follow hair: the result would exceed " + std::to_string(max_procedural_segments) + " points");
+    if (guides.point_count() > max_procedural_points / per_guide)
+        throw argument_error("follow hair: the result would exceed " + std::to_string(max_procedural_points) + " points");
     hair_model out;
     out.default_thickness = guides.default_thickness;
     out.default_transparency = guides.default_transparency;
@@ -1252,6 +1300,11 @@ inline hair_model grow_follow_hair(const hair_model& guides, std::size_t per_gui
             copy(guides.transparency, out.transparency);
             copy(guides.colors, out.colors);
         }
+    }
+    try {
+        validate(out);
+    } catch (const model_error& e) {
+        throw argument_error(std::string("follow hair: these options give no usable model: ") + e.what());
     }
     return out;
 }
@@ -1313,52 +1366,163 @@ inline procedural_options parse_procedural_spec(std::string_view spec) {
 // ---- end hairshadow/io/procedural_spec.hpp
 // ---- begin hairshadow/io/tfx_format.hpp
 /// @file
-/// AMD TressFX `.tfx` (version 4.0): f32 version; u32 strands; u32 points per strand; u32 byte offsets of
-/// the vertex positions, strand UVs, vertex UVs, strand thickness and vertex colours (0 = absent),
-/// then reserved words. Positions are float4 (xyz, w = 0 at the pinned root), strand-major.
+/// AMD TressFX `.tfx`, versions 3 and 4: strands of a fixed point count, little-endian, every array
+/// found by a byte offset from the start of the file.
+///
+/// - **TressFX 3** (`TressFXFileObject` of TressFX 3.1's `TressFXFileFormat.h`, 296 bytes):
+///   f32 version (3.x); u32 guide strands; u32 points per strand (4 to 64); u32 follow hairs per guide;
+///   i32 both ends immovable; u32 reserved[31]; u32 offsets of the float3 positions, per-strand f32
+///   thickness, per-strand texture coordinates, per-point colours, guide indices and per-point texture
+///   coordinates (0 = absent); u32 reserved[32]. The file holds the guides only: TressFX grows the
+///   follow hairs when it loads them (see grow_follow_hair).
+/// - **TressFX 4** (`TressFXTFXFileHeader`, 160 bytes): f32 version (4.x); u32 strands; u32 points per
+///   strand; u32 offsets of the float4 positions (w = 0 at pinned points), strand UVs, vertex UVs,
+///   per-strand f32 thickness and vertex colours (0 = absent); u32 reserved[32].
 
 
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
+#include <span>
+#include <string>
 
 namespace hairshadow {
 
-/// Reads a TressFX `.tfx` file: positions, and per-strand thickness when present (spread to the
-/// strand's points). Throws io_error naming the file on malformed content.
-inline hair_model read_tfx(const std::string& path) {
+/// A TressFX file's strands and what its header says of them.
+struct tfx_contents {
+    hair_model strands;                       ///< the strands the file stores (TressFX 3: the guides)
+    int major_version = 0;                    ///< 3 or 4
+    float version = 0.0f;                     ///< as stored, e.g. 3.0 or 4.0
+    std::uint32_t follow_hairs_per_guide = 0; ///< TressFX 3: the count its loader grows per guide
+    bool both_ends_immovable = false;         ///< TressFX 3
+};
+
+namespace detail {
+inline constexpr std::size_t tfx3_header_bytes = 296;
+inline constexpr std::size_t tfx4_header_bytes = 160;
+
+/// Checks an array's offset: absent (0) or past the header; returns whether it is present.
+inline bool tfx_array_at(byte_reader& in, std::uint32_t offset, std::size_t header_bytes, const char* what) {
+    if (offset == 0) return false;
+    if (offset < header_bytes)
+        in.fail(std::string(what) + " offset " + std::to_string(offset) + " lies inside the " + std::to_string(header_bytes) + "-byte header");
+    in.seek(offset, what);
+    return true;
+}
+} // namespace detail
+
+/// Parses the bytes of a TressFX 3 or 4 file; `name` names it in errors. Throws io_error on malformed
+/// content, and on a version other than 3.x or 4.x, naming the version.
+inline tfx_contents parse_tfx_file(std::span<const unsigned char> bytes, const std::string& name) {
     using namespace detail;
-    const auto bytes = read_file_bytes(path);
-    byte_reader in(bytes, path);
-    if (bytes.size() < 32) in.fail("truncated: the header needs 32 bytes but the file has " + std::to_string(bytes.size()));
-    const auto version = in.read<float>("version");
+    byte_reader in(bytes, name);
+    tfx_contents out;
+    out.version = in.read<float>("version");
+    if (!(out.version >= 3.0f && out.version < 5.0f)) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", double(out.version));
+        in.fail(std::string("TressFX version ") + text + " is not one this reader knows (3.x or 4.x)");
+    }
+    out.major_version = out.version < 4.0f ? 3 : 4;
+    const bool v3 = out.major_version == 3;
+    const std::size_t header_bytes = v3 ? tfx3_header_bytes : tfx4_header_bytes;
+    in.require(1, header_bytes - 4, std::string("TressFX ") + (v3 ? "3" : "4") + " header");
+
     const auto strands = in.read<std::uint32_t>("strand count");
     const auto per_strand = in.read<std::uint32_t>("points per strand");
-    const auto position_offset = in.read<std::uint32_t>("position offset");
-    in.read<std::uint32_t>("strand UV offset");
-    in.read<std::uint32_t>("vertex UV offset");
-    const auto thickness_offset = in.read<std::uint32_t>("thickness offset");
-    if (!std::isfinite(version) || version < 1.0f || version > 16.0f) in.fail("not a TressFX file (implausible version)");
+    std::uint32_t position_offset = 0, thickness_offset = 0;
+    if (v3) {
+        out.follow_hairs_per_guide = in.read<std::uint32_t>("follow hairs per guide");
+        out.both_ends_immovable = in.read<std::int32_t>("both ends immovable") != 0;
+        in.seek(144, "offsets");
+        position_offset = in.read<std::uint32_t>("position offset");
+        thickness_offset = in.read<std::uint32_t>("thickness offset");
+        if (per_strand < 4 || per_strand > 64) in.fail("points per strand is " + std::to_string(per_strand) + "; TressFX 3 allows 4 to 64");
+    } else {
+        position_offset = in.read<std::uint32_t>("position offset");
+        in.read<std::uint32_t>("strand UV offset");
+        in.read<std::uint32_t>("vertex UV offset");
+        thickness_offset = in.read<std::uint32_t>("thickness offset");
+        if (per_strand < 2) in.fail("points per strand is " + std::to_string(per_strand) + "; at least 2 are needed");
+    }
     if (strands == 0) in.fail("the model has no strands");
-    if (per_strand < 2) in.fail("points per strand is " + std::to_string(per_strand) + "; at least 2 are needed");
-    if (position_offset == 0) in.fail("the file holds no vertex positions");
     const std::uint64_t point_total = std::uint64_t(strands) * per_strand;
     if (point_total > std::numeric_limits<std::uint32_t>::max()) in.fail("too many points");
-    in.seek(position_offset, "position array");
-    const auto xyzw = in.read_array<glm::vec4>(point_total, "position array");
+    if (!tfx_array_at(in, position_offset, header_bytes, "position array")) in.fail("the file holds no vertex positions");
 
-    hair_model model;
-    model.points.resize(xyzw.size());
-    for (std::size_t i = 0; i < xyzw.size(); ++i) model.points[i] = glm::vec3(xyzw[i]);
+    hair_model& model = out.strands;
+    if (v3) {
+        in.append_array(point_total, model.points, "position array");
+    } else {
+        const auto xyzw = in.read_array<glm::vec4>(point_total, "position array");
+        model.points.resize(xyzw.size());
+        std::transform(xyzw.begin(), xyzw.end(), model.points.begin(), [](const glm::vec4& p) { return glm::vec3(p); });
+    }
     model.strand_offsets.resize(std::size_t(strands) + 1);
     for (std::uint32_t s = 0; s <= strands; ++s) model.strand_offsets[s] = s * per_strand;
-    if (thickness_offset != 0) {
-        in.seek(thickness_offset, "thickness array");
+    if (tfx_array_at(in, thickness_offset, header_bytes, "thickness array")) {
         const auto strand_thickness = in.read_array<float>(strands, "thickness array");
         model.thickness.resize(model.points.size());
         for (std::uint32_t s = 0; s < strands; ++s)
-            std::fill_n(model.thickness.begin() + std::size_t(s) * per_strand, per_strand, strand_thickness[s]);
+            std::fill_n(model.thickness.begin() + std::ptrdiff_t(std::size_t(s) * per_strand), per_strand, strand_thickness[s]);
     }
     ensure_thickness(model);
-    return validated(std::move(model), path);
+    model = validated(std::move(model), name);
+    return out;
+}
+
+/// Reads the strands of a TressFX 3 or 4 file (TressFX 3: the guides), with per-strand thickness when
+/// present, spread to the strand's points. Throws io_error naming the file on malformed content.
+inline hair_model read_tfx(const std::string& path) { return parse_tfx_file(detail::read_file_bytes(path), path).strands; }
+
+/// Writes a TressFX file of `major_version` 3 or 4: positions and per-strand thickness (each strand's
+/// first point's). Throws io_error unless every strand has the same point count (TressFX 3: 4 to 64).
+inline void write_tfx(const hair_model& model, const std::string& path, int major_version = 4, std::uint32_t follow_hairs_per_guide = 0) {
+    using namespace detail;
+    if (major_version != 3 && major_version != 4) throw io_error(path, "TressFX version must be 3 or 4");
+    const auto strands = model.strand_count();
+    const auto per_strand = strands ? model.strand_size(0) : 0;
+    for (std::size_t s = 0; s < strands; ++s)
+        if (model.strand_size(s) != per_strand) throw io_error(path, "TressFX needs the same point count in every strand");
+    if (per_strand < (major_version == 3 ? 4u : 2u) || (major_version == 3 && per_strand > 64))
+        throw io_error(path, "TressFX " + std::to_string(major_version) + " cannot hold strands of " + std::to_string(per_strand) + " points");
+    if (model.point_count() * 16 + strands * 4 + tfx3_header_bytes > std::numeric_limits<std::uint32_t>::max())
+        throw io_error(path, "too large for TressFX's 32-bit offsets");
+    const bool v3 = major_version == 3;
+    const std::size_t header_bytes = v3 ? tfx3_header_bytes : tfx4_header_bytes;
+    const auto positions = static_cast<std::uint32_t>(header_bytes);
+    const auto thickness = static_cast<std::uint32_t>(header_bytes + model.point_count() * (v3 ? 12 : 16));
+    byte_writer out;
+    out.write(v3 ? 3.0f : 4.0f);
+    out.write(static_cast<std::uint32_t>(strands));
+    out.write(static_cast<std::uint32_t>(per_strand));
+    if (v3) {
+        out.write(follow_hairs_per_guide);
+        out.write(std::int32_t(0));
+        for (int i = 0; i < 31; ++i) out.write(std::uint32_t(0));
+        out.write(positions);
+        out.write(thickness);
+        for (int i = 0; i < 4; ++i) out.write(std::uint32_t(0));
+    } else {
+        out.write(positions);
+        out.write(std::uint32_t(0));
+        out.write(std::uint32_t(0));
+        out.write(thickness);
+        out.write(std::uint32_t(0));
+    }
+    for (int i = 0; i < 32; ++i) out.write(std::uint32_t(0));
+    for (std::size_t s = 0; s < strands; ++s)
+        for (std::size_t i = 0; i < per_strand; ++i) {
+            const auto& p = model.points[model.strand_offsets[s] + i];
+            if (v3) out.write(p);
+            else out.write(glm::vec4(p, i == 0 ? 0.0f : 1.0f)); // w = 0 pins the root
+        }
+    for (std::size_t s = 0; s < strands; ++s) out.write(model.thickness_at(model.strand_offsets[s]));
+    out.save(path);
 }
 
 } // namespace hairshadow
@@ -2643,6 +2807,12 @@ struct query_options {
     bool jitter = false;
     /// Move the query this far towards the light (linear depth), against self-shadowing acne.
     float depth_bias = 0.0f;
+
+    /// Throws argument_error unless depth_bias is finite and within [-1, 1] (the map's whole depth).
+    void check() const {
+        if (!(depth_bias >= -1.0f && depth_bias <= 1.0f))
+            throw argument_error("depth bias " + std::to_string(depth_bias) + " is not within [-1, 1] (the map's linear depth)");
+    }
 };
 
 namespace detail {
@@ -2691,6 +2861,7 @@ public:
     void transmittance(std::span<const glm::vec3> points, std::span<float> out, const query_options& options = {},
                        const execution& exec = {}) const {
         if (out.size() != points.size()) throw argument_error("output span must match the point count");
+        options.check();
         parallel_for(points.size(), exec, [&](std::size_t i) { out[i] = transmittance(points[i], options); }, 4096);
     }
 

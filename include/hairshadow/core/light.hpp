@@ -15,7 +15,9 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 
+#include <algorithm>
 #include <array>
+#include <limits>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -66,6 +68,21 @@ inline light_spec parse_light_spec(std::string_view spec) {
     throw argument_error("bad light spec '" + std::string(spec) + "'; expected " + std::string(light_grammar));
 }
 
+/// Farthest a point or spot light may be from the model's centre, in radii of its bounding sphere:
+/// farther, the model's depth span is a few float steps of the distance (use a directional light).
+inline constexpr float max_light_distance_in_radii = 1.0e4f;
+
+namespace detail {
+/// `v` scaled to unit length; scaled down first, so that a huge direction does not overflow.
+inline glm::vec3 unit_direction(const glm::vec3& v, const char* what) {
+    const float largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    if (!std::isfinite(largest) || !(largest > 0.0f)) throw argument_error(std::string(what) + " is zero or not finite");
+    const glm::vec3 unit = glm::normalize(v / largest);
+    if (!(std::isfinite(unit.x) && std::isfinite(unit.y) && std::isfinite(unit.z))) throw argument_error(std::string(what) + " is not usable");
+    return unit;
+}
+} // namespace detail
+
 /// Throws argument_error unless 1 <= resolution <= HAIRSHADOW_MAX_RESOLUTION.
 inline void check_resolution(long long resolution) {
     if (resolution < 1 || resolution > HAIRSHADOW_MAX_RESOLUTION)
@@ -115,19 +132,21 @@ public:
         glm::vec3 forward;
         glm::vec3 eye;
         if (light.type == light_type::directional) {
-            if (!finite3(light.direction) || glm::length(light.direction) == 0.0f)
-                throw argument_error("the light direction is zero or not finite");
-            forward = glm::normalize(light.direction);
+            forward = detail::unit_direction(light.direction, "the light direction");
             eye = center - forward * (2.0f * radius);
         } else {
             if (!finite3(light.position)) throw argument_error("the light position is not finite");
             eye = light.position;
+            // Depth is a float distance from the light: from too far away, the model's whole depth
+            // span falls within a few of its steps (and the frustum's products overflow).
+            const double distance = glm::length(glm::dvec3(center) - glm::dvec3(eye));
+            if (!(distance <= double(max_light_distance_in_radii) * double(radius)))
+                throw argument_error("the light is more than " + std::to_string(int(max_light_distance_in_radii)) +
+                                     " model radii away, too far for float depth; use a directional light (dir:X,Y,Z)");
             if (light.type == light_type::spot) {
-                if (!finite3(light.direction) || glm::length(light.direction) == 0.0f)
-                    throw argument_error("the spot light direction is zero or not finite");
                 if (!(light.spot_half_angle_degrees > 0.0f && light.spot_half_angle_degrees < 89.0f))
                     throw argument_error("the spot light half-angle must be in (0, 89) degrees");
-                forward = glm::normalize(light.direction);
+                forward = detail::unit_direction(light.direction, "the spot light direction");
             } else {
                 if (glm::length(center - eye) <= radius * 1.0001f)
                     throw argument_error("the point light is inside the model's bounding sphere; a single perspective map cannot cover it");
@@ -174,6 +193,15 @@ public:
                                           ls.near_, ls.far_);
         }
         ls.view_projection_ = ls.projection_ * ls.view_;
+        const auto finite_matrix = [](const glm::mat4& m) {
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r)
+                    if (!std::isfinite(m[c][r])) return false;
+            return true;
+        };
+        if (!finite_matrix(ls.view_projection_) || !std::isfinite(ls.near_) || !std::isfinite(ls.far_) || !(ls.far_ > ls.near_) ||
+            !(ls.half_extent_ > 0.0f) || !std::isfinite(ls.half_extent_))
+            throw argument_error("the light and the model's bounds give no usable frustum (too far apart, or too large for float)");
         return ls;
     }
 

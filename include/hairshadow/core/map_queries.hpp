@@ -25,6 +25,12 @@ struct query_options {
     bool jitter = false;
     /// Move the query this far towards the light (linear depth), against self-shadowing acne.
     float depth_bias = 0.0f;
+
+    /// Throws argument_error unless depth_bias is finite and within [-1, 1] (the map's whole depth).
+    void check() const {
+        if (!(depth_bias >= -1.0f && depth_bias <= 1.0f))
+            throw argument_error("depth bias " + std::to_string(depth_bias) + " is not within [-1, 1] (the map's linear depth)");
+    }
 };
 
 namespace detail {
@@ -73,6 +79,7 @@ public:
     void transmittance(std::span<const glm::vec3> points, std::span<float> out, const query_options& options = {},
                        const execution& exec = {}) const {
         if (out.size() != points.size()) throw argument_error("output span must match the point count");
+        options.check();
         parallel_for(points.size(), exec, [&](std::size_t i) { out[i] = transmittance(points[i], options); }, 4096);
     }
 

@@ -1,10 +1,13 @@
 #pragma once
 /// @file
 /// A headless EGL context with no surface: on a GPU through EGL's device platform (glvnd and the
-/// vendor's EGL, e.g. an NVIDIA GPU with no display), else Mesa's surfaceless platform. Include
-/// <EGL/egl.h> and <EGL/eglext.h>, then the GL loader, then this header; link EGL.
+/// vendor's EGL, e.g. an NVIDIA GPU with no display), else Mesa's surfaceless platform. Include the GL
+/// loader, then this header; link EGL.
 
 #include <hairshadow/gl/context.hpp>
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
 
 #include <string>
 #include <vector>

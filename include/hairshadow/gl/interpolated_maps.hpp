@@ -123,6 +123,7 @@ public:
     }
 
     void build(const hair_mesh& mesh, const light_space& light, const raster_options& options = {}) {
+        options.check(); // the CPU's rules: a NaN alpha is an error here too
         light_ = light;
         const int res = light.resolution();
         allocate(res);

@@ -66,6 +66,7 @@ public:
 
     /// Builds the maps of `mesh` seen from `light`.
     void build(const hair_mesh& mesh, const light_space& light, const raster_options& options = {}) {
+        options.check(); // the CPU's rules: a NaN alpha is an error here too
         light_ = light;
         const int res = light.resolution();
         allocate(res);

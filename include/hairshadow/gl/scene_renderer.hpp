@@ -7,6 +7,7 @@
 /// shadow map, which is drawn on GL too. Transparent hair (set_transparency) is blended over the
 /// mesh by gl::transparent_hair.
 
+#include <hairshadow/gl/context.hpp>
 #include <hairshadow/gl/depth_range_pass.hpp>
 #include <hairshadow/gl/hair_mesh.hpp>
 #include <hairshadow/gl/objects.hpp>

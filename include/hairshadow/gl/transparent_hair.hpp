@@ -8,6 +8,7 @@
 /// - weighted averages (Bavoil & Myers 2008);
 /// - exact blending, by depth peeling.
 
+#include <hairshadow/gl/context.hpp>
 #include <hairshadow/gl/objects.hpp>
 #include <hairshadow/gl/shaders.generated.hpp>
 #include <hairshadow/shading/camera.hpp>

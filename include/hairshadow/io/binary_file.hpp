@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -36,7 +37,7 @@ inline std::vector<unsigned char> read_file_bytes(const std::string& path) {
 /// A cursor over a byte buffer; every read is checked against the end.
 class byte_reader {
 public:
-    byte_reader(const std::vector<unsigned char>& bytes, std::string file) : bytes_(bytes), file_(std::move(file)) {}
+    byte_reader(std::span<const unsigned char> bytes, std::string file) : bytes_(bytes), file_(std::move(file)) {}
 
     std::size_t position() const noexcept { return pos_; }
     std::size_t remaining() const noexcept { return bytes_.size() - pos_; }
@@ -65,17 +66,25 @@ public:
     /// Reads `count` values of T after checking that the file holds them.
     template <class T>
     std::vector<T> read_array(std::uint64_t count, const std::string& what) {
+        std::vector<T> values;
+        append_array(count, values, what);
+        return values;
+    }
+    /// Appends `count` values of T to `values` after checking that the file holds them.
+    template <class T>
+    void append_array(std::uint64_t count, std::vector<T>& values, const std::string& what) {
         static_assert(std::is_trivially_copyable_v<T>);
         require(count, sizeof(T), what);
-        std::vector<T> values(static_cast<std::size_t>(count));
-        if (count) std::memcpy(values.data(), bytes_.data() + pos_, sizeof(T) * values.size());
-        pos_ += sizeof(T) * values.size();
-        return values;
+        if (count == 0) return; // no memcpy from or to a null pointer
+        const std::size_t before = values.size();
+        values.resize(before + static_cast<std::size_t>(count));
+        std::memcpy(values.data() + before, bytes_.data() + pos_, sizeof(T) * static_cast<std::size_t>(count));
+        pos_ += sizeof(T) * static_cast<std::size_t>(count);
     }
     [[noreturn]] void fail(const std::string& reason) const { throw io_error(file_, reason); }
 
 private:
-    const std::vector<unsigned char>& bytes_;
+    std::span<const unsigned char> bytes_;
     std::string file_;
     std::size_t pos_ = 0;
 };

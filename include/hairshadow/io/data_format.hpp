@@ -6,14 +6,15 @@
 #include <hairshadow/io/binary_file.hpp>
 
 #include <limits>
+#include <span>
 
 namespace hairshadow {
 
-/// Reads a USC-HairSalon `.data` file. Throws io_error naming the file on malformed content.
-inline hair_model read_data(const std::string& path) {
+/// Parses the bytes of a USC-HairSalon `.data` file; `name` names it in errors. Throws io_error on
+/// malformed content.
+inline hair_model parse_data(std::span<const unsigned char> bytes, const std::string& name) {
     using namespace detail;
-    const auto bytes = read_file_bytes(path);
-    byte_reader in(bytes, path);
+    byte_reader in(bytes, name);
     const auto strands = in.read<std::int32_t>("strand count");
     if (strands <= 0) in.fail("strand count is " + std::to_string(strands) + "; at least 1 is needed");
     in.require(std::uint64_t(strands), 4, "strand headers"); // each strand needs at least its count
@@ -23,17 +24,17 @@ inline hair_model read_data(const std::string& path) {
         const auto n = in.read<std::int32_t>("point count");
         if (n < 0) in.fail("strand " + std::to_string(s) + " has a negative point count");
         in.require(std::uint64_t(n), 12, "strand " + std::to_string(s));
-        const auto before = model.points.size();
-        model.points.resize(before + std::size_t(n));
-        std::memcpy(model.points.data() + before, bytes.data() + in.position(), std::size_t(n) * 12);
-        in.seek(in.position() + std::size_t(n) * 12, "points");
-        if (model.points.size() > std::numeric_limits<std::uint32_t>::max()) in.fail("too many points");
+        if (model.points.size() + std::size_t(n) > std::numeric_limits<std::uint32_t>::max()) in.fail("too many points");
+        in.append_array(std::uint64_t(n), model.points, "strand " + std::to_string(s));
         model.strand_offsets.push_back(static_cast<std::uint32_t>(model.points.size()));
     }
     if (in.remaining() != 0) in.fail(std::to_string(in.remaining()) + " trailing bytes after the last strand");
     ensure_thickness(model);
-    return validated(std::move(model), path);
+    return validated(std::move(model), name);
 }
+
+/// Reads a USC-HairSalon `.data` file. Throws io_error naming the file on malformed content.
+inline hair_model read_data(const std::string& path) { return parse_data(detail::read_file_bytes(path), path); }
 
 /// Writes a USC-HairSalon `.data` file (positions only; the format has no other arrays).
 inline void write_data(const hair_model& model, const std::string& path) {

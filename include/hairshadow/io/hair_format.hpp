@@ -13,6 +13,7 @@
 #include <bit>
 #include <cstring>
 #include <limits>
+#include <span>
 
 namespace hairshadow {
 
@@ -25,11 +26,11 @@ inline constexpr std::uint32_t hair_has_transparency = 1u << 3;
 inline constexpr std::uint32_t hair_has_color = 1u << 4;
 } // namespace detail
 
-/// Reads a `.hair` file. Throws io_error naming the file on any malformed or truncated content.
-inline hair_model read_hair(const std::string& path) {
+/// Parses the bytes of a `.hair` file; `name` names it in errors. Throws io_error on any malformed or
+/// truncated content.
+inline hair_model parse_hair(std::span<const unsigned char> bytes, const std::string& name) {
     using namespace detail;
-    const auto bytes = read_file_bytes(path);
-    byte_reader in(bytes, path);
+    byte_reader in(bytes, name);
     if (bytes.size() < 128) in.fail("truncated: the header needs 128 bytes but the file has " + std::to_string(bytes.size()));
     char magic[4];
     std::memcpy(magic, bytes.data(), 4);
@@ -80,8 +81,11 @@ inline hair_model read_hair(const std::string& path) {
     for (std::uint32_t s = 0; s < strands; ++s)
         model.strand_offsets[s + 1] = model.strand_offsets[s] + (segments.empty() ? default_segments : segments[s]) + 1;
     ensure_thickness(model);
-    return validated(std::move(model), path);
+    return validated(std::move(model), name);
 }
+
+/// Reads a `.hair` file. Throws io_error naming the file on any malformed or truncated content.
+inline hair_model read_hair(const std::string& path) { return parse_hair(detail::read_file_bytes(path), path); }
 
 /// Writes a `.hair` file holding every array the model has. Strands of more than 65536 points or of
 /// none cannot be stored in the format and raise io_error.

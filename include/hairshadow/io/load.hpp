@@ -1,7 +1,6 @@
 #pragma once
 /// @file
 /// Loads a hair model from a file (by extension: .hair, .tfx, .data, .obj) or a procedural spec.
-/// Includes the OBJ reader, so it needs tinyobjloader (link `hairshadow::io`).
 
 #include <hairshadow/io/data_format.hpp>
 #include <hairshadow/io/hair_format.hpp>
@@ -28,12 +27,13 @@ inline hair_model load_model(const std::string& source) {
     throw io_error(source, "unknown model format '" + ext + "' (expected .hair, .tfx, .data, .obj or procedural:...)");
 }
 
-/// Writes a model by extension: `.hair` or `.data`.
+/// Writes a model by extension: `.hair`, `.data` or `.tfx` (TressFX 4).
 inline void save_model(const hair_model& model, const std::string& path) {
     const std::string ext = std::filesystem::path(path).extension().string();
     if (ext == ".hair") return write_hair(model, path);
     if (ext == ".data") return write_data(model, path);
-    throw io_error(path, "cannot write format '" + ext + "' (expected .hair or .data)");
+    if (ext == ".tfx") return write_tfx(model, path);
+    throw io_error(path, "cannot write format '" + ext + "' (expected .hair, .data or .tfx)");
 }
 
 } // namespace hairshadow

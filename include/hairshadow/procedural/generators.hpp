@@ -35,8 +35,8 @@ struct procedural_options {
     float clump_strength = 0.85f;     ///< clumped: pull towards the clump's centre at the tip, 0..1
 };
 
-/// Largest strand and segment totals a generator accepts (about 1.6 GB of points).
-inline constexpr std::size_t max_procedural_segments = std::size_t(1) << 27;
+/// Most points a generator makes: 2^25, 384 MiB of positions (the 1.5M-segment curly model has 1.51M).
+inline constexpr std::size_t max_procedural_points = std::size_t(1) << 25;
 
 namespace detail {
 inline glm::vec3 any_perpendicular(const glm::vec3& d) {
@@ -75,8 +75,8 @@ inline hair_model make_procedural(const procedural_options& o) {
     if (o.strands == 0) throw argument_error("procedural model: strands must be at least 1");
     if (o.segments == 0) throw argument_error("procedural model: segments must be at least 1");
     if (o.segments > 65535) throw argument_error("procedural model: segments per strand must be at most 65535");
-    if (o.strands > max_procedural_segments / o.segments)
-        throw argument_error("procedural model: strands x segments exceeds " + std::to_string(max_procedural_segments));
+    if (o.strands > max_procedural_points / (o.segments + 1))
+        throw argument_error("procedural model: strands x (segments + 1) points exceeds " + std::to_string(max_procedural_points));
     if (!(o.head_radius > 0) || !(o.length > 0) || !std::isfinite(o.head_radius) || !std::isfinite(o.length) ||
         !std::isfinite(o.wave_amplitude) || !(o.wave_length > 0) || !std::isfinite(o.wave_length))
         throw argument_error("procedural model: radius, length and wave length must be positive and finite");
@@ -134,6 +134,12 @@ inline hair_model make_procedural(const procedural_options& o) {
         model.add_strand(pts);
     }
     model.default_thickness = suggested_thickness(model.bounds());
+    try { // extreme shapes (a huge amplitude, say) overflow the points or the bounds: say so here
+        validate(model);
+    } catch (const model_error& e) {
+        throw argument_error(std::string("procedural model: these options give no usable model: ") + e.what());
+    }
+    if (!(model.default_thickness > 0.0f)) throw argument_error("procedural model: these options give a model with no extent");
     return model;
 }
 
@@ -144,8 +150,8 @@ inline hair_model grow_follow_hair(const hair_model& guides, std::size_t per_gui
                                    float tip_spread = 1.5f) {
     if (per_guide == 0) throw argument_error("follow hair: at least 1 strand per guide is needed");
     if (!(radius >= 0) || !std::isfinite(radius) || !std::isfinite(tip_spread)) throw argument_error("follow hair: radius must be finite and >= 0");
-    if (guides.point_count() > max_procedural_segments / per_guide)
-        throw argument_error("follow hair: the result would exceed " + std::to_string(max_procedural_segments) + " points");
+    if (guides.point_count() > max_procedural_points / per_guide)
+        throw argument_error("follow hair: the result would exceed " + std::to_string(max_procedural_points) + " points");
     hair_model out;
     out.default_thickness = guides.default_thickness;
     out.default_transparency = guides.default_transparency;
@@ -179,6 +185,11 @@ inline hair_model grow_follow_hair(const hair_model& guides, std::size_t per_gui
             copy(guides.transparency, out.transparency);
             copy(guides.colors, out.colors);
         }
+    }
+    try {
+        validate(out);
+    } catch (const model_error& e) {
+        throw argument_error(std::string("follow hair: these options give no usable model: ") + e.what());
     }
     return out;
 }
