@@ -46,8 +46,9 @@ for i in "${!pids[@]}"; do wait "${pids[$i]}" || failed+=("${names[$i]}"); done
 
 printf '| target | executions | seconds | corpus |\n|---|---|---|---|\n'
 for t in "${targets[@]}"; do
-    runs=$(grep -oE 'stat::number_of_executed_units: *[0-9]+' "$build/$t.log" | grep -oE '[0-9]+$' | tail -1)
-    secs=$(grep -oE 'Done [0-9]+ runs in [0-9]+ second' "$build/$t.log" | grep -oE 'in [0-9]+' | grep -oE '[0-9]+' | tail -1)
+    # (a crashed run prints neither line: no failure here, so that its report below still prints)
+    runs=$(grep -oE 'stat::number_of_executed_units: *[0-9]+' "$build/$t.log" | grep -oE '[0-9]+$' | tail -1 || true)
+    secs=$(grep -oE 'Done [0-9]+ runs in [0-9]+ second' "$build/$t.log" | grep -oE 'in [0-9]+' | grep -oE '[0-9]+' | tail -1 || true)
     printf '| %s | %s | %s | %s |\n' "$t" "${runs:-?}" "${secs:-?}" "$(ls "$build/corpus/$t" | wc -l)"
 done
 if [ ${#failed[@]} -gt 0 ]; then

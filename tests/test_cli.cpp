@@ -158,7 +158,7 @@ TEST_CASE("bad input gives 'error: FILE: reason' and exit status 1", "[cli][erro
     expect("query procedural:straight --points " + dir.file("points.txt"), 1, "line 1: expected three numbers");
     expect("render procedural:straight --res 0", 2, "error: --res: Value 0 not in range 1 to 16384"); // a usage error
     expect("render procedural:straight --res 16385", 2, "error: --res: Value 16385 not in range");
-    expect("render procedural:straight --light dir:0,0,0", 1, "error: the light direction is zero");
+    expect("render procedural:straight --light dir:0,0,0", 2, "the light direction is zero"); // wrong on its own: usage
     expect("render procedural:straight:strands=0", 1, "strands must be at least 1");
 }
 

@@ -43,6 +43,15 @@ TEST_CASE(".data: a strand of no points copies nothing, first or later", "[io][d
     CHECK(m.points[1] == glm::vec3(0, 1, 0));
 }
 
+TEST_CASE(".hair: a default colour that is not finite is refused", "[io][hair][hostile]") {
+    auto model = test::grid_model(2, 3);
+    model.default_color = glm::vec3(0, std::numeric_limits<float>::quiet_NaN(), 0);
+    CHECK_THROWS_WITH(validate(model), Catch::Contains("default colour"));
+    test::temp_dir dir("hostile_colour");
+    write_hair(model, dir.file("nan.hair"));
+    CHECK_THROWS_AS(read_hair(dir.file("nan.hair")), io_error);
+}
+
 TEST_CASE("lights that float cannot place are refused, and huge directions are scaled", "[light][hostile]") {
     const aabb box{glm::vec3(-0.1f), glm::vec3(0.1f)};
     // Defect 2: window coordinates at infinity from a spot light 1e34 away.
@@ -56,6 +65,21 @@ TEST_CASE("lights that float cannot place are refused, and huge directions are s
     CHECK_NOTHROW(light_space::fit(parse_light_spec("point:0,100,0"), box, 64)); // 1,000 radii: fine
     const auto tiny = light_space::fit(parse_light_spec("dir:1e-30,0,0"), box, 64); // tiny, but a direction
     CHECK(tiny.view_projection() == light_space::fit(parse_light_spec("dir:1,0,0"), box, 64).view_projection());
+}
+
+TEST_CASE("a model far from the origin for its size is refused, not silently unshadowed", "[light][hostile]") {
+    // A model 1 mm across, 1e5 from the origin: float coordinates there step by 0.008.
+    const aabb far_model{glm::vec3(1e5f, 0, 0), glm::vec3(1e5f + 1e-3f, 1e-3f, 1e-3f)};
+    CHECK_THROWS_WITH(light_space::fit(light_spec::directional({0, -1, 0}), far_model, 64), Catch::Contains("from the origin"));
+    const aabb near_model{glm::vec3(1.0f, 0, 0), glm::vec3(1.001f, 1e-3f, 1e-3f)};
+    CHECK_NOTHROW(light_space::fit(light_spec::directional({0, -1, 0}), near_model, 64));
+}
+
+TEST_CASE("light specs wrong on their own fail to parse", "[light][hostile]") {
+    for (const char* spec : {"dir:0,0,0", "spot:0,1,0:0,0,0:30", "spot:0,1,0:0,-1,0:89", "spot:0,1,0:0,-1,0:0"}) {
+        INFO(spec);
+        CHECK_THROWS_AS(parse_light_spec(spec), argument_error);
+    }
 }
 
 TEST_CASE("a light far away but allowed still shadows the model", "[light][hostile]") {
@@ -98,8 +122,12 @@ TEST_CASE("query bias must be finite and within the map's depth", "[query][hosti
 }
 
 TEST_CASE("OBJ: materials are never opened", "[io][obj][hostile]") {
-    // Defect 6a: `mtllib` followed to any path; /dev/zero read until memory ran out.
-    const auto contents = obj("mtllib ../../../../dev/zero\nmtllib ../../proc/self/fd/0\nv 0 0 0\nv 0 1 0\nl 1 2\n");
+    // Defect 6a: `mtllib` followed to any path; /dev/zero read until memory ran out. From a file, so
+    // that a reader that resolved material paths again would find these.
+    test::temp_dir dir("hostile_mtllib");
+    test::write_text(dir.file("a.obj"), "mtllib /dev/zero\nmtllib ../../../../../../../../dev/zero\nmtllib ../../proc/self/fd/0\n"
+                                        "v 0 0 0\nv 0 1 0\nl 1 2\n");
+    const auto contents = read_obj(dir.file("a.obj"));
     CHECK(contents.hair.strand_count() == 1);
 }
 
@@ -141,6 +169,10 @@ TEST_CASE("OBJ: every number is checked against its text", "[io][obj][hostile]")
     CHECK_THROWS_WITH(obj("v 0 0\n"), Catch::Contains("three coordinates"));
     CHECK_THROWS_WITH(obj("v 0 0 x\n"), Catch::Contains("'x' is not a number"));
     CHECK_THROWS_WITH(obj("v 0 0 0\nl /1\n"), Catch::Contains("not a vertex index"));
+    // Underflow reads as the nearest float, as strtof gives it; a leading '+' is a number's sign.
+    const auto tiny = obj("v 1e-50 +2 -0\nv 0 1 0\nl 1 2\n");
+    CHECK(tiny.hair.points[0] == glm::vec3(0, 2, 0));
+    CHECK_THROWS_WITH(obj("v +-1 0 0\n"), Catch::Contains("is not a number"));
     // The forms that are fine: texture and normal indices, negative (relative) indices, comments, CRLF.
     const auto ok = obj("v 0 0 0 # a comment\r\nv 1 0 0\r\nv 1 1 0\r\nvt 0 0\nf 1/1 2/1/1 -1//1\nl -3 -2 -1\n");
     REQUIRE(ok.mesh.triangles.size() == 1);
@@ -233,6 +265,9 @@ TEST_CASE("procedural models: the size limit counts points, and every model vali
         CHECK_THROWS_WITH(make_procedural(parse_procedural_spec(std::string("procedural:") + style + ":strands=2:segments=2:amplitude=1e38:wavelength=1e-38")),
                           Catch::Contains("no usable model"));
     CHECK_THROWS_AS(grow_follow_hair(test::grid_model(2, 3), 2, 3e38f), argument_error);
+    // Each strand looks through every clump: their number is capped.
+    CHECK_THROWS_WITH(make_procedural(parse_procedural_spec("procedural:clumped:strands=16000000:segments=1:clumps=16000000")),
+                      Catch::Contains("at most 4096"));
 }
 
 TEST_CASE("points files: every line holds three finite numbers", "[io][hostile]") {
@@ -273,6 +308,9 @@ TEST_CASE("the command: a malformed or out-of-range option value exits 2 in ever
         CHECK(test::run_cli("query " + model + " --points " + dir.file("p.txt") + " --alpha nan --backend " + std::string(backend)).status == 2);
     }
     CHECK(test::run_cli("render " + model + " --azimuth inf --out " + dir.file("o.png")).status == 2);
+    CHECK(test::run_cli("render " + model + " --azimuth 1e39 --out " + dir.file("o.png")).status == 2); // beyond a float
+    CHECK(test::run_cli("query " + model + " --points " + dir.file("p.txt") + " --wide 1").status == 2);
+    CHECK(test::run_cli("query " + model + " --points " + dir.file("p.txt") + " --light spot:0,1,0:0,-1,0:95").status == 2);
     CHECK(test::run_cli("figure --transparency nan --out " + dir.file("fig")).status == 2);
     // Input-dependent errors stay 1: a light too far for float depth.
     const auto far = test::run_cli("query " + model + " --points " + dir.file("p.txt") + " --light point:0,1e38,0");

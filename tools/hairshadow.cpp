@@ -24,6 +24,7 @@
 #include <cstdlib>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <fstream>
 #include <sstream>
 
@@ -36,9 +37,18 @@ using namespace hairshadow;
 const CLI::Validator finite_number(
     [](std::string& text) -> std::string {
         const double value = std::strtod(text.c_str(), nullptr);
-        return std::isfinite(value) ? std::string() : "'" + text + "' is not a finite number";
+        return std::isfinite(value) && std::abs(value) <= double(std::numeric_limits<float>::max()) ? std::string()
+                                                                                                    : "'" + text + "' is not a finite number";
     },
     "FINITE", "finite");
+
+/// --wide: 0 (off) or 2 to 64 texels, as raster_options::check requires.
+const CLI::Validator wide_line_width(
+    [](std::string& text) -> std::string {
+        const double value = std::strtod(text.c_str(), nullptr);
+        return value == 0.0 || (value >= 2.0 && value <= 64.0) ? std::string() : "--wide is 0 (off) or 2 to 64 texels, not " + text;
+    },
+    "0|[2,64]", "wide line width");
 
 /// A usage error: exit status 2.
 struct usage_error : std::runtime_error {
@@ -94,6 +104,11 @@ hair_model load(const std::string& source) {
         return make_procedural(options);
     }
     return load_model(source);
+}
+
+std::string lower_case(std::string text) {
+    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return text;
 }
 
 double milliseconds_since(std::chrono::steady_clock::time_point start) {
@@ -164,7 +179,7 @@ void write_grey(const std::string& path, int res, const execution& exec, Value v
 }
 
 int run_info(const map_options& o) {
-    if (!is_procedural_spec(o.model) && std::filesystem::path(o.model).extension() == ".obj") {
+    if (!is_procedural_spec(o.model) && lower_case(std::filesystem::path(o.model).extension().string()) == ".obj") {
         const auto contents = read_obj(o.model);
         std::printf("mesh:     %zu vertices, %zu triangles\n", contents.mesh.vertices.size(), contents.mesh.triangles.size());
         if (contents.hair.strand_count() == 0) return 0;
@@ -172,7 +187,7 @@ int run_info(const map_options& o) {
     const auto model = load(o.model);
     const auto b = model.bounds();
     std::printf("model:    %s\n", o.model.c_str());
-    if (!is_procedural_spec(o.model) && std::filesystem::path(o.model).extension() == ".tfx") {
+    if (!is_procedural_spec(o.model) && lower_case(std::filesystem::path(o.model).extension().string()) == ".tfx") {
         const auto tfx = parse_tfx_file(detail::read_file_bytes(o.model), o.model);
         std::printf("format:   TressFX %d (version %g)", tfx.major_version, double(tfx.version));
         if (tfx.major_version == 3)
@@ -401,7 +416,7 @@ void add_map_options(CLI::App* cmd, map_options& o, bool with_method = true) {
     cmd->add_option("--alpha", o.alpha, "use this alpha for every fragment instead of the strand coverage")
         ->check(finite_number & CLI::Range(0.0f, 1.0f));
     cmd->add_option("--wide", o.wide, "pre-filtered wide lines of this width in texels, 2 to 64 (Mertens et al. 3.4); 0 = aliased lines")
-        ->check(finite_number & CLI::Range(0.0f, 64.0f));
+        ->check(finite_number & CLI::Range(0.0f, 64.0f) & wide_line_width);
 }
 
 void add_backend_options(CLI::App* cmd, map_options& o) {

@@ -4,8 +4,8 @@
 /// The CPU umbrella header: models and their readers, lights, the rasteriser, the exact reference and
 /// every method's policies and compositions (the run-time registry is <hairshadow/methods/registry.hpp>),
 /// and the CPU renderer: Kajiya-Kay hair, opaque meshes with depth shadow maps, cameras.
-/// It needs only GLM. The OBJ reader (`<hairshadow/io/obj_format.hpp>`, `<hairshadow/io/load.hpp>`)
-/// also needs tinyobjloader and is included separately.
+/// It needs only GLM; every file reader is the project's own. PNG output (`<hairshadow/io/png.hpp>`)
+/// needs stb's header and is included separately.
 
 #include <hairshadow/config.hpp>
 
@@ -20,6 +20,9 @@
 
 #include <hairshadow/io/data_format.hpp>
 #include <hairshadow/io/hair_format.hpp>
+#include <hairshadow/io/load.hpp>
+#include <hairshadow/io/obj_format.hpp>
+#include <hairshadow/io/points_file.hpp>
 #include <hairshadow/io/procedural_spec.hpp>
 #include <hairshadow/io/tfx_format.hpp>
 

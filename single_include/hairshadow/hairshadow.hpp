@@ -7,8 +7,8 @@
 /// The CPU umbrella header: models and their readers, lights, the rasteriser, the exact reference and
 /// every method's policies and compositions (the run-time registry is <hairshadow/methods/registry.hpp>),
 /// and the CPU renderer: Kajiya-Kay hair, opaque meshes with depth shadow maps, cameras.
-/// It needs only GLM. The OBJ reader (`<hairshadow/io/obj_format.hpp>`, `<hairshadow/io/load.hpp>`)
-/// also needs tinyobjloader and is included separately.
+/// It needs only GLM; every file reader is the project's own. PNG output (`<hairshadow/io/png.hpp>`)
+/// needs stb's header and is included separately.
 
 // ---- begin hairshadow/config.hpp
 /// @file
@@ -239,6 +239,8 @@ inline void validate(const hair_model& model) {
     const float huge = 3.0e38f;
     if (!check_range(model.default_thickness, 0.0f, huge)) throw model_error("default thickness is negative or not finite");
     if (!check_range(model.default_transparency, 0.0f, 1.0f)) throw model_error("default transparency is outside [0, 1]");
+    for (int c = 0; c < 3; ++c)
+        if (!std::isfinite(model.default_color[c])) throw model_error("default colour is not finite");
     for (std::size_t i = 0; i < model.thickness.size(); ++i)
         if (!check_range(model.thickness[i], 0.0f, huge))
             throw model_error("thickness of point " + std::to_string(i) + " is negative or not finite");
@@ -271,6 +273,8 @@ inline void validate(const hair_model& model) {
 
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -290,13 +294,39 @@ inline std::vector<std::string_view> split(std::string_view text, char sep) {
     }
 }
 
+enum class number_status { ok, malformed, too_large };
+
+/// Reads all of `text` as a float (an optional leading '+' allowed). A value below the smallest float
+/// reads as its nearest float (0 or subnormal), as strtof gives it: libstdc++'s from_chars reports
+/// such underflow as out of range, like overflow, so strtof tells the two apart.
+inline number_status parse_float(std::string_view text, float& value) {
+    if (!text.empty() && text[0] == '+') {
+        text.remove_prefix(1);
+        if (!text.empty() && (text[0] == '+' || text[0] == '-')) return number_status::malformed;
+    }
+    const auto* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (ptr != end || ec == std::errc::invalid_argument) return number_status::malformed;
+    if (ec == std::errc::result_out_of_range) {
+        const float nearest = std::strtof(std::string(text).c_str(), nullptr);
+        if (!(std::abs(nearest) <= std::numeric_limits<float>::min())) return number_status::too_large;
+        value = nearest;
+    }
+    return number_status::ok;
+}
+
 template <class T>
 T parse_number(std::string_view text, std::string_view what) {
     T value{};
-    const auto* end = text.data() + text.size();
-    auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    if (ec != std::errc() || ptr != end || text.empty())
-        throw argument_error(std::string(what) + ": '" + std::string(text) + "' is not a valid number");
+    if constexpr (std::is_same_v<T, float>) {
+        if (parse_float(text, value) != number_status::ok)
+            throw argument_error(std::string(what) + ": '" + std::string(text) + "' is not a valid number");
+    } else {
+        const auto* end = text.data() + text.size();
+        auto [ptr, ec] = std::from_chars(text.data(), end, value);
+        if (ec != std::errc() || ptr != end || text.empty())
+            throw argument_error(std::string(what) + ": '" + std::string(text) + "' is not a valid number");
+    }
     if constexpr (std::is_floating_point_v<T>)
         if (!std::isfinite(value)) throw argument_error(std::string(what) + ": '" + std::string(text) + "' is not finite");
     return value;
@@ -350,15 +380,32 @@ inline glm::vec3 parse_vec3(std::string_view text, std::string_view what) {
 }
 } // namespace detail
 
-/// Parses `dir:x,y,z` (the direction the light travels), `point:x,y,z` or `spot:x,y,z:dx,dy,dz:angle`.
+/// Throws argument_error for what is wrong with a light on its own, whatever the model: a zero or
+/// non-finite direction, a non-finite position, a spot half-angle outside (0, 89) degrees.
+inline void check_light_spec(const light_spec& light) {
+    const auto finite3 = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+    if (light.type != light_type::point && (!finite3(light.direction) || light.direction == glm::vec3(0.0f)))
+        throw argument_error("the light direction is zero or not finite");
+    if (light.type != light_type::directional && !finite3(light.position)) throw argument_error("the light position is not finite");
+    if (light.type == light_type::spot && !(light.spot_half_angle_degrees > 0.0f && light.spot_half_angle_degrees < 89.0f))
+        throw argument_error("the spot light half-angle must be in (0, 89) degrees");
+}
+
+/// Parses `dir:x,y,z` (the direction the light travels), `point:x,y,z` or `spot:x,y,z:dx,dy,dz:angle`,
+/// and checks the result with check_light_spec.
 inline light_spec parse_light_spec(std::string_view spec) {
     try {
         const auto parts = detail::split(spec, ':');
-        if (parts[0] == "dir" && parts.size() == 2) return light_spec::directional(detail::parse_vec3(parts[1], "light direction"));
-        if (parts[0] == "point" && parts.size() == 2) return light_spec::point(detail::parse_vec3(parts[1], "light position"));
+        std::optional<light_spec> light;
+        if (parts[0] == "dir" && parts.size() == 2) light = light_spec::directional(detail::parse_vec3(parts[1], "light direction"));
+        if (parts[0] == "point" && parts.size() == 2) light = light_spec::point(detail::parse_vec3(parts[1], "light position"));
         if (parts[0] == "spot" && parts.size() == 4)
-            return light_spec::spot(detail::parse_vec3(parts[1], "light position"), detail::parse_vec3(parts[2], "light direction"),
-                                    detail::parse_number<float>(parts[3], "spot angle"));
+            light = light_spec::spot(detail::parse_vec3(parts[1], "light position"), detail::parse_vec3(parts[2], "light direction"),
+                                     detail::parse_number<float>(parts[3], "spot angle"));
+        if (light) {
+            check_light_spec(*light);
+            return *light;
+        }
     } catch (const argument_error& e) {
         throw argument_error("bad light spec '" + std::string(spec) + "': " + e.what() + "; expected " + std::string(light_grammar));
     }
@@ -426,6 +473,12 @@ public:
         ls.type_ = light.type;
         const glm::vec3 center = bounds.center();
         const float radius = std::max(0.5f * bounds.diagonal(), 1e-6f);
+        // World coordinates are floats: a model far from the origin for its size has too few steps
+        // of its own coordinates to be told apart in depth.
+        const float offset = std::max({std::abs(center.x), std::abs(center.y), std::abs(center.z)});
+        if (!(offset <= max_light_distance_in_radii * radius))
+            throw argument_error("the model lies more than " + std::to_string(int(max_light_distance_in_radii)) +
+                                 " radii from the origin, too far for float coordinates; move it nearer the origin");
         glm::vec3 forward;
         glm::vec3 eye;
         if (light.type == light_type::directional) {
@@ -1112,6 +1165,153 @@ inline void write_hair(const hair_model& model, const std::string& path) {
 
 } // namespace hairshadow
 // ---- end hairshadow/io/hair_format.hpp
+// ---- begin hairshadow/io/load.hpp
+/// @file
+/// Loads a hair model from a file (by extension: .hair, .tfx, .data, .obj) or a procedural spec.
+
+// ---- begin hairshadow/io/obj_format.hpp
+/// @file
+/// Wavefront OBJ, read by a small parser of its own: `v` lines are vertices, `l` polylines become
+/// strands, `f` faces an opaque triangle mesh; every other statement is skipped, and materials
+/// (`mtllib`) are never opened. Every number is checked against its text: a coordinate that is not
+/// finite or does not fit a float, and an index that is zero, overflows or names a vertex not yet
+/// defined, is an io_error naming the line.
+///
+/// Faces are fanned from their first vertex: exact for the triangles and convex polygons that
+/// exporters write, and linear in the polygon's size (tinyobjloader, used before, triangulated a
+/// 40,000-vertex face in 25 s).
+
+
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace hairshadow {
+
+/// What an OBJ file holds: strands (from polylines) and triangles (from faces); either may be empty.
+struct obj_contents {
+    hair_model hair;
+    triangle_mesh mesh;
+};
+
+namespace detail {
+
+/// Reads OBJ statements line by line; see the file comment for what is accepted.
+class obj_reader {
+public:
+    obj_reader(std::string_view text, std::string name) : text_(text), name_(std::move(name)) {}
+
+    obj_contents read() {
+        obj_contents out;
+        std::vector<std::uint32_t> strand;
+        std::vector<std::uint32_t> polygon;
+        while (next_line()) {
+            const auto keyword = token();
+            if (keyword == "v") {
+                glm::vec3 v;
+                for (int c = 0; c < 3; ++c) v[c] = coordinate(token());
+                vertices_.push_back(v);
+            } else if (keyword == "l") {
+                strand.clear();
+                for (auto t = token(); !t.empty(); t = token()) strand.push_back(vertex_index(t));
+                if (strand.empty()) fail("a polyline ('l') needs at least one vertex");
+                out.hair.strand_offsets.push_back(0); // filled below, once the points are copied
+                for (const auto i : strand) out.hair.points.push_back(vertices_[i]);
+                if (out.hair.points.size() > std::numeric_limits<std::uint32_t>::max()) fail("more than 2^32 strand points");
+                out.hair.strand_offsets.back() = static_cast<std::uint32_t>(out.hair.points.size());
+            } else if (keyword == "f") {
+                polygon.clear();
+                for (auto t = token(); !t.empty(); t = token()) polygon.push_back(vertex_index(t));
+                if (polygon.size() < 3) fail("a face ('f') needs at least three vertices");
+                for (std::size_t k = 1; k + 1 < polygon.size(); ++k) out.mesh.triangles.push_back({polygon[0], polygon[k], polygon[k + 1]});
+            }
+        }
+        if (!out.mesh.triangles.empty()) out.mesh.vertices = vertices_;
+        return out;
+    }
+
+private:
+    /// Moves to the next line and returns false at the end of the text.
+    bool next_line() {
+        if (pos_ >= text_.size()) return false;
+        const auto end = text_.find('\n', pos_);
+        line_ = text_.substr(pos_, end == std::string_view::npos ? std::string_view::npos : end - pos_);
+        pos_ = end == std::string_view::npos ? text_.size() : end + 1;
+        ++line_number_;
+        if (const auto hash = line_.find('#'); hash != std::string_view::npos) line_ = line_.substr(0, hash);
+        return true;
+    }
+    /// The next whitespace-separated field of the line, or an empty view at its end.
+    std::string_view token() {
+        const auto is_space = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; };
+        std::size_t i = 0;
+        while (i < line_.size() && is_space(line_[i])) ++i;
+        std::size_t j = i;
+        while (j < line_.size() && !is_space(line_[j])) ++j;
+        const auto field = line_.substr(i, j - i);
+        line_ = line_.substr(j);
+        return field;
+    }
+    float coordinate(std::string_view field) {
+        if (field.empty()) fail("a vertex ('v') needs three coordinates");
+        float value = 0.0f;
+        const auto status = parse_float(field, value);
+        if (status == number_status::too_large) fail("coordinate '" + std::string(field) + "' does not fit a float");
+        if (status == number_status::malformed) fail("'" + std::string(field) + "' is not a number");
+        if (!std::isfinite(value)) fail("coordinate '" + std::string(field) + "' is not finite");
+        return value;
+    }
+    /// The zero-based vertex of a `v`, `v/vt`, `v//vn` or `v/vt/vn` field; negative indices count back
+    /// from the last vertex defined.
+    std::uint32_t vertex_index(std::string_view field) {
+        const auto digits = field.substr(0, field.find('/'));
+        long long index = 0;
+        const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
+        if (ec == std::errc::result_out_of_range) fail("vertex index '" + std::string(digits) + "' is out of range");
+        if (ec != std::errc() || end != digits.data() + digits.size() || digits.empty())
+            fail("'" + std::string(field) + "' is not a vertex index");
+        const auto count = static_cast<long long>(vertices_.size());
+        const long long zero_based = index > 0 ? index - 1 : count + index;
+        if (index == 0 || zero_based < 0 || zero_based >= count)
+            fail("vertex index " + std::to_string(index) + " is out of range (" + std::to_string(count) + " vertices defined so far)");
+        return static_cast<std::uint32_t>(zero_based);
+    }
+    [[noreturn]] void fail(const std::string& reason) const { throw io_error(name_, "line " + std::to_string(line_number_) + ": " + reason); }
+
+    std::string_view text_;
+    std::string name_;
+    std::size_t pos_ = 0;
+    std::size_t line_number_ = 0;
+    std::string_view line_;
+    std::vector<glm::vec3> vertices_;
+};
+
+} // namespace detail
+
+/// Parses the text of an OBJ file; `name` names it in errors. Throws io_error on anything malformed.
+inline obj_contents parse_obj(std::span<const unsigned char> bytes, const std::string& name) {
+    return detail::obj_reader(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), name).read();
+}
+
+/// Reads an OBJ file. Throws io_error naming the file when it cannot be read or parsed.
+inline obj_contents read_obj(const std::string& path) { return parse_obj(detail::read_file_bytes(path), path); }
+
+/// The strands of parsed OBJ contents; throws io_error when there is no usable polyline.
+inline hair_model obj_hair(obj_contents contents, const std::string& name) {
+    if (contents.hair.strand_count() == 0) throw io_error(name, "the OBJ file holds no polylines ('l' lines) to use as strands");
+    ensure_thickness(contents.hair);
+    return detail::validated(std::move(contents.hair), name);
+}
+
+/// Reads the strands of an OBJ file; throws io_error when it holds no usable polyline.
+inline hair_model read_obj_hair(const std::string& path) { return obj_hair(read_obj(path), path); }
+
+} // namespace hairshadow
+// ---- end hairshadow/io/obj_format.hpp
 // ---- begin hairshadow/io/procedural_spec.hpp
 /// @file
 /// Parses `procedural:NAME[:key=value...]` into procedural_options.
@@ -1152,6 +1352,8 @@ struct procedural_options {
 
 /// Most points a generator makes: 2^25, 384 MiB of positions (the 1.5M-segment curly model has 1.51M).
 inline constexpr std::size_t max_procedural_points = std::size_t(1) << 25;
+/// Most clumps of the clumped style.
+inline constexpr std::size_t max_procedural_clumps = 4096;
 
 namespace detail {
 inline glm::vec3 any_perpendicular(const glm::vec3& d) {
@@ -1195,8 +1397,10 @@ inline hair_model make_procedural(const procedural_options& o) {
     if (!(o.head_radius > 0) || !(o.length > 0) || !std::isfinite(o.head_radius) || !std::isfinite(o.length) ||
         !std::isfinite(o.wave_amplitude) || !(o.wave_length > 0) || !std::isfinite(o.wave_length))
         throw argument_error("procedural model: radius, length and wave length must be positive and finite");
-    if (o.style == hair_style::clumped && (o.clumps == 0 || o.clumps > o.strands))
-        throw argument_error("procedural model: clumps must be between 1 and the number of strands");
+    // Each strand looks through every clump: the cap keeps that loop linear in the strands.
+    if (o.style == hair_style::clumped && (o.clumps == 0 || o.clumps > o.strands || o.clumps > max_procedural_clumps))
+        throw argument_error("procedural model: clumps must be between 1 and the number of strands, at most " +
+                             std::to_string(max_procedural_clumps));
 
     random_stream rng(o.seed);
     std::vector<glm::vec3> clump_normals;
@@ -1527,6 +1731,87 @@ inline void write_tfx(const hair_model& model, const std::string& path, int majo
 
 } // namespace hairshadow
 // ---- end hairshadow/io/tfx_format.hpp
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+namespace hairshadow {
+
+/// Reads `source`: a `.hair`, `.tfx`, `.data` or `.obj` file, or `procedural:NAME[:key=value...]`.
+/// Throws io_error (files) or argument_error (specs).
+inline hair_model load_model(const std::string& source) {
+    if (is_procedural_spec(source)) return make_procedural(parse_procedural_spec(source));
+    std::string ext = std::filesystem::path(source).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext == ".hair") return read_hair(source);
+    if (ext == ".tfx") return read_tfx(source);
+    if (ext == ".data") return read_data(source);
+    if (ext == ".obj") return read_obj_hair(source);
+    throw io_error(source, "unknown model format '" + ext + "' (expected .hair, .tfx, .data, .obj or procedural:...)");
+}
+
+/// Writes a model by extension: `.hair`, `.data` or `.tfx` (TressFX 4).
+inline void save_model(const hair_model& model, const std::string& path) {
+    const std::string ext = std::filesystem::path(path).extension().string();
+    if (ext == ".hair") return write_hair(model, path);
+    if (ext == ".data") return write_data(model, path);
+    if (ext == ".tfx") return write_tfx(model, path);
+    throw io_error(path, "cannot write format '" + ext + "' (expected .hair, .data or .tfx)");
+}
+
+} // namespace hairshadow
+// ---- end hairshadow/io/load.hpp
+// ---- begin hairshadow/io/points_file.hpp
+/// @file
+/// Query points as text: one `x y z` per line; blank lines and lines starting with `#` are skipped.
+
+
+#include <glm/vec3.hpp>
+
+#include <algorithm>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace hairshadow {
+
+/// Parses the text of a points file; `name` names it in errors. Throws io_error naming the line on a
+/// line without exactly three finite numbers.
+inline std::vector<glm::vec3> parse_points(std::span<const unsigned char> bytes, const std::string& name) {
+    const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    std::vector<glm::vec3> points;
+    std::size_t number = 0;
+    for (auto line : detail::split(text, '\n')) {
+        ++number;
+        const auto fail = [&](const std::string& why) { throw io_error(name, "line " + std::to_string(number) + ": " + why); };
+        int count = 0;
+        glm::vec3 p(0.0f);
+        for (std::size_t i = 0;;) {
+            i = line.find_first_not_of(" \t\r\f\v", i);
+            if (i == std::string_view::npos || (count == 0 && line[i] == '#')) break;
+            const auto end = std::min(line.find_first_of(" \t\r\f\v", i), line.size());
+            if (count == 3) fail("more than three numbers");
+            try {
+                p[count++] = detail::parse_number<float>(line.substr(i, end - i), "coordinate");
+            } catch (const argument_error& e) {
+                fail(e.what());
+            }
+            i = end;
+        }
+        if (count == 0) continue;
+        if (count != 3) fail("expected three numbers 'x y z'");
+        points.push_back(p);
+    }
+    return points;
+}
+
+/// Reads a points file. Throws io_error naming the file on any malformed line.
+inline std::vector<glm::vec3> read_points(const std::string& path) { return parse_points(detail::read_file_bytes(path), path); }
+
+} // namespace hairshadow
+// ---- end hairshadow/io/points_file.hpp
 
 
 // ---- begin hairshadow/raster/fragment.hpp

@@ -139,3 +139,19 @@ TEST_CASE("GL interpolated maps equal the CPU maps, and the GLSL look-up the CPU
             light, mesh, fragments);
     }
 }
+
+TEST_CASE("GL builds refuse the raster options the CPU refuses: a NaN alpha", "[gl][hostile]") {
+    test::gl_context();
+    const auto model = test::grid_model(6, 5);
+    const auto light = light_space::fit(light_spec::directional({0, -1, -1}), model.bounds(), 32);
+    const gl::hair_mesh mesh(model);
+    raster_options nan_alpha;
+    nan_alpha.fixed_alpha = std::numeric_limits<float>::quiet_NaN();
+    gl::maps<deep_opacity_maps<3>> interpolated;
+    CHECK_THROWS_AS(interpolated.build(mesh, light, nan_alpha), argument_error);
+    gl::maps<occupancy_maps<128, 4>> occupancy;
+    CHECK_THROWS_AS(occupancy.build(mesh, light, nan_alpha), argument_error);
+    raster_options too_wide;
+    too_wide.wide_line_width = 1.0f;
+    CHECK_THROWS_AS(interpolated.build(mesh, light, too_wide), argument_error);
+}

@@ -110,6 +110,8 @@ inline void validate(const hair_model& model) {
     const float huge = 3.0e38f;
     if (!check_range(model.default_thickness, 0.0f, huge)) throw model_error("default thickness is negative or not finite");
     if (!check_range(model.default_transparency, 0.0f, 1.0f)) throw model_error("default transparency is outside [0, 1]");
+    for (int c = 0; c < 3; ++c)
+        if (!std::isfinite(model.default_color[c])) throw model_error("default colour is not finite");
     for (std::size_t i = 0; i < model.thickness.size(); ++i)
         if (!check_range(model.thickness[i], 0.0f, huge))
             throw model_error("thickness of point " + std::to_string(i) + " is negative or not finite");

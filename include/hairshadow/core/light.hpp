@@ -53,15 +53,32 @@ inline glm::vec3 parse_vec3(std::string_view text, std::string_view what) {
 }
 } // namespace detail
 
-/// Parses `dir:x,y,z` (the direction the light travels), `point:x,y,z` or `spot:x,y,z:dx,dy,dz:angle`.
+/// Throws argument_error for what is wrong with a light on its own, whatever the model: a zero or
+/// non-finite direction, a non-finite position, a spot half-angle outside (0, 89) degrees.
+inline void check_light_spec(const light_spec& light) {
+    const auto finite3 = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+    if (light.type != light_type::point && (!finite3(light.direction) || light.direction == glm::vec3(0.0f)))
+        throw argument_error("the light direction is zero or not finite");
+    if (light.type != light_type::directional && !finite3(light.position)) throw argument_error("the light position is not finite");
+    if (light.type == light_type::spot && !(light.spot_half_angle_degrees > 0.0f && light.spot_half_angle_degrees < 89.0f))
+        throw argument_error("the spot light half-angle must be in (0, 89) degrees");
+}
+
+/// Parses `dir:x,y,z` (the direction the light travels), `point:x,y,z` or `spot:x,y,z:dx,dy,dz:angle`,
+/// and checks the result with check_light_spec.
 inline light_spec parse_light_spec(std::string_view spec) {
     try {
         const auto parts = detail::split(spec, ':');
-        if (parts[0] == "dir" && parts.size() == 2) return light_spec::directional(detail::parse_vec3(parts[1], "light direction"));
-        if (parts[0] == "point" && parts.size() == 2) return light_spec::point(detail::parse_vec3(parts[1], "light position"));
+        std::optional<light_spec> light;
+        if (parts[0] == "dir" && parts.size() == 2) light = light_spec::directional(detail::parse_vec3(parts[1], "light direction"));
+        if (parts[0] == "point" && parts.size() == 2) light = light_spec::point(detail::parse_vec3(parts[1], "light position"));
         if (parts[0] == "spot" && parts.size() == 4)
-            return light_spec::spot(detail::parse_vec3(parts[1], "light position"), detail::parse_vec3(parts[2], "light direction"),
-                                    detail::parse_number<float>(parts[3], "spot angle"));
+            light = light_spec::spot(detail::parse_vec3(parts[1], "light position"), detail::parse_vec3(parts[2], "light direction"),
+                                     detail::parse_number<float>(parts[3], "spot angle"));
+        if (light) {
+            check_light_spec(*light);
+            return *light;
+        }
     } catch (const argument_error& e) {
         throw argument_error("bad light spec '" + std::string(spec) + "': " + e.what() + "; expected " + std::string(light_grammar));
     }
@@ -129,6 +146,12 @@ public:
         ls.type_ = light.type;
         const glm::vec3 center = bounds.center();
         const float radius = std::max(0.5f * bounds.diagonal(), 1e-6f);
+        // World coordinates are floats: a model far from the origin for its size has too few steps
+        // of its own coordinates to be told apart in depth.
+        const float offset = std::max({std::abs(center.x), std::abs(center.y), std::abs(center.z)});
+        if (!(offset <= max_light_distance_in_radii * radius))
+            throw argument_error("the model lies more than " + std::to_string(int(max_light_distance_in_radii)) +
+                                 " radii from the origin, too far for float coordinates; move it nearer the origin");
         glm::vec3 forward;
         glm::vec3 eye;
         if (light.type == light_type::directional) {

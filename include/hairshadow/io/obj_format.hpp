@@ -11,6 +11,7 @@
 /// 40,000-vertex face in 25 s).
 
 #include <hairshadow/core/hair_model.hpp>
+#include <hairshadow/core/parse.hpp>
 #include <hairshadow/core/triangle_mesh.hpp>
 #include <hairshadow/io/binary_file.hpp>
 
@@ -91,9 +92,9 @@ private:
     float coordinate(std::string_view field) {
         if (field.empty()) fail("a vertex ('v') needs three coordinates");
         float value = 0.0f;
-        const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), value);
-        if (ec == std::errc::result_out_of_range) fail("coordinate '" + std::string(field) + "' does not fit a float");
-        if (ec != std::errc() || end != field.data() + field.size()) fail("'" + std::string(field) + "' is not a number");
+        const auto status = parse_float(field, value);
+        if (status == number_status::too_large) fail("coordinate '" + std::string(field) + "' does not fit a float");
+        if (status == number_status::malformed) fail("'" + std::string(field) + "' is not a number");
         if (!std::isfinite(value)) fail("coordinate '" + std::string(field) + "' is not finite");
         return value;
     }

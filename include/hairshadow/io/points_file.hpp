@@ -7,6 +7,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <algorithm>
 #include <span>
 #include <string>
 #include <string_view>

@@ -37,6 +37,8 @@ struct procedural_options {
 
 /// Most points a generator makes: 2^25, 384 MiB of positions (the 1.5M-segment curly model has 1.51M).
 inline constexpr std::size_t max_procedural_points = std::size_t(1) << 25;
+/// Most clumps of the clumped style.
+inline constexpr std::size_t max_procedural_clumps = 4096;
 
 namespace detail {
 inline glm::vec3 any_perpendicular(const glm::vec3& d) {
@@ -80,8 +82,10 @@ inline hair_model make_procedural(const procedural_options& o) {
     if (!(o.head_radius > 0) || !(o.length > 0) || !std::isfinite(o.head_radius) || !std::isfinite(o.length) ||
         !std::isfinite(o.wave_amplitude) || !(o.wave_length > 0) || !std::isfinite(o.wave_length))
         throw argument_error("procedural model: radius, length and wave length must be positive and finite");
-    if (o.style == hair_style::clumped && (o.clumps == 0 || o.clumps > o.strands))
-        throw argument_error("procedural model: clumps must be between 1 and the number of strands");
+    // Each strand looks through every clump: the cap keeps that loop linear in the strands.
+    if (o.style == hair_style::clumped && (o.clumps == 0 || o.clumps > o.strands || o.clumps > max_procedural_clumps))
+        throw argument_error("procedural model: clumps must be between 1 and the number of strands, at most " +
+                             std::to_string(max_procedural_clumps));
 
     random_stream rng(o.seed);
     std::vector<glm::vec3> clump_normals;
