@@ -64,6 +64,8 @@ void main() { hs_results[gl_VertexID] = hs_transmittance(hs_point); gl_Position 
 """
 COMPOSITIONS["capture"] = ("frag", "", ["raster/coverage", "passes/capture"], "")
 COMPOSITIONS["depth_range_pass"] = ("frag", "", ["raster/coverage", "passes/depth_range"], "")
+COMPOSITIONS["depth_extent_tiles"] = ("comp", "#define HS_EXTENT_TILES\n", ["passes/depth_extent"], "")
+COMPOSITIONS["depth_extent"] = ("comp", "", ["passes/depth_extent"], "")
 for layers, slabs in ((128, 4), (32, 1), (256, 8)):
     targets = f"#define HS_LAYERS {layers}\n#define HS_SLABS {slabs}\n#define HS_BIT_TARGETS {(layers + 127) // 128}\n" \
               f"#define HS_SLAB_TARGETS {(slabs + 3) // 4}\n"

@@ -117,6 +117,25 @@ int run_bench(const hair_model& model, const light_space& light, const bench_opt
         if (r.peak_mib) std::printf("%.0f |\n", *r.peak_mib);
         else std::printf("- |\n");
     }
+    if (gl && o.specs.size() >= 2) {
+        // Several methods for one light: a light pass each, against one shared, alternated so that
+        // both see the same machine.
+        std::vector<double> separate, shared;
+        gl->build_all(o.specs, light, o.raster, false); // makes the maps and compiles the driver's variants
+        gl->build_all(o.specs, light, o.raster, true);
+        for (int i = 0; i < o.repeat; ++i) {
+            separate.push_back(gl->build_all(o.specs, light, o.raster, false));
+            shared.push_back(gl->build_all(o.specs, light, o.raster, true));
+        }
+        const auto median = [](std::vector<double> v) {
+            std::sort(v.begin(), v.end());
+            return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+        };
+        const double a = median(separate), b = median(shared);
+        std::printf("\nAll %zu methods for this light, medians of %d: with a light pass each %.1f ms; sharing one gl::light_pass %.1f ms "
+                    "(%.1f ms saved, %.2fx).\n",
+                    o.specs.size(), o.repeat, a, b, a - b, b > 0 ? a / b : 0.0);
+    }
     return 0;
 }
 

@@ -42,6 +42,21 @@ public:
         built().build(*mesh_, light, options);
         return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     }
+    double build_all(const std::vector<method_spec>& specs, const light_space& light, const raster_options& options, bool shared) override {
+        if (!mesh_) throw argument_error("no model to draw");
+        if (all_maps_.size() != specs.size()) {
+            all_maps_.clear();
+            for (const auto& spec : specs) all_maps_.push_back(gl::make_gl_shadow_map(spec));
+        }
+        if (!pass_) pass_.emplace();
+        const auto start = std::chrono::steady_clock::now();
+        if (shared) pass_->run(*mesh_, light, options);
+        for (auto& maps : all_maps_) {
+            if (shared) maps->build(*pass_);
+            else maps->build(*mesh_, light, options);
+        }
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
     std::vector<float> transmittance(std::span<const glm::vec3> points) override { return built().transmittance(points); }
     std::unique_ptr<any_shadow_map> to_cpu() override { return built().to_cpu(); }
     std::size_t memory_bytes() override { return built().memory_bytes(); }
@@ -70,6 +85,8 @@ private:
     std::unique_ptr<gl::headless_context> context_;
     std::optional<gl::hair_mesh> mesh_;
     std::unique_ptr<gl::any_gl_shadow_map> maps_;
+    std::vector<std::unique_ptr<gl::any_gl_shadow_map>> all_maps_;
+    std::optional<gl::light_pass> pass_;
     int peeled_layers_ = 0;
 };
 

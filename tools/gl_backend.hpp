@@ -31,6 +31,11 @@ public:
     virtual double build(const hairshadow::method_spec& spec, const hairshadow::light_space& light, const hairshadow::raster_options& options) = 0;
     /// Builds the last built maps again; returns the wall time in milliseconds, until the GPU finished.
     virtual double rebuild(const hairshadow::light_space& light, const hairshadow::raster_options& options) = 0;
+    /// Builds the maps of every spec for one light, each with a light pass of its own (`shared` false)
+    /// or all from one shared light pass; returns the wall time in milliseconds until the GPU
+    /// finished. The maps and the pass are made at the first call and reused after.
+    virtual double build_all(const std::vector<hairshadow::method_spec>& specs, const hairshadow::light_space& light,
+                             const hairshadow::raster_options& options, bool shared) = 0;
     /// Transmittance at each point through the last built maps' GLSL look-up.
     virtual std::vector<float> transmittance(std::span<const glm::vec3> points) = 0;
     /// Bytes of the last built maps' textures.

@@ -1,12 +1,11 @@
 // Where a world point falls in the light's maps, shared by every method's hs_transmittance: its
 // texel, its linear depth and the texel's depth range. False outside the map or where the texel
-// holds no fragment: there the light is unshadowed.
+// holds no fragment: there the light is unshadowed. The range map is placement/common's.
 uniform mat4 hs_lookup_view_projection;
 uniform mat4 hs_lookup_view;
 uniform float hs_lookup_near;
 uniform float hs_lookup_far;
 uniform int hs_lookup_resolution;
-uniform sampler2D hs_range_texture;
 
 bool hs_lookup_locate(vec3 world_pos, out ivec2 texel, out float depth, out vec4 range) {
     vec4 clip = hs_lookup_view_projection * vec4(world_pos, 1.0);
@@ -18,6 +17,6 @@ bool hs_lookup_locate(vec3 world_pos, out ivec2 texel, out float depth, out vec4
         return false;
     texel = ivec2(window);
     depth = (-(hs_lookup_view * vec4(world_pos, 1.0)).z - hs_lookup_near) / (hs_lookup_far - hs_lookup_near);
-    range = texelFetch(hs_range_texture, texel, 0);
+    range = texelFetch(hs_range_map, texel, 0);
     return range.x <= range.w;
 }

@@ -2,7 +2,6 @@
 // spread over the texel's depth range. Each fragment adds its weight b = -ln(1 - alpha) (targets
 // [0, HS_STATE_TARGETS)) and b * depth (the next HS_STATE_TARGETS) to the cluster of its nearest
 // centre, by additive blending into RGBA32F.
-uniform sampler2D hs_range_map;
 layout(location = 0) out vec4 hs_cluster_out[2 * HS_STATE_TARGETS];
 
 void main() {

@@ -1,6 +1,5 @@
 // Density clustering's state, one full-screen pass: the means (targets [0, HS_STATE_TARGETS)) and
 // standard deviations sqrt(sum b (depth - mean)^2 / sum b) (the next HS_STATE_TARGETS).
-uniform sampler2D hs_range_map;
 uniform sampler2DArray hs_cluster_variance; // weights, then weighted squared distances
 layout(location = 0) out vec4 hs_state_out[2 * HS_STATE_TARGETS];
 

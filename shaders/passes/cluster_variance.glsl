@@ -1,6 +1,5 @@
 // Density clustering, pass 2 (Mertens et al. 2004, section 3.3): each fragment adds b and
 // b (depth - mean)^2 to its nearest non-empty cluster, for the clusters' standard deviations.
-uniform sampler2D hs_range_map;
 layout(location = 0) out vec4 hs_cluster_out[2 * HS_STATE_TARGETS];
 
 void main() {

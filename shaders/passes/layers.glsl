@@ -2,7 +2,6 @@
 // fragment's encoded optical depth goes to its layer's channel (HS_CUMULATIVE: and to every later
 // layer's), layers [hs_first_layer, hs_first_layer + 4 HS_LAYER_TARGETS) in this pass, by additive
 // blending into RGBA32F (float) or RGBA8 (emulated 8-bit) layers of a 2D array texture.
-uniform sampler2D hs_range_map;
 uniform int hs_first_layer;
 layout(location = 0) out vec4 hs_layers_out[HS_LAYER_TARGETS];
 

@@ -1,6 +1,5 @@
 // Occupancy pass (Sintorn & Assarsson 2009, section 3.1): the bit of the fragment's slice, OR-ed into
 // RGBA32UI targets of 128 bits each by glLogicOp(GL_OR).
-uniform sampler2D hs_range_map; // red: nearest, alpha: furthest
 layout(location = 0) out uvec4 hs_bits_out[HS_BIT_TARGETS];
 
 void main() {

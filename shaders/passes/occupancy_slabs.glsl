@@ -1,6 +1,5 @@
 // Slab pass (Sintorn & Assarsson 2009, section 3.1): the fragment's optical depth added to its slab's
 // channel of RGBA targets (4 slabs each; RGBA32F, or RGBA8 for emulated 8 bits) by additive blending.
-uniform sampler2D hs_range_map;
 layout(location = 0) out vec4 hs_slabs_out[HS_SLAB_TARGETS];
 
 void main() {

@@ -2,8 +2,16 @@
 // [z0 + d_{k-1}, z0 + d_k), d_k = d_K k(k+1) / (K(K+1)) (linear sizes) or d_K k / K when
 // HS_UNIFORM_SIZES is defined; beyond d_K fragments clamp into the last layer, are dropped
 // (HS_BEYOND_IGNORE) or the layers stretch to the texel's last fragment (HS_BEYOND_EXTEND, with the
-// stretch factor in hs_scale). Mirrors per_pixel_depth.
-uniform float hs_layer_extent; // d_K in linear depth
+// stretch factor in hs_scale). Mirrors per_pixel_depth, whose prepare() takes d_K from the map's
+// extent as hs_layer_extent() does unless the placement was given one.
+uniform float hs_requested_extent; // d_K in linear depth as given to the placement; 0: the default
+
+float hs_layer_extent() {
+    if (hs_requested_extent > 0.0) return hs_requested_extent;
+    vec2 extent = hs_map_extent();
+    precise float half_range = 0.5 * (extent.y - extent.x);
+    return max(half_range, 1e-6);
+}
 
 float hs_relative_boundary(int k) {
 #ifdef HS_UNIFORM_SIZES
@@ -14,7 +22,7 @@ float hs_relative_boundary(int k) {
 }
 
 hs_layer_position hs_locate(float z0, float hs_scale, float depth) {
-    precise float rel = (depth - z0) / (hs_layer_extent * hs_scale);
+    precise float rel = (depth - z0) / (hs_layer_extent() * hs_scale);
     if (!(rel >= 0.0)) return hs_layer_position(-1, 0.0);
     if (rel >= 1.0) return hs_layer_position(HS_LAYERS, 0.0);
 #ifdef HS_UNIFORM_SIZES

@@ -1,8 +1,11 @@
 // Opacity shadow maps' planar slices (Kim & Neumann 2001, section 2): HS_LAYERS maps between D_0 (the
 // nearest fragment of the whole map) and D_N (just beyond the furthest); uniform spacing, or
-// D_i = D_0 + (D_N - D_0)(i/N)^2 when HS_GAMMA_SPACING is defined. Mirrors planar_slices.
-uniform float hs_slices_near;
-uniform float hs_slices_far;
+// D_i = D_0 + (D_N - D_0)(i/N)^2 when HS_GAMMA_SPACING is defined. Mirrors planar_slices, whose
+// prepare() takes D_0 and D_N from the map's extent as hs_slices() does.
+vec2 hs_slices() {
+    vec2 extent = hs_map_extent();
+    return vec2(extent.x, hs_just_above(extent.y));
+}
 
 float hs_spacing(float t) {
 #ifdef HS_GAMMA_SPACING
@@ -19,19 +22,20 @@ float hs_spacing_inverse(float u) {
 #endif
 }
 
-float hs_boundary(int i) {
-    precise float value = i >= HS_LAYERS ? hs_slices_far
-                                         : hs_slices_near + (hs_slices_far - hs_slices_near) * hs_spacing(float(i) / float(HS_LAYERS));
+// D_i, for slices = (D_0, D_N).
+float hs_boundary(int i, vec2 slices) {
+    precise float value = i >= HS_LAYERS ? slices.y : slices.x + (slices.y - slices.x) * hs_spacing(float(i) / float(HS_LAYERS));
     return value;
 }
 
 hs_layer_position hs_locate(float depth) {
-    if (!(depth >= hs_slices_near)) return hs_layer_position(-1, 0.0);
-    if (depth >= hs_slices_far) return hs_layer_position(HS_LAYERS, 0.0);
-    int k = hs_estimate_index(hs_spacing_inverse((depth - hs_slices_near) / (hs_slices_far - hs_slices_near)) * float(HS_LAYERS), HS_LAYERS - 1);
-    while (k > 0 && depth < hs_boundary(k)) --k;
-    while (k < HS_LAYERS - 1 && depth >= hs_boundary(k + 1)) ++k;
-    return hs_position_in(k, depth, hs_boundary(k), hs_boundary(k + 1));
+    vec2 s = hs_slices();
+    if (!(depth >= s.x)) return hs_layer_position(-1, 0.0);
+    if (depth >= s.y) return hs_layer_position(HS_LAYERS, 0.0);
+    int k = hs_estimate_index(hs_spacing_inverse((depth - s.x) / (s.y - s.x)) * float(HS_LAYERS), HS_LAYERS - 1);
+    while (k > 0 && depth < hs_boundary(k, s)) --k;
+    while (k < HS_LAYERS - 1 && depth >= hs_boundary(k + 1, s)) ++k;
+    return hs_position_in(k, depth, hs_boundary(k, s), hs_boundary(k + 1, s));
 }
 
 int hs_assign(float depth) { return clamp(hs_locate(depth).index, 0, HS_LAYERS - 1); }

@@ -2,7 +2,6 @@
 // fragment, unsorted, adds (1 - alpha)^o alpha (colour, 1) with o its depth order from the camera's
 // occupancy and slab maps, (1 - alpha)^o = exp(-optical depth in front of its slice); and its own
 // -ln(1 - alpha), for the alpha correction of transparency/resolve. Additive blending.
-uniform sampler2D hs_range_map;
 layout(location = 0) out vec4 hs_sum_out;   // rgb: weight x colour, a: weight
 layout(location = 1) out vec4 hs_total_out; // r: -ln(1 - alpha)
 

@@ -4315,6 +4315,8 @@ public:
     static constexpr std::size_t global_bytes() noexcept { return sizeof(float); }
     /// d_K in linear depth.
     float extent() const noexcept { return extent_; }
+    /// d_K as given to the constructor; none: half the map's depth range.
+    std::optional<float> requested_extent() const noexcept { return requested_extent_; }
 
 private:
     float span_of(const texel_state& s) const noexcept {

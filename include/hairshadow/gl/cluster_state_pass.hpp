@@ -1,11 +1,12 @@
 #pragma once
 /// @file
-/// Density clustering's per-texel state on GL (Mertens et al. 2004, section 3.3): after the depth-range
+/// Density clustering's per-texel state on GL (Mertens et al. 2004, section 3.3): after the light
 /// pass, one additive pass for the k-means iteration (weights and weighted depths), one for the
 /// clusters' variances, and a full-screen pass resolving them into the means and standard deviations
 /// that the histogram pass and the look-up read (a 2D array texture: means, then sigmas).
 
-#include <hairshadow/gl/depth_range_pass.hpp>
+#include <hairshadow/gl/light_pass.hpp>
+#include <hairshadow/gl/lookup_binding.hpp>
 #include <hairshadow/placement/clustered.hpp>
 
 #include <algorithm>
@@ -50,16 +51,15 @@ public:
     /// GLSL defines the clustered snippets need.
     static std::string defines() { return "#define HS_STATE_TARGETS " + std::to_string(targets) + "\n"; }
 
-    /// Computes the state of every texel of `mesh` seen from `light`, after `range.run(...)`.
-    void run(const hair_mesh& mesh, const light_space& light, const raster_options& options, const depth_range_pass& range) {
+    /// Computes the state of every texel of `mesh` seen from `light`, after the light pass that made
+    /// `range`, drawing through framebuffer `fbo`; within a build's state_guard.
+    void run(const hair_mesh& mesh, const light_space& light, const raster_options& options, const detail::range_textures& range, GLuint fbo) {
         const int res = light.resolution();
         allocate(res);
-        auto fbo = make_framebuffer();
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo.get());
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
         glViewport(0, 0, res, res);
-        glDisable(GL_DEPTH_TEST);
         glActiveTexture(GL_TEXTURE0);
-        glBindTexture(GL_TEXTURE_2D, range.map().get());
+        glBindTexture(GL_TEXTURE_2D, range.range.get());
         // 1. k-means iteration, 2. variances: additive passes over the fragments.
         glEnable(GL_BLEND);
         glBlendEquation(GL_FUNC_ADD);
@@ -87,24 +87,16 @@ public:
         glActiveTexture(GL_TEXTURE2);
         glBindTexture(GL_TEXTURE_2D_ARRAY, variance_.get());
         glUniform1i(glGetUniformLocation(resolve_program_.get(), "hs_cluster_variance"), 2);
+        glActiveTexture(GL_TEXTURE0);
         glBindVertexArray(empty_vao_.get());
         glDrawArrays(GL_TRIANGLES, 0, 3);
-        glBindVertexArray(0);
-        glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
-        glActiveTexture(GL_TEXTURE1);
-        glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
-        glActiveTexture(GL_TEXTURE0);
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
         check("cluster state passes");
     }
 
-    /// Binds the state for a histogram pass or a look-up (uniform hs_cluster_state) on `unit`.
-    void bind(GLuint prog, int unit) const {
-        glActiveTexture(GLenum(GL_TEXTURE0 + unit));
-        glBindTexture(GL_TEXTURE_2D_ARRAY, state_.get());
-        glUniform1i(glGetUniformLocation(prog, "hs_cluster_state"), unit);
-        glActiveTexture(GL_TEXTURE0);
-    }
+    /// Texture units bind() takes.
+    static constexpr int texture_units = 1;
+    /// Binds the state for a histogram pass or a look-up (sampler hs_cluster_state) on the binder's next unit.
+    void bind(lookup_binder& b) const { b.texture("hs_cluster_state", GL_TEXTURE_2D_ARRAY, state_.get()); }
 
     /// Reads the state back for texel_state(); for tests and inspection.
     void read_back() {
@@ -114,7 +106,7 @@ public:
         check("cluster state read-back");
     }
     /// Texel i's means and standard deviations, after read_back().
-    typename clustered<K>::texel_state texel_state(const clustered<K>&, const depth_range_pass&, std::size_t i) const {
+    typename clustered<K>::texel_state texel_state(const clustered<K>&, const float*, std::size_t i) const {
         const std::size_t n = std::size_t(resolution_) * std::size_t(resolution_);
         typename clustered<K>::texel_state s;
         for (std::size_t j = 0; j < std::size_t(K); ++j) {

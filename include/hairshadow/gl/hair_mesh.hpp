@@ -6,6 +6,7 @@
 #include <hairshadow/core/hair_model.hpp>
 #include <hairshadow/core/light.hpp>
 #include <hairshadow/gl/objects.hpp>
+#include <hairshadow/gl/state_guard.hpp>
 #include <hairshadow/raster/rasterizer.hpp>
 
 #include <vector>
@@ -27,6 +28,7 @@ public:
         for (std::size_t s = 0; s < model.strand_count(); ++s)
             for (std::uint32_t i = model.strand_offsets[s]; i + 1 < model.strand_offsets[s + 1]; ++i) e.insert(e.end(), {i, i + 1});
         index_count_ = GLsizei(e.size());
+        state_guard guard("hairshadow: hair mesh upload"); // the caller's vertex array and array buffer stay bound
         glBindVertexArray(vao_.get());
         glBindBuffer(GL_ARRAY_BUFFER, vertices_.get());
         glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(v.size() * sizeof(float)), v.data(), GL_STATIC_DRAW);
@@ -43,11 +45,11 @@ public:
         check("hair_mesh upload");
     }
 
-    /// Draws every segment; gl_PrimitiveID is the segment's index.
+    /// Draws every segment; gl_PrimitiveID is the segment's index. Leaves the mesh's vertex array
+    /// bound: the library calls it within a state_guard.
     void draw() const {
         glBindVertexArray(vao_.get());
         glDrawElements(GL_LINES, index_count_, GL_UNSIGNED_INT, nullptr);
-        glBindVertexArray(0);
     }
 
 private:

@@ -2,19 +2,23 @@
 /// @file
 /// Interpolated methods on GL: opacity shadow maps (planar slices), deep opacity maps (per-pixel
 /// depth), density clustering (clustered bins) and range opacity maps (depth range), float or
-/// emulated 8-bit. A depth-range pass (MIN / MAX blending) gives every placement its per-texel state
-/// (z0; nearest and furthest) and, reduced on the CPU, the global depth extent; density clustering
-/// adds its k-means passes (cluster_state_pass.hpp). Then additive passes write up to 8 RGBA targets
-/// (32 layers) at a time into the layers of a 2D array texture (RGBA32F, or RGBA8 for 8 bits).
-/// Programs are composed from the same policy snippets whose CPU twins build the CPU maps.
+/// emulated 8-bit. The light pass (light_pass.hpp: MIN / MAX blending, then a GPU reduction) gives
+/// every placement its per-texel state (z0; nearest and furthest) and the global depth extent;
+/// density clustering adds its k-means passes (cluster_state_pass.hpp). Then additive passes write up
+/// to 8 RGBA targets (32 layers) at a time into the layers of a 2D array texture (RGBA32F, or RGBA8
+/// for 8 bits). Programs are composed from the same policy snippets whose CPU twins build the CPU maps.
 
 #include <hairshadow/gl/cluster_state_pass.hpp>
 #include <hairshadow/gl/context.hpp>
-#include <hairshadow/gl/depth_range_pass.hpp>
 #include <hairshadow/gl/hair_mesh.hpp>
+#include <hairshadow/gl/light_pass.hpp>
+#include <hairshadow/gl/lookup_binding.hpp>
 #include <hairshadow/gl/shaders.generated.hpp>
+#include <hairshadow/gl/state_guard.hpp>
 #include <hairshadow/methods/published.hpp>
 
+#include <memory>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -24,15 +28,16 @@ namespace hairshadow::gl {
 namespace detail {
 /// The per-texel state of placements whose state is the depth range's: nothing more to draw.
 struct range_state {
+    static constexpr int texture_units = 0;
     static std::string defines() { return ""; }
-    void run(const hair_mesh&, const light_space&, const raster_options&, const depth_range_pass&) {}
-    void bind(GLuint, int) const {}
+    void run(const hair_mesh&, const light_space&, const raster_options&, const range_textures&, GLuint) {}
+    void bind(lookup_binder&) const {}
     void read_back() {}
     /// The CPU texel state, from a depth-range texel (nearest in [0], furthest in [3]).
     template <class P>
-    typename P::texel_state texel_state(const P& placement, const depth_range_pass& range, std::size_t i) const {
+    typename P::texel_state texel_state(const P& placement, const float* range, std::size_t) const {
         typename P::texel_state s{};
-        const fragment pair[2] = {{range.texel(i)[0], 0.0f}, {range.texel(i)[3], 0.0f}};
+        const fragment pair[2] = {{range[0], 0.0f}, {range[3], 0.0f}};
         placement.prepare_texel(std::span<const fragment>(pair, 2), s); // the state's own pre-pass, on the two extremes
         return s;
     }
@@ -46,10 +51,7 @@ struct placement_glsl<planar_slices<N, Spacing>> {
     using state_pass = range_state;
     static std::string defines() { return std::is_same_v<Spacing, gamma_spacing> ? "#define HS_GAMMA_SPACING\n" : ""; }
     static constexpr std::string_view snippet = shaders::placement_planar_slices, state = shaders::texel_state_planar_slices;
-    static void set_uniforms(GLuint prog, const planar_slices<N, Spacing>& p) {
-        glUniform1f(glGetUniformLocation(prog, "hs_slices_near"), p.nearest());
-        glUniform1f(glGetUniformLocation(prog, "hs_slices_far"), p.furthest());
-    }
+    static void set_uniforms(const lookup_binder&, const planar_slices<N, Spacing>&) {} // D_0 and D_N come from the map's extent
 };
 
 template <int K, layer_sizes Sizes, beyond_last_layer Beyond>
@@ -62,7 +64,7 @@ struct placement_glsl<per_pixel_depth<K, Sizes, Beyond>> {
                (Beyond == beyond_last_layer::extend ? "#define HS_BEYOND_EXTEND\n" : "");
     }
     static constexpr std::string_view snippet = shaders::placement_per_pixel_depth, state = shaders::texel_state_per_pixel_depth;
-    static void set_uniforms(GLuint prog, const P& p) { glUniform1f(glGetUniformLocation(prog, "hs_layer_extent"), p.extent()); }
+    static void set_uniforms(const lookup_binder& b, const P& p) { b.set("hs_requested_extent", p.requested_extent().value_or(0.0f)); }
 };
 
 template <int S>
@@ -70,7 +72,7 @@ struct placement_glsl<depth_range<S>> {
     using state_pass = range_state;
     static std::string defines() { return ""; }
     static constexpr std::string_view snippet = shaders::placement_depth_range, state = shaders::texel_state_depth_range;
-    static void set_uniforms(GLuint, const depth_range<S>&) {}
+    static void set_uniforms(const lookup_binder&, const depth_range<S>&) {}
 };
 
 template <int K>
@@ -78,15 +80,83 @@ struct placement_glsl<clustered<K>> {
     using state_pass = cluster_state_pass<K>;
     static std::string defines() { return state_pass::defines(); }
     static constexpr std::string_view snippet = shaders::placement_clustered, state = shaders::texel_state_clustered;
-    static void set_uniforms(GLuint, const clustered<K>&) {}
+    static void set_uniforms(const lookup_binder&, const clustered<K>&) {}
+};
+
+/// What every GL method's maps share: the light pass they were built from (their own, or one shared
+/// with other methods), its range textures, and the checks of the look-up's binding.
+template <class P>
+class maps_base {
+public:
+    const light_space& light() const noexcept { return light_; }
+    /// The placement as the CPU method's, prepared from the map's extent: the first call after a
+    /// build reads the extent back (16 bytes, and a wait for the GPU).
+    const P& placement() const {
+        if (prepared_generation_ != generation_) {
+            const auto range = read_range(checked_range());
+            placement_.prepare(extent_of(range, range_->resolution));
+            prepared_generation_ = generation_;
+        }
+        return placement_;
+    }
+
+protected:
+    explicit maps_base(P placement) : placement_(std::move(placement)) {}
+
+    /// The maps' own light pass, run for build(mesh, light, options).
+    const light_pass& own_pass(const hair_mesh& mesh, const light_space& light, const raster_options& options) {
+        if (!own_pass_) own_pass_ = std::make_unique<light_pass>();
+        own_pass_->run(mesh, light, options);
+        return *own_pass_;
+    }
+    /// Takes the pass's textures and light for a build from it.
+    void adopt_pass(const light_pass& pass) {
+        pass.mesh(); // throws if the pass has not run
+        range_ = pass.textures();
+        generation_ = range_->generation;
+        light_ = pass.light();
+    }
+    /// The range textures, if they still hold what these maps were built from.
+    const range_textures& checked_range() const {
+        if (!range_) throw argument_error("the maps have not been built");
+        if (range_->generation != generation_)
+            throw argument_error("the light pass these maps were built from has run again since: build them again from it");
+        return *range_;
+    }
+    /// The placement as constructed (the parameters its GLSL twin takes as uniforms), unprepared.
+    const P& placement_spec() const noexcept { return placement_; }
+    /// The CPU placement of the read-back range map `range`.
+    const P& placement_from(const std::vector<float>& range) {
+        placement_.prepare(extent_of(range, range_->resolution));
+        prepared_generation_ = generation_;
+        return placement_;
+    }
+    /// Binds the range map and the light's frustum: the first texture unit of every look-up.
+    void bind_light(lookup_binder& b) const {
+        b.texture("hs_range_map", GL_TEXTURE_2D, checked_range().range.get());
+        set_lookup_frustum(b, light_);
+        placement_glsl<P>::set_uniforms(b, placement_);
+    }
+
+    std::shared_ptr<const range_textures> range_;
+    std::uint64_t generation_ = 0;
+    light_space light_;
+    framebuffer fbo_ = make_framebuffer();
+
+private:
+    mutable P placement_;
+    mutable std::uint64_t prepared_generation_ = ~std::uint64_t(0);
+    std::unique_ptr<light_pass> own_pass_;
 };
 } // namespace detail
 
 /// GL twin of a shadow_method whose reconstruction is `interpolation` (any placement).
 template <class Method>
-class interpolated_maps_gl {
+class interpolated_maps_gl : public detail::maps_base<typename Method::placement_type> {
     using P = typename Method::placement_type;
     using A = typename Method::accumulation_type;
+    using base = detail::maps_base<P>;
+    using state_pass = typename detail::placement_glsl<P>::state_pass;
     static_assert(std::is_same_v<typename Method::reconstruction_type, interpolation>, "interpolated_maps_gl needs the interpolation reconstruction");
     static constexpr bool eight_bit = std::is_same_v<A, emulated_8bit>;
 
@@ -94,10 +164,13 @@ public:
     static constexpr int layers = P::layer_count;
     static constexpr int array_layers = (layers + 3) / 4;
     /// RGBA layers of per-texel state beyond the depth range: density clustering's means and deviations, four each.
-    static constexpr int state_targets = std::is_same_v<typename detail::placement_glsl<P>::state_pass, detail::range_state> ? 0 : (layers + 3) / 4;
+    static constexpr int state_targets = std::is_same_v<state_pass, detail::range_state> ? 0 : (layers + 3) / 4;
+    /// Texture units the look-up reads (bind_lookup binds them from its first_unit): the range map,
+    /// the layers, and density clustering's state.
+    static constexpr int texture_units = 2 + state_pass::texture_units;
 
     /// Compiles the passes; throws feature_error if the context lacks GL 4.3 or 8 draw buffers.
-    explicit interpolated_maps_gl(P placement = P()) : placement_(std::move(placement)) {
+    explicit interpolated_maps_gl(P placement = P()) : base(std::move(placement)) {
         require_version(4, 3, "interpolated shadow maps on GL");
         GLint draw_buffers = 0;
         glGetIntegerv(GL_MAX_DRAW_BUFFERS, &draw_buffers);
@@ -112,46 +185,49 @@ public:
         layers_program_ = link_program({&vs, &layers_fs}, "layers pass");
     }
 
-    /// GLSL defining float hs_transmittance(vec3 world_pos); prepend a version line, bind with bind_lookup().
-    std::string lookup_source() const {
+    /// GLSL defining float hs_transmittance(vec3 world_pos), with every name under `prefix` (so
+    /// "key_" defines key_transmittance): prepend a version line; bind with bind_lookup(program,
+    /// first_unit, prefix). Any number of look-ups with different prefixes share one shader.
+    static std::string lookup_source(std::string_view prefix = default_lookup_prefix) {
         std::string s = defines(1);
         for (auto piece : {accumulation_snippet(), shaders::placement_common, detail::placement_glsl<P>::snippet,
                            detail::placement_glsl<P>::state, shaders::lookup_layers, shaders::reconstruction_interpolation, shaders::lookup_light,
                            shaders::lookup_interpolation})
             s += piece;
-        return s;
+        return prefix_glsl(s, prefix);
     }
 
-    void build(const hair_mesh& mesh, const light_space& light, const raster_options& options = {}) {
-        options.check(); // the CPU's rules: a NaN alpha is an error here too
-        light_ = light;
-        const int res = light.resolution();
-        allocate(res);
-        // 1. Depth range: per-texel states, and the global extent.
-        range_.run(mesh, light, options);
-        placement_.prepare(range_.extent());
-        state_.run(mesh, light, options, range_); // density clustering's passes; nothing for the others
-        auto fbo = make_framebuffer();
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo.get());
-        glViewport(0, 0, res, res);
-        glDisable(GL_DEPTH_TEST);
-        glEnable(GL_BLEND);
+    /// Builds the maps of `mesh` seen from `light`, with a light pass of their own.
+    void build(const hair_mesh& mesh, const light_space& light, const raster_options& options = {}) { build(this->own_pass(mesh, light, options)); }
 
-        // 2. Layers, 4 per target, up to 8 targets a pass.
+    /// Builds the maps from a light pass that has run (shared with other methods for the same light):
+    /// its mesh, light and options. The maps read its range map: run it again, and build them again.
+    void build(const light_pass& pass) {
+        this->adopt_pass(pass);
+        state_guard guard("hairshadow: interpolated maps");
+        guard.set_pass_state();
+        const int res = this->light_.resolution();
+        allocate(res);
+        const GLuint range = this->range_->range.get();
+        state_.run(pass.mesh(), this->light_, pass.options(), *this->range_, this->fbo_.get()); // density clustering's passes; nothing for the others
+
+        // Layers, 4 per target, up to 8 targets a pass.
+        glBindFramebuffer(GL_FRAMEBUFFER, this->fbo_.get());
+        glViewport(0, 0, res, res);
+        glEnable(GL_BLEND);
         glBlendEquation(GL_FUNC_ADD);
         glBlendFunc(GL_ONE, GL_ONE);
         glUseProgram(layers_program_.get());
-        set_light_uniforms(layers_program_.get(), light, options);
-        detail::placement_glsl<P>::set_uniforms(layers_program_.get(), placement_);
-        glActiveTexture(GL_TEXTURE0);
-        glBindTexture(GL_TEXTURE_2D, range_.map().get());
-        glUniform1i(glGetUniformLocation(layers_program_.get(), "hs_range_map"), 0);
-        state_.bind(layers_program_.get(), 1);
-        for (int base = 0; base < array_layers; base += targets_per_pass_) {
+        set_light_uniforms(layers_program_.get(), this->light_, pass.options());
+        lookup_binder binder(layers_program_.get(), 0, default_lookup_prefix);
+        binder.texture("hs_range_map", GL_TEXTURE_2D, range);
+        detail::placement_glsl<P>::set_uniforms(binder, this->placement_spec());
+        state_.bind(binder);
+        for (int base_layer = 0; base_layer < array_layers; base_layer += targets_per_pass_) {
             std::vector<GLenum> buffers;
             for (int t = 0; t < 8; ++t) {
-                const bool used = t < targets_per_pass_ && base + t < array_layers;
-                if (used) glFramebufferTextureLayer(GL_FRAMEBUFFER, GLenum(GL_COLOR_ATTACHMENT0 + t), layers_.get(), 0, base + t);
+                const bool used = t < targets_per_pass_ && base_layer + t < array_layers;
+                if (used) glFramebufferTextureLayer(GL_FRAMEBUFFER, GLenum(GL_COLOR_ATTACHMENT0 + t), layers_.get(), 0, base_layer + t);
                 else glFramebufferTexture(GL_FRAMEBUFFER, GLenum(GL_COLOR_ATTACHMENT0 + t), 0, 0);
                 if (used) buffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + t));
             }
@@ -159,59 +235,62 @@ public:
             if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) throw gl_error("interpolated maps: incomplete framebuffer");
             const float zero[4] = {0, 0, 0, 0};
             for (std::size_t t = 0; t < buffers.size(); ++t) glClearBufferfv(GL_COLOR, GLint(t), zero);
-            glUniform1i(glGetUniformLocation(layers_program_.get(), "hs_first_layer"), 4 * base);
-            mesh.draw();
+            glUniform1i(glGetUniformLocation(layers_program_.get(), "hs_first_layer"), 4 * base_layer);
+            pass.mesh().draw();
         }
-        glDisable(GL_BLEND);
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        check("interpolated maps build");
+        check("interpolated maps: layers pass");
     }
 
-    const P& placement() const noexcept { return placement_; }
-    const light_space& light() const noexcept { return light_; }
-    /// Bytes of the textures the look-up reads: depth range (RGBA32F), layers (RGBA32F or RGBA8) and
-    /// density clustering's means and deviations (RGBA32F), at the last build's resolution.
+    /// Bytes of the textures the look-up reads: depth range (RGBA32F, one extra row), layers (RGBA32F
+    /// or RGBA8) and density clustering's means and deviations (RGBA32F), at the last build's resolution.
     std::size_t memory_bytes() const noexcept {
         const std::size_t texels = std::size_t(allocated_) * std::size_t(allocated_);
-        return texels * (16 + (eight_bit ? 4 : 16) * std::size_t(array_layers) + 16 * std::size_t(2 * state_targets));
+        return 16 * std::size_t(allocated_) * std::size_t(allocated_ + 1) +
+               texels * ((eight_bit ? 4 : 16) * std::size_t(array_layers) + 16 * std::size_t(2 * state_targets));
     }
 
     /// The maps read back as the CPU method, for CPU queries of maps built on GL.
     Method to_cpu() {
+        auto texels = read_back();
         Method cpu;
-        cpu.adopt(light_, placement_, read_back());
+        cpu.adopt(this->light_, this->placement(), std::move(texels));
         return cpu;
     }
 
     /// Reads the maps back in the CPU method's texel layout.
     std::vector<typename Method::texel_maps> read_back() {
-        const int res = light_.resolution();
+        const auto range = detail::read_range(this->checked_range());
+        const P& placement = this->placement_from(range);
+        const int res = this->light_.resolution();
         const std::size_t n = std::size_t(res) * std::size_t(res);
         std::vector<typename A::value_type> stored(4 * n * std::size_t(array_layers));
-        glBindTexture(GL_TEXTURE_2D_ARRAY, layers_.get());
-        glGetTexImage(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA, eight_bit ? GL_UNSIGNED_BYTE : GL_FLOAT, stored.data());
-        check("interpolated maps read-back");
-        state_.read_back();
+        {
+            state_guard guard("hairshadow: interpolated maps read-back");
+            guard.set_pass_state();
+            glBindTexture(GL_TEXTURE_2D_ARRAY, layers_.get());
+            glGetTexImage(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA, eight_bit ? GL_UNSIGNED_BYTE : GL_FLOAT, stored.data());
+            check("interpolated maps read-back");
+            state_.read_back();
+        }
         std::vector<typename Method::texel_maps> out(n);
         for (std::size_t i = 0; i < n; ++i) {
-            if (range_.empty(i)) continue; // no fragment: the CPU leaves the texel zero
-            out[i].placement = state_.texel_state(placement_, range_, i);
+            const float* texel_range = &range[4 * i];
+            if (texel_range[0] > texel_range[3]) continue; // no fragment: the CPU leaves the texel zero
+            out[i].placement = state_.texel_state(placement, texel_range, i);
             for (int k = 0; k < layers; ++k)
                 out[i].data.layers[std::size_t(k)] = stored[4 * n * std::size_t(k / 4) + 4 * i + std::size_t(k % 4)];
         }
         return out;
     }
 
-    /// Binds the maps and the light for the look-up in program `prog`, on texture units
-    /// [first_unit, first_unit + 3).
-    void bind_lookup(GLuint prog, int first_unit = 0) const {
-        set_lookup_uniforms(prog, light_, range_, first_unit);
-        detail::placement_glsl<P>::set_uniforms(prog, placement_);
-        glActiveTexture(GLenum(GL_TEXTURE0 + first_unit + 1));
-        glBindTexture(GL_TEXTURE_2D_ARRAY, layers_.get());
-        glUniform1i(glGetUniformLocation(prog, "hs_layers_texture"), first_unit + 1);
-        glActiveTexture(GL_TEXTURE0);
-        state_.bind(prog, first_unit + 2);
+    /// Sets the look-up's uniforms on `prog` (which need not be current) and binds its textures to
+    /// units [first_unit, first_unit + texture_units), with no sampler objects; `prefix` is the one
+    /// given to lookup_source. The active texture unit and the current program are left as found.
+    void bind_lookup(GLuint prog, int first_unit = 0, std::string_view prefix = default_lookup_prefix) const {
+        lookup_binder binder(prog, first_unit, prefix);
+        this->bind_light(binder);
+        binder.texture("hs_layers_texture", GL_TEXTURE_2D_ARRAY, layers_.get());
+        state_.bind(binder);
     }
 
 private:
@@ -230,11 +309,8 @@ private:
         allocated_ = res;
     }
 
-    P placement_;
-    light_space light_;
     int allocated_ = 0, targets_per_pass_ = 1;
-    depth_range_pass range_;
-    typename detail::placement_glsl<P>::state_pass state_;
+    state_pass state_;
     program layers_program_;
     texture layers_;
 };

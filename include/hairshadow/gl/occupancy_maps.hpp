@@ -1,13 +1,12 @@
 #pragma once
 /// @file
-/// Occupancy maps on GL (Sintorn & Assarsson 2009, section 3.1): a depth-range pass (MIN / MAX
-/// blending), an occupancy pass (RGBA32UI targets, glLogicOp(GL_OR)) and a slab pass (additive RGBA32F,
+/// Occupancy maps on GL (Sintorn & Assarsson 2009, section 3.1): the light pass (light_pass.hpp: MIN /
+/// MAX blending), an occupancy pass (RGBA32UI targets, glLogicOp(GL_OR)) and a slab pass (additive RGBA32F,
 /// or RGBA8 for emulated 8 bits), the programs composed from the same policy snippets as the CPU
 /// kernels' GLSL twins; and the GLSL look-up hs_transmittance(vec3) for user shaders. Any contiguous
 /// placement works (the published depth range, or the per-pixel-depth hybrid).
 
 #include <hairshadow/gl/context.hpp>
-#include <hairshadow/gl/depth_range_pass.hpp>
 #include <hairshadow/gl/hair_mesh.hpp>
 #include <hairshadow/gl/interpolated_maps.hpp>
 #include <hairshadow/gl/shaders.generated.hpp>
@@ -20,9 +19,10 @@ namespace hairshadow::gl {
 
 /// GL twin of a shadow_method whose reconstruction is occupancy_bitcount<B>.
 template <class Method>
-class occupancy_maps_gl {
+class occupancy_maps_gl : public detail::maps_base<typename Method::placement_type> {
     using P = typename Method::placement_type;
     using A = typename Method::accumulation_type;
+    using base = detail::maps_base<P>;
     static constexpr int S = P::layer_count;
     static constexpr int B = Method::reconstruction_type::slab_count;
     static constexpr bool eight_bit = std::is_same_v<A, emulated_8bit>;
@@ -30,10 +30,13 @@ class occupancy_maps_gl {
 public:
     static constexpr int bit_targets = (S + 127) / 128;
     static constexpr int slab_targets = (B + 3) / 4;
+    /// Texture units the look-up reads (bind_lookup binds them from its first_unit): the range map,
+    /// the occupancy words and the slabs.
+    static constexpr int texture_units = 1 + bit_targets + slab_targets;
     using cpu_method = Method;
 
     /// Compiles the passes; throws feature_error if the context lacks GL 4.3 or enough draw buffers.
-    explicit occupancy_maps_gl(P placement = P()) : placement_(std::move(placement)) {
+    explicit occupancy_maps_gl(P placement = P()) : base(std::move(placement)) {
         require_version(4, 3, "occupancy maps on GL");
         GLint draw_buffers = 0;
         glGetIntegerv(GL_MAX_DRAW_BUFFERS, &draw_buffers);
@@ -54,32 +57,31 @@ public:
         slabs_program_ = link_program({&vs, &slabs_fs}, "slab pass");
     }
 
-    /// The GLSL that defines float hs_transmittance(vec3 world_pos) for these maps: prepend a version
-    /// line to it and bind the maps with bind_lookup().
-    static std::string lookup_source() {
+    /// GLSL defining float hs_transmittance(vec3 world_pos), with every name under `prefix` (so
+    /// "key_" defines key_transmittance): prepend a version line; bind with bind_lookup(program,
+    /// first_unit, prefix). Any number of look-ups with different prefixes share one shader.
+    static std::string lookup_source(std::string_view prefix = default_lookup_prefix) {
         std::string s = defines();
         for (auto piece : {accumulation_snippet(), shaders::placement_common, detail::placement_glsl<P>::snippet, detail::placement_glsl<P>::state,
                            shaders::reconstruction_occupancy_bitcount, shaders::lookup_light, shaders::lookup_occupancy_texels, shaders::lookup_occupancy})
             s += piece;
-        return s;
+        return prefix_glsl(s, prefix);
     }
 
-    /// Builds the maps of `mesh` seen from `light`.
-    void build(const hair_mesh& mesh, const light_space& light, const raster_options& options = {}) {
-        options.check(); // the CPU's rules: a NaN alpha is an error here too
-        light_ = light;
-        const int res = light.resolution();
-        allocate(res);
-        // 1. Depth range: per-texel states, and the global extent.
-        range_.run(mesh, light, options);
-        placement_.prepare(range_.extent());
-        auto fbo = make_framebuffer();
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo.get());
-        glViewport(0, 0, res, res);
-        glDisable(GL_DEPTH_TEST);
+    /// Builds the maps of `mesh` seen from `light`, with a light pass of their own.
+    void build(const hair_mesh& mesh, const light_space& light, const raster_options& options = {}) { build(this->own_pass(mesh, light, options)); }
 
-        // 2. Occupancy bits: OR of each fragment's slice bit.
-        glDisable(GL_BLEND);
+    /// Builds the maps from a light pass that has run (shared with other methods for the same light):
+    /// its mesh, light and options. The maps read its range map: run it again, and build them again.
+    void build(const light_pass& pass) {
+        this->adopt_pass(pass);
+        state_guard guard("hairshadow: occupancy maps");
+        guard.set_pass_state();
+        allocate(this->light_.resolution());
+        glBindFramebuffer(GL_FRAMEBUFFER, this->fbo_.get());
+        glViewport(0, 0, allocated_, allocated_);
+
+        // 1. Occupancy bits: OR of each fragment's slice bit.
         std::vector<GLuint> targets;
         for (auto& t : bits_) targets.push_back(t.get());
         attach(targets);
@@ -87,10 +89,11 @@ public:
         for (int i = 0; i < bit_targets; ++i) glClearBufferuiv(GL_COLOR, i, zero_u);
         glEnable(GL_COLOR_LOGIC_OP);
         glLogicOp(GL_OR);
-        draw(bits_program_, mesh, light, options);
+        draw(bits_program_, pass);
         glDisable(GL_COLOR_LOGIC_OP);
+        check("occupancy maps: occupancy pass");
 
-        // 3. Slabs: additive sums of optical depth.
+        // 2. Slabs: additive sums of optical depth.
         targets.clear();
         for (auto& t : slabs_) targets.push_back(t.get());
         attach(targets);
@@ -99,66 +102,65 @@ public:
         glEnable(GL_BLEND);
         glBlendEquation(GL_FUNC_ADD);
         glBlendFunc(GL_ONE, GL_ONE);
-        draw(slabs_program_, mesh, light, options);
-        glDisable(GL_BLEND);
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        check("occupancy maps build");
+        draw(slabs_program_, pass);
+        check("occupancy maps: slab pass");
     }
 
     /// Reads the maps back in the CPU method's texel layout.
-    std::vector<typename cpu_method::texel_maps> read_back() const {
-        const int res = light_.resolution();
+    std::vector<typename cpu_method::texel_maps> read_back() {
+        const auto range = detail::read_range(this->checked_range());
+        const P& placement = this->placement_from(range);
+        const int res = this->light_.resolution();
         const std::size_t n = std::size_t(res) * std::size_t(res);
         std::vector<typename A::value_type> slabs(4 * n * std::size_t(slab_targets));
         std::vector<std::uint32_t> bits(4 * n * std::size_t(bit_targets));
-        for (int t = 0; t < bit_targets; ++t) {
-            glBindTexture(GL_TEXTURE_2D, bits_[std::size_t(t)].get());
-            glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, bits.data() + 4 * n * std::size_t(t));
+        {
+            state_guard guard("hairshadow: occupancy maps read-back");
+            guard.set_pass_state();
+            for (int t = 0; t < bit_targets; ++t) {
+                glBindTexture(GL_TEXTURE_2D, bits_[std::size_t(t)].get());
+                glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, bits.data() + 4 * n * std::size_t(t));
+            }
+            for (int t = 0; t < slab_targets; ++t) {
+                glBindTexture(GL_TEXTURE_2D, slabs_[std::size_t(t)].get());
+                glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, eight_bit ? GL_UNSIGNED_BYTE : GL_FLOAT, slabs.data() + 4 * n * std::size_t(t));
+            }
+            check("occupancy maps read-back");
         }
-        for (int t = 0; t < slab_targets; ++t) {
-            glBindTexture(GL_TEXTURE_2D, slabs_[std::size_t(t)].get());
-            glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, eight_bit ? GL_UNSIGNED_BYTE : GL_FLOAT, slabs.data() + 4 * n * std::size_t(t));
-        }
-        check("occupancy maps read-back");
         std::vector<typename cpu_method::texel_maps> out(n);
         for (std::size_t i = 0; i < n; ++i) {
             auto& t = out[i];
-            if (range_.empty(i)) continue; // no fragment: the CPU leaves the texel zero
-            t.placement = detail::range_state{}.texel_state(placement_, range_, i);
+            const float* texel_range = &range[4 * i];
+            if (texel_range[0] > texel_range[3]) continue; // no fragment: the CPU leaves the texel zero
+            t.placement = detail::range_state{}.texel_state(placement, texel_range, i);
             for (int w = 0; w < S / 32; ++w) t.data.bits[std::size_t(w)] = bits[4 * n * std::size_t(w / 4) + 4 * i + std::size_t(w % 4)];
             for (int s = 0; s < B; ++s) t.data.slabs[std::size_t(s)] = slabs[4 * n * std::size_t(s / 4) + 4 * i + std::size_t(s % 4)];
         }
         return out;
     }
 
-    /// Binds the maps and the light for the look-up in program `prog`, on texture units from `first_unit`.
-    void bind_lookup(GLuint prog, int first_unit = 0) const {
-        set_lookup_uniforms(prog, light_, range_, first_unit);
-        detail::placement_glsl<P>::set_uniforms(prog, placement_);
-        int unit = first_unit + 1;
-        auto bind = [&](const texture& t, const std::string& name) {
-            glActiveTexture(GLenum(GL_TEXTURE0 + unit));
-            glBindTexture(GL_TEXTURE_2D, t.get());
-            glUniform1i(glGetUniformLocation(prog, name.c_str()), unit++);
-        };
-        for (int t = 0; t < bit_targets; ++t) bind(bits_[std::size_t(t)], "hs_bits_texture[" + std::to_string(t) + "]");
-        for (int t = 0; t < slab_targets; ++t) bind(slabs_[std::size_t(t)], "hs_slabs_texture[" + std::to_string(t) + "]");
-        glActiveTexture(GL_TEXTURE0);
+    /// Sets the look-up's uniforms on `prog` (which need not be current) and binds its textures to
+    /// units [first_unit, first_unit + texture_units), with no sampler objects; `prefix` is the one
+    /// given to lookup_source. The active texture unit and the current program are left as found.
+    void bind_lookup(GLuint prog, int first_unit = 0, std::string_view prefix = default_lookup_prefix) const {
+        lookup_binder binder(prog, first_unit, prefix);
+        this->bind_light(binder);
+        for (int t = 0; t < bit_targets; ++t) binder.texture("hs_bits_texture[" + std::to_string(t) + "]", GL_TEXTURE_2D, bits_[std::size_t(t)].get());
+        for (int t = 0; t < slab_targets; ++t) binder.texture("hs_slabs_texture[" + std::to_string(t) + "]", GL_TEXTURE_2D, slabs_[std::size_t(t)].get());
     }
 
-    const P& placement() const noexcept { return placement_; }
-    const light_space& light() const noexcept { return light_; }
-    /// Bytes of the textures the look-up reads: depth range (RGBA32F), occupancy bits (RGBA32UI) and
-    /// slabs (RGBA32F or RGBA8), at the last build's resolution.
+    /// Bytes of the textures the look-up reads: depth range (RGBA32F, one extra row), occupancy bits
+    /// (RGBA32UI) and slabs (RGBA32F or RGBA8), at the last build's resolution.
     std::size_t memory_bytes() const noexcept {
         const std::size_t texels = std::size_t(allocated_) * std::size_t(allocated_);
-        return texels * (16 + 16 * std::size_t(bit_targets) + (eight_bit ? 4 : 16) * std::size_t(slab_targets));
+        return 16 * std::size_t(allocated_) * std::size_t(allocated_ + 1) + texels * (16 * std::size_t(bit_targets) + (eight_bit ? 4 : 16) * std::size_t(slab_targets));
     }
 
     /// The maps read back as the CPU method, for CPU queries of maps built on GL.
     Method to_cpu() {
+        auto texels = read_back();
         Method cpu;
-        cpu.adopt(light_, placement_, read_back());
+        cpu.adopt(this->light_, this->placement(), std::move(texels));
         return cpu;
     }
 
@@ -189,20 +191,16 @@ private:
         if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) throw gl_error("occupancy maps: incomplete framebuffer");
     }
 
-    void draw(const program& p, const hair_mesh& mesh, const light_space& light, const raster_options& options) const {
+    void draw(const program& p, const light_pass& pass) const {
         glUseProgram(p.get());
-        set_light_uniforms(p.get(), light, options);
-        detail::placement_glsl<P>::set_uniforms(p.get(), placement_);
-        glActiveTexture(GL_TEXTURE0);
-        glBindTexture(GL_TEXTURE_2D, range_.map().get());
-        glUniform1i(glGetUniformLocation(p.get(), "hs_range_map"), 0);
-        mesh.draw();
+        set_light_uniforms(p.get(), this->light_, pass.options());
+        lookup_binder binder(p.get(), 0, default_lookup_prefix);
+        binder.texture("hs_range_map", GL_TEXTURE_2D, this->range_->range.get());
+        detail::placement_glsl<P>::set_uniforms(binder, this->placement_spec());
+        pass.mesh().draw();
     }
 
-    P placement_;
-    light_space light_;
     int allocated_ = 0;
-    depth_range_pass range_;
     program bits_program_, slabs_program_;
     std::vector<texture> bits_, slabs_;
 };

@@ -5,6 +5,7 @@
 
 #include <hairshadow/core/error.hpp>
 #include <hairshadow/gl/objects.hpp>
+#include <hairshadow/gl/state_guard.hpp>
 
 #include <glm/vec3.hpp>
 
@@ -34,6 +35,8 @@ void main() { hs_results[gl_VertexID] = hs_transmittance(hs_point); gl_Position 
         std::vector<float> out(points.size());
         if (points.empty()) return out;
         if (points.size() > std::size_t(std::numeric_limits<GLsizei>::max())) throw argument_error("too many points for one GL draw");
+        state_guard guard("hairshadow: point queries");
+        guard.set_pass_state();
         auto positions = make_buffer(), results = make_buffer();
         auto vao = make_vertex_array();
         glBindVertexArray(vao.get());
@@ -54,11 +57,8 @@ void main() { hs_results[gl_VertexID] = hs_transmittance(hs_point); gl_Position 
         bind(program_.get());
         glEnable(GL_RASTERIZER_DISCARD);
         glDrawArrays(GL_POINTS, 0, GLsizei(points.size()));
-        glDisable(GL_RASTERIZER_DISCARD);
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(out.size() * sizeof(float)), out.data());
-        glBindVertexArray(0);
         check("point queries");
         return out;
     }

@@ -19,6 +19,8 @@ public:
     virtual ~any_gl_shadow_map() = default;
     /// Draws the maps of `mesh` seen from `light`; returns when the GPU has finished.
     virtual void build(const hair_mesh& mesh, const light_space& light, const raster_options& options = {}) = 0;
+    /// The same from a light pass that has run, shared with other methods for its light.
+    virtual void build(const light_pass& pass) = 0;
     /// Transmittance at each point by the GLSL look-up hs_transmittance.
     virtual std::vector<float> transmittance(std::span<const glm::vec3> points) = 0;
     /// The maps read back for CPU queries (filters, jitter, stored maps).
@@ -26,8 +28,10 @@ public:
     /// Bytes of the textures the look-up reads.
     virtual std::size_t memory_bytes() const = 0;
     /// The method's GLSL look-up and its binding (as gl::maps<Method>), for user shaders and the renderer.
-    virtual std::string lookup_source() const = 0;
-    virtual void bind_lookup(GLuint prog, int first_unit = 0) const = 0;
+    virtual std::string lookup_source(std::string_view prefix = default_lookup_prefix) const = 0;
+    virtual void bind_lookup(GLuint prog, int first_unit = 0, std::string_view prefix = default_lookup_prefix) const = 0;
+    /// Texture units bind_lookup binds.
+    virtual int texture_units() const = 0;
     virtual const light_space& light() const = 0;
     const method_spec& spec() const noexcept { return spec_; }
 
@@ -48,13 +52,18 @@ public:
         maps_.build(mesh, light, options);
         glFinish();
     }
+    void build(const light_pass& pass) override {
+        maps_.build(pass);
+        glFinish();
+    }
     std::vector<float> transmittance(std::span<const glm::vec3> points) override {
         if (!queries_) queries_.emplace(maps_.lookup_source());
         return queries_->run(points, [&](GLuint prog) { maps_.bind_lookup(prog); });
     }
     std::size_t memory_bytes() const override { return maps_.memory_bytes(); }
-    std::string lookup_source() const override { return maps_.lookup_source(); }
-    void bind_lookup(GLuint prog, int first_unit) const override { maps_.bind_lookup(prog, first_unit); }
+    std::string lookup_source(std::string_view prefix) const override { return maps_.lookup_source(prefix); }
+    void bind_lookup(GLuint prog, int first_unit, std::string_view prefix) const override { maps_.bind_lookup(prog, first_unit, prefix); }
+    int texture_units() const override { return maps<Method>::texture_units; }
     const light_space& light() const override { return maps_.light(); }
     std::unique_ptr<any_shadow_map> to_cpu() override {
         return std::make_unique<hairshadow::detail::method_map<Method>>(spec(), maps_.to_cpu());

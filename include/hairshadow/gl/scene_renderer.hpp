@@ -8,7 +8,7 @@
 /// mesh by gl::transparent_hair.
 
 #include <hairshadow/gl/context.hpp>
-#include <hairshadow/gl/depth_range_pass.hpp>
+#include <hairshadow/gl/lookup_binding.hpp>
 #include <hairshadow/gl/hair_mesh.hpp>
 #include <hairshadow/gl/objects.hpp>
 #include <hairshadow/gl/shaders.generated.hpp>
@@ -255,8 +255,9 @@ private:
     }
     light_entry unshadowed_entry(const scene_light& light, const light_space& space, float bias) const {
         // The light's frustum (lookup/light.glsl, which the mesh's depth test reads) and no hair.
-        const std::string no_hair = std::string(shaders::lookup_light) + "float hs_transmittance(vec3 world_pos) { return 1.0; }\n";
-        return make_entry(light, space, no_hair, [space](GLuint prog) { set_lookup_frustum(prog, space); }, bias);
+        const std::string no_hair =
+            "uniform sampler2D hs_range_map;\n" + std::string(shaders::lookup_light) + "float hs_transmittance(vec3 world_pos) { return 1.0; }\n";
+        return make_entry(light, space, no_hair, [space](GLuint prog) { set_lookup_frustum(lookup_binder(prog, 0, default_lookup_prefix), space); }, bias);
     }
 
     /// The lights' passes; without lights, one of a black light, for the ambient terms.

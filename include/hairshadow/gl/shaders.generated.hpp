@@ -58,13 +58,12 @@ float hs_through_layer(int k) {
 /// shaders/lookup/light.glsl
 inline constexpr std::string_view lookup_light = R"hs_glsl(// Where a world point falls in the light's maps, shared by every method's hs_transmittance: its
 // texel, its linear depth and the texel's depth range. False outside the map or where the texel
-// holds no fragment: there the light is unshadowed.
+// holds no fragment: there the light is unshadowed. The range map is placement/common's.
 uniform mat4 hs_lookup_view_projection;
 uniform mat4 hs_lookup_view;
 uniform float hs_lookup_near;
 uniform float hs_lookup_far;
 uniform int hs_lookup_resolution;
-uniform sampler2D hs_range_texture;
 
 bool hs_lookup_locate(vec3 world_pos, out ivec2 texel, out float depth, out vec4 range) {
     vec4 clip = hs_lookup_view_projection * vec4(world_pos, 1.0);
@@ -76,7 +75,7 @@ bool hs_lookup_locate(vec3 world_pos, out ivec2 texel, out float depth, out vec4
         return false;
     texel = ivec2(window);
     depth = (-(hs_lookup_view * vec4(world_pos, 1.0)).z - hs_lookup_near) / (hs_lookup_far - hs_lookup_near);
-    range = texelFetch(hs_range_texture, texel, 0);
+    range = texelFetch(hs_range_map, texel, 0);
     return range.x <= range.w;
 }
 )hs_glsl";
@@ -146,7 +145,6 @@ inline constexpr std::string_view passes_cluster_means = R"hs_glsl(// Density cl
 // spread over the texel's depth range. Each fragment adds its weight b = -ln(1 - alpha) (targets
 // [0, HS_STATE_TARGETS)) and b * depth (the next HS_STATE_TARGETS) to the cluster of its nearest
 // centre, by additive blending into RGBA32F.
-uniform sampler2D hs_range_map;
 layout(location = 0) out vec4 hs_cluster_out[2 * HS_STATE_TARGETS];
 
 void main() {
@@ -170,7 +168,6 @@ void main() {
 /// shaders/passes/cluster_resolve.glsl
 inline constexpr std::string_view passes_cluster_resolve = R"hs_glsl(// Density clustering's state, one full-screen pass: the means (targets [0, HS_STATE_TARGETS)) and
 // standard deviations sqrt(sum b (depth - mean)^2 / sum b) (the next HS_STATE_TARGETS).
-uniform sampler2D hs_range_map;
 uniform sampler2DArray hs_cluster_variance; // weights, then weighted squared distances
 layout(location = 0) out vec4 hs_state_out[2 * HS_STATE_TARGETS];
 
@@ -198,7 +195,6 @@ void main() {
 /// shaders/passes/cluster_variance.glsl
 inline constexpr std::string_view passes_cluster_variance = R"hs_glsl(// Density clustering, pass 2 (Mertens et al. 2004, section 3.3): each fragment adds b and
 // b (depth - mean)^2 to its nearest non-empty cluster, for the clusters' standard deviations.
-uniform sampler2D hs_range_map;
 layout(location = 0) out vec4 hs_cluster_out[2 * HS_STATE_TARGETS];
 
 void main() {
@@ -214,6 +210,49 @@ void main() {
         hs_cluster_out[t] = weight;
         hs_cluster_out[HS_STATE_TARGETS + t] = weight * (d * d);
     }
+}
+)hs_glsl";
+
+/// shaders/passes/depth_extent.glsl
+inline constexpr std::string_view passes_depth_extent = R"hs_glsl(// The whole map's depth extent, reduced on the GPU from the depth-range map so that no build reads it
+// back. With HS_EXTENT_TILES, each work group reduces one 16x16 tile of the range map to one texel of
+// hs_extent_output; without, one work group reduces those tiles and writes (nearest, 0, 0, furthest),
+// or zero for an empty map (as hairshadow::extent_of), to hs_extent_texel of the range map's extra
+// row. Min and max are exact, so the extent equals the CPU's.
+layout(local_size_x = 16, local_size_y = 16) in;
+uniform sampler2D hs_extent_input; // the range map, or the tiles
+uniform ivec2 hs_input_size;       // texels of hs_extent_input to reduce
+uniform ivec2 hs_extent_texel;
+layout(rgba32f) writeonly uniform image2D hs_extent_output;
+shared vec2 hs_partial[256];
+
+vec2 hs_merge(vec2 a, vec4 range) { return vec2(min(a.x, range.x), max(a.y, range.w)); }
+
+void main() {
+    uint i = gl_LocalInvocationIndex;
+    vec2 e = vec2(3.0e38, -3.0e38);
+#ifdef HS_EXTENT_TILES
+    ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+    if (all(lessThan(texel, hs_input_size))) e = hs_merge(e, texelFetch(hs_extent_input, texel, 0));
+#else
+    for (int y = int(gl_LocalInvocationID.y); y < hs_input_size.y; y += 16)
+        for (int x = int(gl_LocalInvocationID.x); x < hs_input_size.x; x += 16) e = hs_merge(e, texelFetch(hs_extent_input, ivec2(x, y), 0));
+#endif
+    hs_partial[i] = e;
+    memoryBarrierShared();
+    barrier();
+    for (uint half_size = 128u; half_size > 0u; half_size >>= 1) {
+        if (i < half_size) hs_partial[i] = hs_merge(hs_partial[i], hs_partial[i + half_size].xxxy);
+        memoryBarrierShared();
+        barrier();
+    }
+    if (i != 0u) return;
+    vec2 r = hs_partial[0];
+#ifdef HS_EXTENT_TILES
+    imageStore(hs_extent_output, ivec2(gl_WorkGroupID.xy), vec4(r.x, 0.0, 0.0, r.y));
+#else
+    imageStore(hs_extent_output, hs_extent_texel, r.x <= r.y ? vec4(r.x, 0.0, 0.0, r.y) : vec4(0.0));
+#endif
 }
 )hs_glsl";
 
@@ -241,7 +280,6 @@ inline constexpr std::string_view passes_layers = R"hs_glsl(// Accumulation pass
 // fragment's encoded optical depth goes to its layer's channel (HS_CUMULATIVE: and to every later
 // layer's), layers [hs_first_layer, hs_first_layer + 4 HS_LAYER_TARGETS) in this pass, by additive
 // blending into RGBA32F (float) or RGBA8 (emulated 8-bit) layers of a 2D array texture.
-uniform sampler2D hs_range_map;
 uniform int hs_first_layer;
 layout(location = 0) out vec4 hs_layers_out[HS_LAYER_TARGETS];
 
@@ -267,7 +305,6 @@ void main() {
 /// shaders/passes/occupancy_bits.glsl
 inline constexpr std::string_view passes_occupancy_bits = R"hs_glsl(// Occupancy pass (Sintorn & Assarsson 2009, section 3.1): the bit of the fragment's slice, OR-ed into
 // RGBA32UI targets of 128 bits each by glLogicOp(GL_OR).
-uniform sampler2D hs_range_map; // red: nearest, alpha: furthest
 layout(location = 0) out uvec4 hs_bits_out[HS_BIT_TARGETS];
 
 void main() {
@@ -283,7 +320,6 @@ void main() {
 /// shaders/passes/occupancy_slabs.glsl
 inline constexpr std::string_view passes_occupancy_slabs = R"hs_glsl(// Slab pass (Sintorn & Assarsson 2009, section 3.1): the fragment's optical depth added to its slab's
 // channel of RGBA targets (4 slabs each; RGBA32F, or RGBA8 for emulated 8 bits) by additive blending.
-uniform sampler2D hs_range_map;
 layout(location = 0) out vec4 hs_slabs_out[HS_SLAB_TARGETS];
 
 void main() {
@@ -394,6 +430,18 @@ hs_layer_position hs_position_in(int k, float depth, float lo, float hi) {
 
 // The largest integer in [0, last] no greater than a non-negative estimate; NaN and negatives give 0.
 int hs_estimate_index(float estimate, int last) { return estimate > 0.0 ? int(min(estimate, float(last))) : 0; }
+
+// The smallest float above x, as std::nextafter(x, +inf) for the finite depths the maps hold.
+float hs_just_above(float x) {
+    if (x == 0.0) return uintBitsToFloat(1u);
+    return x > 0.0 ? uintBitsToFloat(floatBitsToUint(x) + 1u) : -uintBitsToFloat(floatBitsToUint(-x) - 1u);
+}
+
+// The light pass's depth-range map, which every later pass and every look-up reads: nearest fragment
+// in red, furthest in alpha. The first texel of its extra last row holds the whole map's extent
+// (reduced on the GPU by passes/depth_extent), the global state of the placements that need one.
+uniform sampler2D hs_range_map;
+vec2 hs_map_extent() { return texelFetch(hs_range_map, ivec2(0, textureSize(hs_range_map, 0).y - 1), 0).xw; }
 )hs_glsl";
 
 /// shaders/placement/depth_range.glsl
@@ -431,8 +479,16 @@ inline constexpr std::string_view placement_per_pixel_depth = R"hs_glsl(// Deep 
 // [z0 + d_{k-1}, z0 + d_k), d_k = d_K k(k+1) / (K(K+1)) (linear sizes) or d_K k / K when
 // HS_UNIFORM_SIZES is defined; beyond d_K fragments clamp into the last layer, are dropped
 // (HS_BEYOND_IGNORE) or the layers stretch to the texel's last fragment (HS_BEYOND_EXTEND, with the
-// stretch factor in hs_scale). Mirrors per_pixel_depth.
-uniform float hs_layer_extent; // d_K in linear depth
+// stretch factor in hs_scale). Mirrors per_pixel_depth, whose prepare() takes d_K from the map's
+// extent as hs_layer_extent() does unless the placement was given one.
+uniform float hs_requested_extent; // d_K in linear depth as given to the placement; 0: the default
+
+float hs_layer_extent() {
+    if (hs_requested_extent > 0.0) return hs_requested_extent;
+    vec2 extent = hs_map_extent();
+    precise float half_range = 0.5 * (extent.y - extent.x);
+    return max(half_range, 1e-6);
+}
 
 float hs_relative_boundary(int k) {
 #ifdef HS_UNIFORM_SIZES
@@ -443,7 +499,7 @@ float hs_relative_boundary(int k) {
 }
 
 hs_layer_position hs_locate(float z0, float hs_scale, float depth) {
-    precise float rel = (depth - z0) / (hs_layer_extent * hs_scale);
+    precise float rel = (depth - z0) / (hs_layer_extent() * hs_scale);
     if (!(rel >= 0.0)) return hs_layer_position(-1, 0.0);
     if (rel >= 1.0) return hs_layer_position(HS_LAYERS, 0.0);
 #ifdef HS_UNIFORM_SIZES
@@ -470,9 +526,12 @@ int hs_assign(float z0, float hs_scale, float depth) {
 /// shaders/placement/planar_slices.glsl
 inline constexpr std::string_view placement_planar_slices = R"hs_glsl(// Opacity shadow maps' planar slices (Kim & Neumann 2001, section 2): HS_LAYERS maps between D_0 (the
 // nearest fragment of the whole map) and D_N (just beyond the furthest); uniform spacing, or
-// D_i = D_0 + (D_N - D_0)(i/N)^2 when HS_GAMMA_SPACING is defined. Mirrors planar_slices.
-uniform float hs_slices_near;
-uniform float hs_slices_far;
+// D_i = D_0 + (D_N - D_0)(i/N)^2 when HS_GAMMA_SPACING is defined. Mirrors planar_slices, whose
+// prepare() takes D_0 and D_N from the map's extent as hs_slices() does.
+vec2 hs_slices() {
+    vec2 extent = hs_map_extent();
+    return vec2(extent.x, hs_just_above(extent.y));
+}
 
 float hs_spacing(float t) {
 #ifdef HS_GAMMA_SPACING
@@ -489,19 +548,20 @@ float hs_spacing_inverse(float u) {
 #endif
 }
 
-float hs_boundary(int i) {
-    precise float value = i >= HS_LAYERS ? hs_slices_far
-                                         : hs_slices_near + (hs_slices_far - hs_slices_near) * hs_spacing(float(i) / float(HS_LAYERS));
+// D_i, for slices = (D_0, D_N).
+float hs_boundary(int i, vec2 slices) {
+    precise float value = i >= HS_LAYERS ? slices.y : slices.x + (slices.y - slices.x) * hs_spacing(float(i) / float(HS_LAYERS));
     return value;
 }
 
 hs_layer_position hs_locate(float depth) {
-    if (!(depth >= hs_slices_near)) return hs_layer_position(-1, 0.0);
-    if (depth >= hs_slices_far) return hs_layer_position(HS_LAYERS, 0.0);
-    int k = hs_estimate_index(hs_spacing_inverse((depth - hs_slices_near) / (hs_slices_far - hs_slices_near)) * float(HS_LAYERS), HS_LAYERS - 1);
-    while (k > 0 && depth < hs_boundary(k)) --k;
-    while (k < HS_LAYERS - 1 && depth >= hs_boundary(k + 1)) ++k;
-    return hs_position_in(k, depth, hs_boundary(k), hs_boundary(k + 1));
+    vec2 s = hs_slices();
+    if (!(depth >= s.x)) return hs_layer_position(-1, 0.0);
+    if (depth >= s.y) return hs_layer_position(HS_LAYERS, 0.0);
+    int k = hs_estimate_index(hs_spacing_inverse((depth - s.x) / (s.y - s.x)) * float(HS_LAYERS), HS_LAYERS - 1);
+    while (k > 0 && depth < hs_boundary(k, s)) --k;
+    while (k < HS_LAYERS - 1 && depth >= hs_boundary(k + 1, s)) ++k;
+    return hs_position_in(k, depth, hs_boundary(k, s), hs_boundary(k + 1, s));
 }
 
 int hs_assign(float depth) { return clamp(hs_locate(depth).index, 0, HS_LAYERS - 1); }
@@ -807,7 +867,7 @@ inline constexpr std::string_view texel_state_per_pixel_depth = R"hs_glsl(// Dee
 // as the CPU's std::nextafter gives).
 float hs_scale_from(vec4 range) {
 #ifdef HS_BEYOND_EXTEND
-    return max(1.0, uintBitsToFloat(floatBitsToUint(range.w - range.x) + 1u) / hs_layer_extent);
+    return max(1.0, hs_just_above(range.w - range.x) / hs_layer_extent());
 #else
     return 1.0;
 #endif
@@ -817,7 +877,7 @@ hs_layer_position hs_locate_from(ivec2 texel, vec4 range, float depth) { return 
 )hs_glsl";
 
 /// shaders/texel_state/planar_slices.glsl
-inline constexpr std::string_view texel_state_planar_slices = R"hs_glsl(// Planar slices keep no per-texel state: the slices are global (uniforms of placement/planar_slices).
+inline constexpr std::string_view texel_state_planar_slices = R"hs_glsl(// Planar slices keep no per-texel state: the slices are global (placement/planar_slices' hs_slices).
 int hs_assign_from(ivec2 texel, vec4 range, float depth) { return hs_assign(depth); }
 hs_layer_position hs_locate_from(ivec2 texel, vec4 range, float depth) { return hs_locate(depth); }
 )hs_glsl";
@@ -935,7 +995,6 @@ inline constexpr std::string_view transparency_occupancy_order = R"hs_glsl(// Oc
 // fragment, unsorted, adds (1 - alpha)^o alpha (colour, 1) with o its depth order from the camera's
 // occupancy and slab maps, (1 - alpha)^o = exp(-optical depth in front of its slice); and its own
 // -ln(1 - alpha), for the alpha correction of transparency/resolve. Additive blending.
-uniform sampler2D hs_range_map;
 layout(location = 0) out vec4 hs_sum_out;   // rgb: weight x colour, a: weight
 layout(location = 1) out vec4 hs_total_out; // r: -ln(1 - alpha)
 
@@ -1035,7 +1094,7 @@ struct entry {
 };
 
 /// Every snippet, sorted by name.
-inline constexpr std::array<entry, 47> all{{
+inline constexpr std::array<entry, 48> all{{
     {"accumulation/emulated_8bit", accumulation_emulated_8bit},
     {"accumulation/float", accumulation_float},
     {"lookup/interpolation", lookup_interpolation},
@@ -1048,6 +1107,7 @@ inline constexpr std::array<entry, 47> all{{
     {"passes/cluster_means", passes_cluster_means},
     {"passes/cluster_resolve", passes_cluster_resolve},
     {"passes/cluster_variance", passes_cluster_variance},
+    {"passes/depth_extent", passes_depth_extent},
     {"passes/depth_range", passes_depth_range},
     {"passes/fullscreen_vertex", passes_fullscreen_vertex},
     {"passes/layers", passes_layers},

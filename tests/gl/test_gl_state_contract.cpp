@@ -1,0 +1,374 @@
+// The GL back end's state contract (README, "The GL state contract"): builds and look-up bindings leave
+// a hostile engine's state as they found it and build the same maps as from a clean state; look-ups
+// with prefixes share one shader; several methods share one light pass.
+#include "gl_test_context.hpp"
+
+#include <hairshadow/gl.hpp>
+#include <hairshadow/gl/registry.hpp>
+
+#include "../test_support.hpp"
+
+#include <array>
+#include <tuple>
+
+using namespace hairshadow;
+
+namespace {
+
+/// The engine state the contract covers, read by the test's own queries (not the library's guard).
+struct engine_state {
+    GLint program = 0, draw_fbo = 0, read_fbo = 0, vao = 0, array_buffer = 0, active_texture = 0, pack_buffer = 0, storage_buffer = 0;
+    std::array<GLint, 4> viewport{}, scissor_box{};
+    GLboolean scissor = 0, depth_test = 0, stencil_test = 0, cull = 0, logic_op = 0, discard = 0, dither = 0, depth_clamp = 0, restart = 0;
+    GLint cull_mode = 0, logic_op_mode = 0, pack_alignment = 0, pack_row_length = 0, clip_origin = 0, clip_depth = 0;
+    std::array<GLint, 2> polygon_mode{};
+    std::array<std::array<GLboolean, 4>, 8> masks{};
+    std::array<GLboolean, 8> blend{};
+    std::array<std::array<GLint, 6>, 8> blend_functions{};
+    std::array<std::array<GLint, 3>, 8> units{}; // 2D, 2D array, sampler
+    GLint image_name = 0, image_format = 0;
+    GLfloat line_width = 0;
+    friend bool operator==(const engine_state&, const engine_state&) = default;
+
+    static engine_state read() {
+        engine_state s;
+        glGetIntegerv(GL_CURRENT_PROGRAM, &s.program);
+        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &s.draw_fbo);
+        glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &s.read_fbo);
+        glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &s.vao);
+        glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &s.array_buffer);
+        glGetIntegerv(GL_ACTIVE_TEXTURE, &s.active_texture);
+        glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &s.pack_buffer);
+        glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &s.storage_buffer);
+        glGetIntegerv(GL_VIEWPORT, s.viewport.data());
+        glGetIntegerv(GL_SCISSOR_BOX, s.scissor_box.data());
+        for (auto [cap, out] : {std::pair{GL_SCISSOR_TEST, &s.scissor}, {GL_DEPTH_TEST, &s.depth_test}, {GL_STENCIL_TEST, &s.stencil_test},
+                                {GL_CULL_FACE, &s.cull}, {GL_COLOR_LOGIC_OP, &s.logic_op}, {GL_RASTERIZER_DISCARD, &s.discard},
+                                {GL_DITHER, &s.dither}, {GL_DEPTH_CLAMP, &s.depth_clamp}, {GL_PRIMITIVE_RESTART, &s.restart}})
+            *out = glIsEnabled(cap);
+        glGetIntegerv(GL_CULL_FACE_MODE, &s.cull_mode);
+        glGetIntegerv(GL_LOGIC_OP_MODE, &s.logic_op_mode);
+        glGetIntegerv(GL_PACK_ALIGNMENT, &s.pack_alignment);
+        glGetIntegerv(GL_PACK_ROW_LENGTH, &s.pack_row_length);
+        glGetIntegerv(GL_CLIP_ORIGIN, &s.clip_origin);
+        glGetIntegerv(GL_CLIP_DEPTH_MODE, &s.clip_depth);
+        glGetIntegerv(GL_POLYGON_MODE, s.polygon_mode.data());
+        glGetFloatv(GL_LINE_WIDTH, &s.line_width);
+        for (GLuint i = 0; i < 8; ++i) {
+            glGetBooleani_v(GL_COLOR_WRITEMASK, i, s.masks[i].data());
+            s.blend[i] = glIsEnabledi(GL_BLEND, i);
+            const GLenum names[6] = {GL_BLEND_EQUATION_RGB, GL_BLEND_EQUATION_ALPHA, GL_BLEND_SRC_RGB, GL_BLEND_DST_RGB, GL_BLEND_SRC_ALPHA, GL_BLEND_DST_ALPHA};
+            for (int k = 0; k < 6; ++k) glGetIntegeri_v(names[k], i, &s.blend_functions[i][std::size_t(k)]);
+        }
+        for (int u = 0; u < 8; ++u) {
+            glActiveTexture(GLenum(GL_TEXTURE0 + u));
+            glGetIntegerv(GL_TEXTURE_BINDING_2D, &s.units[std::size_t(u)][0]);
+            glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &s.units[std::size_t(u)][1]);
+            glGetIntegerv(GL_SAMPLER_BINDING, &s.units[std::size_t(u)][2]);
+        }
+        glActiveTexture(GLenum(s.active_texture));
+        glGetIntegeri_v(GL_IMAGE_BINDING_NAME, 0, &s.image_name);
+        glGetIntegeri_v(GL_IMAGE_BINDING_FORMAT, 0, &s.image_format);
+        return s;
+    }
+};
+
+/// What an engine may leave bound and set between its passes, every piece of it unlike GL's defaults.
+class hostile_engine {
+public:
+    hostile_engine() {
+        const auto vs = gl::compile_shader(GL_VERTEX_SHADER, {"#version 430 core\nvoid main() { gl_Position = vec4(0.0); }\n"}, "engine vertex");
+        program_ = gl::link_program({&vs}, "engine program");
+        colour_ = gl::make_texture_2d(GL_RGBA8, 64, 64);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
+        glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, colour_.get(), 0);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        array_texture_ = gl::make_texture();
+        glBindTexture(GL_TEXTURE_2D_ARRAY, array_texture_.get());
+        glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA8, 4, 4, 2);
+        glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+        glGenSamplers(1, &sampler_);
+        glSamplerParameteri(sampler_, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR); // makes one-level textures incomplete
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, pack_.get());
+        glBufferData(GL_PIXEL_PACK_BUFFER, 64, nullptr, GL_STREAM_READ);
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    }
+    ~hostile_engine() { glDeleteSamplers(1, &sampler_); }
+
+    /// Sets the hostile state, and leaves a GL error unread.
+    void apply() const {
+        glUseProgram(program_.get());
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_.get());
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.get());
+        glBindVertexArray(vao_.get());
+        glBindBuffer(GL_ARRAY_BUFFER, buffer_.get());
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, pack_.get());
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer_.get());
+        glViewport(3, 5, 17, 19);
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(0, 0, 64, 64);
+        glColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
+        glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
+        glEnable(GL_BLEND);
+        glBlendEquationSeparate(GL_FUNC_REVERSE_SUBTRACT, GL_MAX);
+        glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_DST_COLOR, GL_ZERO);
+        glEnable(GL_DEPTH_TEST);
+        glEnable(GL_STENCIL_TEST);
+        glEnable(GL_CULL_FACE);
+        glCullFace(GL_FRONT_AND_BACK);
+        glEnable(GL_COLOR_LOGIC_OP);
+        glLogicOp(GL_XOR);
+        glEnable(GL_RASTERIZER_DISCARD);
+        glDisable(GL_DITHER);
+        glEnable(GL_DEPTH_CLAMP);
+        glEnable(GL_PRIMITIVE_RESTART);
+        glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+        glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE);
+        glPixelStorei(GL_PACK_ALIGNMENT, 8);
+        glPixelStorei(GL_PACK_ROW_LENGTH, 7);
+        for (GLuint u = 0; u < 8; ++u) glBindSampler(u, sampler_);
+        glBindImageTexture(0, colour_.get(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
+        glActiveTexture(GL_TEXTURE5);
+        glBindTexture(GL_TEXTURE_2D, colour_.get());
+        glBindTexture(GL_TEXTURE_2D_ARRAY, array_texture_.get());
+        for (GLenum unit : {GL_TEXTURE0, GL_TEXTURE1, GL_TEXTURE2}) {
+            glActiveTexture(unit);
+            glBindTexture(GL_TEXTURE_2D, colour_.get());
+        }
+        glActiveTexture(GL_TEXTURE5);
+        REQUIRE(glGetError() == GL_NO_ERROR);
+        glEnable(GLenum(0x7fff)); // the unread error: GL_INVALID_ENUM
+    }
+
+    /// Back to GL's defaults, for the clean builds.
+    static void reset() {
+        glUseProgram(0);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glBindVertexArray(0);
+        glBindBuffer(GL_ARRAY_BUFFER, 0);
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+        glDisable(GL_SCISSOR_TEST);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glDisable(GL_BLEND);
+        glBlendEquation(GL_FUNC_ADD);
+        glBlendFunc(GL_ONE, GL_ZERO);
+        for (GLenum cap : {GL_DEPTH_TEST, GL_STENCIL_TEST, GL_CULL_FACE, GL_COLOR_LOGIC_OP, GL_RASTERIZER_DISCARD, GL_DEPTH_CLAMP, GL_PRIMITIVE_RESTART})
+            glDisable(cap);
+        glEnable(GL_DITHER);
+        glCullFace(GL_BACK);
+        glLogicOp(GL_COPY);
+        glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+        glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+        glPixelStorei(GL_PACK_ALIGNMENT, 4);
+        glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+        for (GLuint u = 0; u < 8; ++u) {
+            glBindSampler(u, 0);
+            glActiveTexture(GL_TEXTURE0 + u);
+            glBindTexture(GL_TEXTURE_2D, 0);
+            glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+        }
+        glActiveTexture(GL_TEXTURE0);
+        glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8);
+        REQUIRE(glGetError() == GL_NO_ERROR);
+    }
+
+private:
+    gl::program program_;
+    gl::framebuffer fbo_ = gl::make_framebuffer();
+    gl::texture colour_, array_texture_;
+    gl::vertex_array vao_ = gl::make_vertex_array();
+    gl::buffer buffer_ = gl::make_buffer(), pack_ = gl::make_buffer();
+    GLuint sampler_ = 0;
+};
+
+struct test_scene {
+    hair_model model = test::grid_model(40, 12);
+    light_space light = light_space::fit(light_spec::directional({0.2f, -1.0f, -0.6f}), model.bounds(), 96);
+};
+
+/// Builds `Method` on GL from a clean state and from the hostile one: the state comes back unchanged
+/// after the build and after the read-back, and the maps are equal.
+template <class Method>
+void check_contract(const gl::hair_mesh& mesh, const light_space& light) {
+    hostile_engine::reset();
+    gl::maps<Method> clean;
+    clean.build(mesh, light);
+    const auto expected = clean.read_back();
+
+    const hostile_engine engine;
+    gl::maps<Method> hostile;
+    engine.apply();
+    const auto before = engine_state::read();
+    REQUIRE_NOTHROW(hostile.build(mesh, light)); // the caller's unread error does not fail it
+    CHECK(engine_state::read() == before);
+    CHECK(glGetError() == GL_NO_ERROR); // the library's passes raised none
+    const auto texels = hostile.read_back();
+    CHECK(engine_state::read() == before);
+    GLuint lookup_program = 0;
+    {
+        const auto vs = gl::compile_shader(GL_VERTEX_SHADER,
+                                           {"#version 430 core\n", hostile.lookup_source(),
+                                            "layout(location = 0) in vec3 p; void main() { gl_Position = vec4(hs_transmittance(p)); }\n"},
+                                           "look-up");
+        auto prog = gl::link_program({&vs}, "look-up");
+        lookup_program = prog.get();
+        hostile.bind_lookup(lookup_program, 9); // not the current program: uniforms set all the same
+        auto after_bind = engine_state::read();
+        CHECK(glGetError() == GL_NO_ERROR);
+        CHECK(after_bind.program == before.program);
+        CHECK(after_bind.active_texture == before.active_texture);
+        GLint unit = -1;
+        glGetUniformiv(lookup_program, glGetUniformLocation(lookup_program, "hs_range_map"), &unit);
+        CHECK(unit == 9);
+    }
+    std::size_t differing = 0;
+    REQUIRE(texels.size() == expected.size());
+    for (std::size_t i = 0; i < texels.size(); ++i) differing += !(texels[i] == expected[i]);
+    CAPTURE(differing);
+    CHECK(differing == 0);
+    hostile_engine::reset();
+}
+
+} // namespace
+
+TEST_CASE("GL builds leave a hostile engine's state as they found it and build the maps a clean state builds", "[gl][state]") {
+    test::gl_context();
+    const test_scene s;
+    const gl::hair_mesh mesh(s.model);
+    SECTION("opacity shadow maps") { check_contract<opacity_shadow_maps<16>>(mesh, s.light); }
+    SECTION("opacity shadow maps, gamma spacing, 8-bit") { check_contract<opacity_shadow_maps<16, gamma_spacing, emulated_8bit>>(mesh, s.light); }
+    SECTION("deep opacity maps") { check_contract<deep_opacity_maps<3>>(mesh, s.light); }
+    SECTION("deep opacity maps, 8-bit") { check_contract<deep_opacity_maps_8bit<3>>(mesh, s.light); }
+    SECTION("density clustering") { check_contract<density_clustering<4>>(mesh, s.light); }
+    SECTION("occupancy maps") { check_contract<occupancy_maps<128, 4>>(mesh, s.light); }
+    SECTION("range opacity maps") { check_contract<range_opacity_maps<16>>(mesh, s.light); }
+}
+
+TEST_CASE("the hair mesh's upload leaves the caller's vertex array and array buffer bound", "[gl][state]") {
+    test::gl_context();
+    const hostile_engine engine;
+    engine.apply();
+    const auto before = engine_state::read();
+    const gl::hair_mesh mesh(test::grid_model(3, 4));
+    CHECK(engine_state::read() == before);
+    hostile_engine::reset();
+}
+
+TEST_CASE("two prefixed look-ups of different methods and lights shade in one shader", "[gl][state][lookup]") {
+    test::gl_context();
+    const auto model = read_tfx(test::sintel_hair());
+    const gl::hair_mesh mesh(model);
+    const auto key_light = light_space::fit(light_spec::directional({0, -1, -1}), model.bounds(), 256);
+    const auto fill_light = light_space::fit(light_spec::directional({1, -0.5f, 0.3f}), model.bounds(), 200);
+    gl::maps<deep_opacity_maps<3>> key;
+    gl::maps<occupancy_maps<128, 4>> fill;
+    key.build(mesh, key_light);
+    fill.build(mesh, fill_light);
+    STATIC_REQUIRE(gl::maps<deep_opacity_maps<3>>::texture_units == 2);
+    STATIC_REQUIRE(gl::maps<occupancy_maps<128, 4>>::texture_units == 3);
+
+    // One program: key_transmittance and fill_transmittance side by side, on units [0, 2) and [2, 5).
+    const std::string lookups = key.lookup_source("key_") + fill.lookup_source("fill_");
+    CHECK(lookups.find("hs_") == std::string::npos);
+    CHECK(lookups.find("HS_") == std::string::npos);
+    const std::string source = lookups + "uniform int which_light;\n"
+                                         "float hs_transmittance(vec3 p) { return which_light == 0 ? key_transmittance(p) : fill_transmittance(p); }\n";
+    const gl::point_queries queries(source);
+    std::vector<glm::vec3> points(model.points.begin(), model.points.end());
+    const auto key_cpu = key.to_cpu();
+    const auto fill_cpu = fill.to_cpu();
+    for (int which : {0, 1}) {
+        const auto on_gpu = queries.run(points, [&](GLuint prog) {
+            key.bind_lookup(prog, 0, "key_");
+            fill.bind_lookup(prog, gl::maps<deep_opacity_maps<3>>::texture_units, "fill_");
+            glProgramUniform1i(prog, glGetUniformLocation(prog, "which_light"), which);
+        });
+        std::vector<float> on_cpu(points.size());
+        if (which == 0) key_cpu.transmittance(points, on_cpu);
+        else fill_cpu.transmittance(points, on_cpu);
+        std::size_t off = 0, shadowed = 0;
+        for (std::size_t i = 0; i < points.size(); ++i) off += std::abs(on_gpu[i] - on_cpu[i]) > 5e-5f, shadowed += on_cpu[i] < 0.9f;
+        CAPTURE(which, off, shadowed, points.size());
+        CHECK(shadowed * 4 > points.size());
+        // The model's own points lie on texel edges, where GL's and the CPU's rounding may pick neighbours.
+        CHECK(off * 200 < points.size());
+    }
+}
+
+TEST_CASE("every method's look-up composes with any other's under different prefixes", "[gl][lookup]") {
+    test::gl_context();
+    const std::vector<std::string> specs = {"osm:16", "osm:8:gamma", "dom:3", "dom:4:8bit", "dc:4", "occ:128:4", "rosm:16"};
+    for (const auto& a : specs)
+        for (const auto& b : specs) {
+            const auto first = gl::make_gl_shadow_map(parse_method_spec(a)), second = gl::make_gl_shadow_map(parse_method_spec(b));
+            CAPTURE(a, b);
+            CHECK_NOTHROW(gl::compile_shader(GL_VERTEX_SHADER,
+                                             {"#version 430 core\n", first->lookup_source("a_"), second->lookup_source("b_"),
+                                              "void main() { gl_Position = vec4(a_transmittance(vec3(0.0)) * b_transmittance(vec3(1.0))); }\n"},
+                                             a + " and " + b));
+        }
+}
+
+TEST_CASE("look-up prefixes must make valid GLSL names", "[gl][lookup][errors]") {
+    for (const char* bad : {"", "1key_", "key__", "gl_key_", "GL_", "key-", "key light", "a_very_long_prefix_that_goes_on_and_on_"})
+        CHECK_THROWS_AS(gl::prefix_glsl("float hs_x;", bad), argument_error);
+    CHECK(gl::prefix_glsl("#ifdef HS_LAYERS\nfloat hs_x = ths_y + HS_Z; // hs_x\n", "key_") == "#ifdef KEY_LAYERS\nfloat key_x = ths_y + KEY_Z; // key_x\n");
+    CHECK(gl::prefix_glsl("hs_x", "hs_") == "hs_x");
+}
+
+TEST_CASE("methods for one light share one light pass and build the maps their own passes build", "[gl][state]") {
+    test::gl_context();
+    const test_scene s;
+    const gl::hair_mesh mesh(s.model);
+    gl::light_pass pass;
+    gl::maps<deep_opacity_maps<3>> dom_shared, dom_own;
+    gl::maps<occupancy_maps<128, 4>> occ_shared, occ_own;
+    CHECK_THROWS_AS(dom_shared.build(pass), argument_error); // the pass has not run
+    pass.run(mesh, s.light);
+    dom_shared.build(pass);
+    occ_shared.build(pass);
+    dom_own.build(mesh, s.light);
+    occ_own.build(mesh, s.light);
+    CHECK(dom_shared.read_back() == dom_own.read_back());
+    CHECK(occ_shared.read_back() == occ_own.read_back());
+    CHECK(dom_shared.placement().extent() == dom_own.placement().extent());
+
+    // After the pass runs again, maps built from its earlier run refuse to bind, rather than shade wrong.
+    const auto other = light_space::fit(light_spec::directional({1, 0, 0}), s.model.bounds(), 96);
+    pass.run(mesh, other);
+    CHECK_THROWS_AS(dom_shared.bind_lookup(0), argument_error);
+    CHECK_THROWS_WITH(dom_shared.read_back(), Catch::Contains("has run again"));
+    dom_shared.build(pass);
+    CHECK_NOTHROW(dom_shared.read_back());
+    // A new resolution gives the pass new textures: the maps built before keep theirs, still valid.
+    occ_own.build(mesh, s.light);
+    pass.run(mesh, light_space::fit(light_spec::directional({1, 0, 0}), s.model.bounds(), 64));
+    CHECK_NOTHROW(dom_shared.read_back());
+}
+
+TEST_CASE("the depth extent reduced on the GPU is the range map's, exactly", "[gl][state]") {
+    test::gl_context();
+    const test_scene s;
+    const gl::hair_mesh mesh(s.model);
+    gl::light_pass pass;
+    // Tile counts of 1, a partial tile, whole tiles, one more, and many.
+    for (int res : {1, 15, 16, 17, 96, 300}) {
+        pass.run(mesh, light_space::fit(light_spec::directional({0.2f, -1.0f, -0.6f}), s.model.bounds(), res));
+        const auto range = gl::detail::read_range(*pass.textures());
+        float nearest = 3e38f, furthest = -3e38f;
+        for (std::size_t i = 0; i < std::size_t(res) * std::size_t(res); ++i)
+            if (range[4 * i] <= range[4 * i + 3]) nearest = std::min(nearest, range[4 * i]), furthest = std::max(furthest, range[4 * i + 3]);
+        const auto extent = gl::detail::extent_of(range, res);
+        CAPTURE(res, nearest, furthest);
+        REQUIRE(nearest < furthest);
+        CHECK(extent.nearest == nearest);
+        CHECK(extent.furthest == furthest);
+    }
+    // No segment at all: the extent is zero, as the CPU's extent_of gives.
+    const gl::hair_mesh nothing(test::grid_model(4, 1));
+    pass.run(nothing, s.light);
+    const auto extent = gl::detail::extent_of(gl::detail::read_range(*pass.textures()), s.light.resolution());
+    CHECK(extent.nearest == 0.0f);
+    CHECK(extent.furthest == 0.0f);
+}
