@@ -106,11 +106,6 @@ hair_model load(const std::string& source) {
     return load_model(source);
 }
 
-std::string lower_case(std::string text) {
-    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return text;
-}
-
 double milliseconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
@@ -179,7 +174,7 @@ void write_grey(const std::string& path, int res, const execution& exec, Value v
 }
 
 int run_info(const map_options& o) {
-    if (!is_procedural_spec(o.model) && lower_case(std::filesystem::path(o.model).extension().string()) == ".obj") {
+    if (!is_procedural_spec(o.model) && model_format_extension(o.model) == ".obj") {
         const auto contents = read_obj(o.model);
         std::printf("mesh:     %zu vertices, %zu triangles\n", contents.mesh.vertices.size(), contents.mesh.triangles.size());
         if (contents.hair.strand_count() == 0) return 0;
@@ -187,7 +182,7 @@ int run_info(const map_options& o) {
     const auto model = load(o.model);
     const auto b = model.bounds();
     std::printf("model:    %s\n", o.model.c_str());
-    if (!is_procedural_spec(o.model) && lower_case(std::filesystem::path(o.model).extension().string()) == ".tfx") {
+    if (!is_procedural_spec(o.model) && model_format_extension(o.model) == ".tfx") {
         const auto tfx = parse_tfx_file(detail::read_file_bytes(o.model), o.model);
         std::printf("format:   TressFX %d (version %g)", tfx.major_version, double(tfx.version));
         if (tfx.major_version == 3)

@@ -1,6 +1,6 @@
 // The whole map's depth extent, reduced on the GPU from the depth-range map so that no build reads it
-// back. With HS_EXTENT_TILES, each work group reduces one 16x16 tile of the range map to one texel of
-// hs_extent_output; without, one work group reduces those tiles and writes (nearest, 0, 0, furthest),
+// back. With HS_EXTENT_TILES, each work group reduces one 64x64 tile of the range map (16 texels an
+// invocation, then the group's 256 partial results) to one texel of hs_extent_output; without, one work group reduces those tiles and writes (nearest, 0, 0, furthest),
 // or zero for an empty map (as hairshadow::extent_of), to hs_extent_texel of the range map's extra
 // row. Min and max are exact, so the extent equals the CPU's.
 layout(local_size_x = 16, local_size_y = 16) in;
@@ -16,8 +16,12 @@ void main() {
     uint i = gl_LocalInvocationIndex;
     vec2 e = vec2(3.0e38, -3.0e38);
 #ifdef HS_EXTENT_TILES
-    ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
-    if (all(lessThan(texel, hs_input_size))) e = hs_merge(e, texelFetch(hs_extent_input, texel, 0));
+    // Neighbouring invocations read neighbouring texels; few groups keep the barriers few.
+    for (int y = 0; y < 64; y += 16)
+        for (int x = 0; x < 64; x += 16) {
+            ivec2 texel = ivec2(gl_WorkGroupID.xy) * 64 + ivec2(gl_LocalInvocationID.xy) + ivec2(x, y);
+            if (all(lessThan(texel, hs_input_size))) e = hs_merge(e, texelFetch(hs_extent_input, texel, 0));
+        }
 #else
     for (int y = int(gl_LocalInvocationID.y); y < hs_input_size.y; y += 16)
         for (int x = int(gl_LocalInvocationID.x); x < hs_input_size.x; x += 16) e = hs_merge(e, texelFetch(hs_extent_input, ivec2(x, y), 0));

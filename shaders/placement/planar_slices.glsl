@@ -31,7 +31,8 @@ float hs_boundary(int i, vec2 slices) {
 hs_layer_position hs_locate(float depth) {
     vec2 s = hs_slices();
     if (!(depth >= s.x)) return hs_layer_position(-1, 0.0);
-    if (depth >= s.y) return hs_layer_position(HS_LAYERS, 0.0);
+    // depth >= D_N, D_N being just above the furthest fragment (a denormal, which GLSL may flush, above 0)
+    if (depth > hs_map_extent().y) return hs_layer_position(HS_LAYERS, 0.0);
     int k = hs_estimate_index(hs_spacing_inverse((depth - s.x) / (s.y - s.x)) * float(HS_LAYERS), HS_LAYERS - 1);
     while (k > 0 && depth < hs_boundary(k, s)) --k;
     while (k < HS_LAYERS - 1 && depth >= hs_boundary(k + 1, s)) ++k;

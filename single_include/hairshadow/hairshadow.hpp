@@ -466,8 +466,8 @@ public:
     /// zero or non-finite direction, an out-of-range resolution, or a point light inside the bounds.
     static light_space fit(const light_spec& light, const aabb& bounds, int resolution) {
         check_resolution(resolution);
+        check_light_spec(light);
         if (bounds.empty() || !std::isfinite(bounds.diagonal())) throw argument_error("the model's bounds are empty or not finite");
-        const auto finite3 = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
         light_space ls;
         ls.resolution_ = resolution;
         ls.type_ = light.type;
@@ -485,7 +485,6 @@ public:
             forward = detail::unit_direction(light.direction, "the light direction");
             eye = center - forward * (2.0f * radius);
         } else {
-            if (!finite3(light.position)) throw argument_error("the light position is not finite");
             eye = light.position;
             // Depth is a float distance from the light: from too far away, the model's whole depth
             // span falls within a few of its steps (and the frustum's products overflow).
@@ -494,8 +493,6 @@ public:
                 throw argument_error("the light is more than " + std::to_string(int(max_light_distance_in_radii)) +
                                      " model radii away, too far for float depth; use a directional light (dir:X,Y,Z)");
             if (light.type == light_type::spot) {
-                if (!(light.spot_half_angle_degrees > 0.0f && light.spot_half_angle_degrees < 89.0f))
-                    throw argument_error("the spot light half-angle must be in (0, 89) degrees");
                 forward = detail::unit_direction(light.direction, "the spot light direction");
             } else {
                 if (glm::length(center - eye) <= radius * 1.0001f)
@@ -1738,12 +1735,18 @@ inline void write_tfx(const hair_model& model, const std::string& path, int majo
 
 namespace hairshadow {
 
+/// The extension of `path` in lower case (".tfx"), which names its format.
+inline std::string model_format_extension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
 /// Reads `source`: a `.hair`, `.tfx`, `.data` or `.obj` file, or `procedural:NAME[:key=value...]`.
 /// Throws io_error (files) or argument_error (specs).
 inline hair_model load_model(const std::string& source) {
     if (is_procedural_spec(source)) return make_procedural(parse_procedural_spec(source));
-    std::string ext = std::filesystem::path(source).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string ext = model_format_extension(source);
     if (ext == ".hair") return read_hair(source);
     if (ext == ".tfx") return read_tfx(source);
     if (ext == ".data") return read_data(source);
@@ -1753,7 +1756,7 @@ inline hair_model load_model(const std::string& source) {
 
 /// Writes a model by extension: `.hair`, `.data` or `.tfx` (TressFX 4).
 inline void save_model(const hair_model& model, const std::string& path) {
-    const std::string ext = std::filesystem::path(path).extension().string();
+    const std::string ext = model_format_extension(path);
     if (ext == ".hair") return write_hair(model, path);
     if (ext == ".data") return write_data(model, path);
     if (ext == ".tfx") return write_tfx(model, path);

@@ -19,7 +19,8 @@ namespace {
 struct engine_state {
     GLint program = 0, draw_fbo = 0, read_fbo = 0, vao = 0, array_buffer = 0, active_texture = 0, pack_buffer = 0, storage_buffer = 0;
     std::array<GLint, 4> viewport{}, scissor_box{};
-    GLboolean scissor = 0, depth_test = 0, stencil_test = 0, cull = 0, logic_op = 0, discard = 0, dither = 0, depth_clamp = 0, restart = 0;
+    GLboolean scissor = 0, depth_test = 0, stencil_test = 0, cull = 0, logic_op = 0, discard = 0, dither = 0, depth_clamp = 0, restart = 0,
+              line_smooth = 0, clip_distance = 0;
     GLint cull_mode = 0, logic_op_mode = 0, pack_alignment = 0, pack_row_length = 0, clip_origin = 0, clip_depth = 0;
     std::array<GLint, 2> polygon_mode{};
     std::array<std::array<GLboolean, 4>, 8> masks{};
@@ -44,7 +45,8 @@ struct engine_state {
         glGetIntegerv(GL_SCISSOR_BOX, s.scissor_box.data());
         for (auto [cap, out] : {std::pair{GL_SCISSOR_TEST, &s.scissor}, {GL_DEPTH_TEST, &s.depth_test}, {GL_STENCIL_TEST, &s.stencil_test},
                                 {GL_CULL_FACE, &s.cull}, {GL_COLOR_LOGIC_OP, &s.logic_op}, {GL_RASTERIZER_DISCARD, &s.discard},
-                                {GL_DITHER, &s.dither}, {GL_DEPTH_CLAMP, &s.depth_clamp}, {GL_PRIMITIVE_RESTART, &s.restart}})
+                                {GL_DITHER, &s.dither}, {GL_DEPTH_CLAMP, &s.depth_clamp}, {GL_PRIMITIVE_RESTART, &s.restart},
+                                {GL_LINE_SMOOTH, &s.line_smooth}, {GL_CLIP_DISTANCE0, &s.clip_distance}})
             *out = glIsEnabled(cap);
         glGetIntegerv(GL_CULL_FACE_MODE, &s.cull_mode);
         glGetIntegerv(GL_LOGIC_OP_MODE, &s.logic_op_mode);
@@ -122,6 +124,8 @@ public:
         glDisable(GL_DITHER);
         glEnable(GL_DEPTH_CLAMP);
         glEnable(GL_PRIMITIVE_RESTART);
+        glEnable(GL_LINE_SMOOTH);     // antialiased lines would change every fragment's coverage
+        glEnable(GL_CLIP_DISTANCE0); // the library's shaders write no gl_ClipDistance: undefined clipping
         glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
         glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE);
         glPixelStorei(GL_PACK_ALIGNMENT, 8);
@@ -153,7 +157,8 @@ public:
         glDisable(GL_BLEND);
         glBlendEquation(GL_FUNC_ADD);
         glBlendFunc(GL_ONE, GL_ZERO);
-        for (GLenum cap : {GL_DEPTH_TEST, GL_STENCIL_TEST, GL_CULL_FACE, GL_COLOR_LOGIC_OP, GL_RASTERIZER_DISCARD, GL_DEPTH_CLAMP, GL_PRIMITIVE_RESTART})
+        for (GLenum cap : {GL_DEPTH_TEST, GL_STENCIL_TEST, GL_CULL_FACE, GL_COLOR_LOGIC_OP, GL_RASTERIZER_DISCARD, GL_DEPTH_CLAMP, GL_PRIMITIVE_RESTART,
+                           GL_LINE_SMOOTH, GL_CLIP_DISTANCE0})
             glDisable(cap);
         glEnable(GL_DITHER);
         glCullFace(GL_BACK);
@@ -337,14 +342,43 @@ TEST_CASE("methods for one light share one light pass and build the maps their o
     // After the pass runs again, maps built from its earlier run refuse to bind, rather than shade wrong.
     const auto other = light_space::fit(light_spec::directional({1, 0, 0}), s.model.bounds(), 96);
     pass.run(mesh, other);
-    CHECK_THROWS_AS(dom_shared.bind_lookup(0), argument_error);
+    CHECK_THROWS_WITH(dom_shared.bind_lookup(0), Catch::Contains("has run again"));
     CHECK_THROWS_WITH(dom_shared.read_back(), Catch::Contains("has run again"));
     dom_shared.build(pass);
     CHECK_NOTHROW(dom_shared.read_back());
+
+    // Maps switching between their own pass and a shared one give each build's own placement.
+    gl::maps<deep_opacity_maps<3>> dom_other;
+    dom_other.build(mesh, other);
+    dom_own.build(mesh, s.light);
+    const float own_extent = dom_own.placement().extent();
+    dom_own.build(pass); // the shared pass, now from `other`
+    CHECK(dom_own.placement().extent() == dom_other.placement().extent());
+    CHECK(dom_own.placement().extent() != own_extent);
+
     // A new resolution gives the pass new textures: the maps built before keep theirs, still valid.
-    occ_own.build(mesh, s.light);
     pass.run(mesh, light_space::fit(light_spec::directional({1, 0, 0}), s.model.bounds(), 64));
     CHECK_NOTHROW(dom_shared.read_back());
+}
+
+TEST_CASE("a rebuild at a new resolution, with the old maps bound for a look-up, raises no GL error", "[gl][state]") {
+    test::gl_context();
+    const test_scene s;
+    const gl::hair_mesh mesh(s.model);
+    gl::maps<occupancy_maps<128, 4>> occ;
+    occ.build(mesh, s.light);
+    const auto vs = gl::compile_shader(GL_VERTEX_SHADER,
+                                       {"#version 430 core\n", occ.lookup_source(), "void main() { gl_Position = vec4(hs_transmittance(vec3(0.0))); }\n"},
+                                       "look-up");
+    const auto prog = gl::link_program({&vs}, "look-up");
+    occ.bind_lookup(prog.get(), 0); // units 0-2 hold the maps' textures, which the rebuild replaces
+    REQUIRE(glGetError() == GL_NO_ERROR);
+    occ.build(mesh, light_space::fit(light_spec::directional({0.2f, -1.0f, -0.6f}), s.model.bounds(), 64));
+    CHECK(glGetError() == GL_NO_ERROR);
+    GLint bound = -1;
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+    CHECK(bound == 0); // unit 0's range map was replaced: unbound, as GL unbinds a deleted texture
+    hostile_engine::reset();
 }
 
 TEST_CASE("the depth extent reduced on the GPU is the range map's, exactly", "[gl][state]") {
@@ -353,7 +387,7 @@ TEST_CASE("the depth extent reduced on the GPU is the range map's, exactly", "[g
     const gl::hair_mesh mesh(s.model);
     gl::light_pass pass;
     // Tile counts of 1, a partial tile, whole tiles, one more, and many.
-    for (int res : {1, 15, 16, 17, 96, 300}) {
+    for (int res : {1, 63, 64, 65, 96, 300}) {
         pass.run(mesh, light_space::fit(light_spec::directional({0.2f, -1.0f, -0.6f}), s.model.bounds(), res));
         const auto range = gl::detail::read_range(*pass.textures());
         float nearest = 3e38f, furthest = -3e38f;

@@ -139,8 +139,8 @@ public:
     /// zero or non-finite direction, an out-of-range resolution, or a point light inside the bounds.
     static light_space fit(const light_spec& light, const aabb& bounds, int resolution) {
         check_resolution(resolution);
+        check_light_spec(light);
         if (bounds.empty() || !std::isfinite(bounds.diagonal())) throw argument_error("the model's bounds are empty or not finite");
-        const auto finite3 = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
         light_space ls;
         ls.resolution_ = resolution;
         ls.type_ = light.type;
@@ -158,7 +158,6 @@ public:
             forward = detail::unit_direction(light.direction, "the light direction");
             eye = center - forward * (2.0f * radius);
         } else {
-            if (!finite3(light.position)) throw argument_error("the light position is not finite");
             eye = light.position;
             // Depth is a float distance from the light: from too far away, the model's whole depth
             // span falls within a few of its steps (and the frustum's products overflow).
@@ -167,8 +166,6 @@ public:
                 throw argument_error("the light is more than " + std::to_string(int(max_light_distance_in_radii)) +
                                      " model radii away, too far for float depth; use a directional light (dir:X,Y,Z)");
             if (light.type == light_type::spot) {
-                if (!(light.spot_half_angle_degrees > 0.0f && light.spot_half_angle_degrees < 89.0f))
-                    throw argument_error("the spot light half-angle must be in (0, 89) degrees");
                 forward = detail::unit_direction(light.direction, "the spot light direction");
             } else {
                 if (glm::length(center - eye) <= radius * 1.0001f)

@@ -90,11 +90,11 @@ class maps_base {
 public:
     const light_space& light() const noexcept { return light_; }
     /// The placement as the CPU method's, prepared from the map's extent: the first call after a
-    /// build reads the extent back (16 bytes, and a wait for the GPU).
+    /// build reads the extent back (one texel, and a wait for the GPU).
     const P& placement() const {
+        const auto& range = checked_range();
         if (prepared_generation_ != generation_) {
-            const auto range = read_range(checked_range());
-            placement_.prepare(extent_of(range, range_->resolution));
+            placement_.prepare(read_extent(range));
             prepared_generation_ = generation_;
         }
         return placement_;
@@ -109,16 +109,18 @@ protected:
         own_pass_->run(mesh, light, options);
         return *own_pass_;
     }
-    /// Takes the pass's textures and light for a build from it.
+    /// Takes the pass's textures and light for a build from it; the maps stay unusable until
+    /// built() marks the build done, so that a build that throws leaves no maps that look valid.
     void adopt_pass(const light_pass& pass) {
         pass.mesh(); // throws if the pass has not run
+        generation_ = 0;
         range_ = pass.textures();
-        generation_ = range_->generation;
         light_ = pass.light();
     }
+    void built() noexcept { generation_ = range_->generation; }
     /// The range textures, if they still hold what these maps were built from.
     const range_textures& checked_range() const {
-        if (!range_) throw argument_error("the maps have not been built");
+        if (!range_ || generation_ == 0) throw argument_error("the maps have not been built, or their last build failed");
         if (range_->generation != generation_)
             throw argument_error("the light pass these maps were built from has run again since: build them again from it");
         return *range_;
@@ -145,7 +147,7 @@ protected:
 
 private:
     mutable P placement_;
-    mutable std::uint64_t prepared_generation_ = ~std::uint64_t(0);
+    mutable std::uint64_t prepared_generation_ = 0;
     std::unique_ptr<light_pass> own_pass_;
 };
 } // namespace detail
@@ -239,6 +241,7 @@ public:
             pass.mesh().draw();
         }
         check("interpolated maps: layers pass");
+        this->built();
     }
 
     /// Bytes of the textures the look-up reads: depth range (RGBA32F, one extra row), layers (RGBA32F

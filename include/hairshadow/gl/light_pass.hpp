@@ -11,6 +11,7 @@
 #include <hairshadow/gl/state_guard.hpp>
 #include <hairshadow/placement/layer_position.hpp>
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -25,14 +26,21 @@ struct range_textures {
     /// alpha; red > alpha where no fragment fell); row res, texel 0: the map's extent (nearest, 0, 0,
     /// furthest; zero for an empty map), read by placement/common's hs_map_extent.
     texture range;
-    /// The extent of each 16x16 tile of the range map, the first dispatch's output.
+    /// The extent of each 64x64 tile of the range map, the first dispatch's output.
     texture tiles;
     int resolution = 0;
-    /// Runs of the pass so far: maps built from an earlier run refuse to bind after a later one.
+    /// Which run of any light pass filled them (from next_generation): maps built from an earlier run
+    /// refuse to bind after a later one.
     std::uint64_t generation = 0;
 };
 
-inline constexpr int extent_tile = 16; // matches passes/depth_extent.glsl's work group
+/// A number no earlier call returned, never 0 (which marks maps not, or not wholly, built).
+inline std::uint64_t next_generation() noexcept {
+    static std::atomic<std::uint64_t> counter{0};
+    return ++counter;
+}
+
+inline constexpr int extent_tile = 64; // the texels a work group of passes/depth_extent.glsl reduces, per side
 } // namespace detail
 
 /// The depth-range map and depth extent of one hair mesh seen from one light.
@@ -55,14 +63,15 @@ public:
     }
 
     /// Draws the range map of `mesh` seen from `light` and reduces its extent, all on the GPU. The
-    /// pass keeps a reference to `mesh`: the maps built from it draw the same mesh.
+    /// pass keeps a pointer to `mesh` (which must stay where it is): the maps built from it draw it.
+    void run(const hair_mesh&& mesh, const light_space& light, const raster_options& options = {}) = delete;
     void run(const hair_mesh& mesh, const light_space& light, const raster_options& options = {}) {
         options.check();
         state_guard guard("hairshadow: light pass");
         guard.set_pass_state();
         const int res = light.resolution();
         allocate(res);
-        ++textures_->generation;
+        textures_->generation = detail::next_generation();
         mesh_ = &mesh;
         light_ = light;
         options_ = options;
@@ -85,7 +94,7 @@ public:
         glDisable(GL_BLEND);
         check("light pass: depth range");
 
-        // 2. The extent: each 16x16 tile's, then the whole map's, written into the range map's extra row.
+        // 2. The extent: each 64x64 tile's, then the whole map's, written into the range map's extra row.
         const int tiles = (res + detail::extent_tile - 1) / detail::extent_tile;
         glBindTexture(GL_TEXTURE_2D, textures_->range.get());
         glUseProgram(tiles_program_.get());
@@ -118,14 +127,12 @@ public:
 private:
     void allocate(int res) {
         if (textures_ && textures_->resolution == res) return;
-        // New textures: maps still holding the old ones keep them, and their generation tells them apart.
-        const std::uint64_t generation = textures_ ? textures_->generation : 0;
+        // New textures: maps still holding the old ones keep them, with the generation they were built from.
         textures_ = std::make_shared<detail::range_textures>();
         textures_->range = make_texture_2d(GL_RGBA32F, res, res + 1);
         const int tiles = (res + detail::extent_tile - 1) / detail::extent_tile;
         textures_->tiles = make_texture_2d(GL_RGBA32F, tiles, tiles);
         textures_->resolution = res;
-        textures_->generation = generation;
     }
 
     program range_program_, tiles_program_, extent_program_;
@@ -146,6 +153,20 @@ inline std::vector<float> read_range(const range_textures& t) {
     glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, values.data());
     check("range read-back");
     return values;
+}
+
+/// The map's extent alone: one texel read back.
+inline depth_extent read_extent(const range_textures& t) {
+    state_guard guard("hairshadow: extent read-back");
+    guard.set_pass_state();
+    const auto fbo = make_framebuffer();
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo.get());
+    glFramebufferTexture(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, t.range.get(), 0);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    float e[4] = {0, 0, 0, 0};
+    glReadPixels(0, t.resolution, 1, 1, GL_RGBA, GL_FLOAT, e);
+    check("extent read-back");
+    return {e[0], e[3]};
 }
 
 /// The map's extent from a read-back range map (its extra row).

@@ -104,6 +104,7 @@ public:
         glBlendFunc(GL_ONE, GL_ONE);
         draw(slabs_program_, pass);
         check("occupancy maps: slab pass");
+        this->built();
     }
 
     /// Reads the maps back in the CPU method's texel layout.

@@ -215,8 +215,8 @@ void main() {
 
 /// shaders/passes/depth_extent.glsl
 inline constexpr std::string_view passes_depth_extent = R"hs_glsl(// The whole map's depth extent, reduced on the GPU from the depth-range map so that no build reads it
-// back. With HS_EXTENT_TILES, each work group reduces one 16x16 tile of the range map to one texel of
-// hs_extent_output; without, one work group reduces those tiles and writes (nearest, 0, 0, furthest),
+// back. With HS_EXTENT_TILES, each work group reduces one 64x64 tile of the range map (16 texels an
+// invocation, then the group's 256 partial results) to one texel of hs_extent_output; without, one work group reduces those tiles and writes (nearest, 0, 0, furthest),
 // or zero for an empty map (as hairshadow::extent_of), to hs_extent_texel of the range map's extra
 // row. Min and max are exact, so the extent equals the CPU's.
 layout(local_size_x = 16, local_size_y = 16) in;
@@ -232,8 +232,12 @@ void main() {
     uint i = gl_LocalInvocationIndex;
     vec2 e = vec2(3.0e38, -3.0e38);
 #ifdef HS_EXTENT_TILES
-    ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
-    if (all(lessThan(texel, hs_input_size))) e = hs_merge(e, texelFetch(hs_extent_input, texel, 0));
+    // Neighbouring invocations read neighbouring texels; few groups keep the barriers few.
+    for (int y = 0; y < 64; y += 16)
+        for (int x = 0; x < 64; x += 16) {
+            ivec2 texel = ivec2(gl_WorkGroupID.xy) * 64 + ivec2(gl_LocalInvocationID.xy) + ivec2(x, y);
+            if (all(lessThan(texel, hs_input_size))) e = hs_merge(e, texelFetch(hs_extent_input, texel, 0));
+        }
 #else
     for (int y = int(gl_LocalInvocationID.y); y < hs_input_size.y; y += 16)
         for (int x = int(gl_LocalInvocationID.x); x < hs_input_size.x; x += 16) e = hs_merge(e, texelFetch(hs_extent_input, ivec2(x, y), 0));
@@ -557,7 +561,8 @@ float hs_boundary(int i, vec2 slices) {
 hs_layer_position hs_locate(float depth) {
     vec2 s = hs_slices();
     if (!(depth >= s.x)) return hs_layer_position(-1, 0.0);
-    if (depth >= s.y) return hs_layer_position(HS_LAYERS, 0.0);
+    // depth >= D_N, D_N being just above the furthest fragment (a denormal, which GLSL may flush, above 0)
+    if (depth > hs_map_extent().y) return hs_layer_position(HS_LAYERS, 0.0);
     int k = hs_estimate_index(hs_spacing_inverse((depth - s.x) / (s.y - s.x)) * float(HS_LAYERS), HS_LAYERS - 1);
     while (k > 0 && depth < hs_boundary(k, s)) --k;
     while (k < HS_LAYERS - 1 && depth >= hs_boundary(k + 1, s)) ++k;

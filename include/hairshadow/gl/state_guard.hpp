@@ -38,7 +38,9 @@ inline void clear_errors() noexcept {
 ///   functions) of every draw buffer, depth and stencil tests, culling, logic op, rasteriser discard,
 ///   dithering, depth clamp, line smoothing, primitive restart, clip distances, polygon mode, line
 ///   width, clip control (GL 4.5) and the pixel pack parameters.
-/// Transform feedback and conditional rendering must not be active during a build.
+/// Transform feedback and conditional rendering must not be active during a build. The saving costs
+/// about 150 glGet calls; on a driver that runs GL on a thread of its own (NVIDIA's threaded
+/// optimisation), each waits for that thread to catch up.
 class state_guard {
 public:
     /// Texture units [0, saved_units) hold what the library's passes bind (up to 3) and what point
@@ -110,22 +112,30 @@ public:
     state_guard(const state_guard&) = delete;
     state_guard& operator=(const state_guard&) = delete;
 
+    /// Restores what was saved. A name deleted meanwhile (the caller's program deleted while current,
+    /// the maps' own textures replaced by a build at a new resolution) restores as 0, as GL itself
+    /// unbinds a deleted name: binding it again would be an error.
     ~state_guard() {
-        glUseProgram(GLuint(program_));
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw_fbo_));
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(read_fbo_));
-        glBindVertexArray(GLuint(vao_));
-        glBindBuffer(GL_ARRAY_BUFFER, GLuint(array_buffer_));
-        if (storage_size_ > 0) glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, GLuint(storage_binding_), GLintptr(storage_start_), GLsizeiptr(storage_size_));
-        else glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, GLuint(storage_binding_));
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, GLuint(storage_buffer_)); // after the indexed binding, which sets it too
-        glBindBuffer(GL_PIXEL_PACK_BUFFER, GLuint(pack_buffer_));
-        glBindImageTexture(0, GLuint(image_.name), image_.level, image_.layered, image_.layer, GLenum(image_.access), GLenum(image_.format));
+        const auto live = [](GLint name, auto is) { return name != 0 && is(GLuint(name)) ? GLuint(name) : 0u; };
+        glUseProgram(live(program_, glIsProgram));
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, live(draw_fbo_, glIsFramebuffer));
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, live(read_fbo_, glIsFramebuffer));
+        glBindVertexArray(live(vao_, glIsVertexArray));
+        glBindBuffer(GL_ARRAY_BUFFER, live(array_buffer_, glIsBuffer));
+        const GLuint storage = live(storage_binding_, glIsBuffer);
+        if (storage && storage_size_ > 0) glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, storage, GLintptr(storage_start_), GLsizeiptr(storage_size_));
+        else glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, storage);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, live(storage_buffer_, glIsBuffer)); // after the indexed binding, which sets it too
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, live(pack_buffer_, glIsBuffer));
+        const GLuint image = live(image_.name, glIsTexture);
+        glBindImageTexture(0, image, image ? image_.level : 0, image ? image_.layered : GL_FALSE, image ? image_.layer : 0,
+                           image ? GLenum(image_.access) : GL_READ_ONLY, image ? GLenum(image_.format) : GL_R8);
         for (int u = 0; u < saved_units; ++u) {
+            const auto& unit = units_[std::size_t(u)];
             glActiveTexture(GLenum(GL_TEXTURE0 + u));
-            glBindTexture(GL_TEXTURE_2D, GLuint(units_[std::size_t(u)].texture_2d));
-            glBindTexture(GL_TEXTURE_2D_ARRAY, GLuint(units_[std::size_t(u)].texture_array));
-            glBindSampler(GLuint(u), GLuint(units_[std::size_t(u)].sampler));
+            glBindTexture(GL_TEXTURE_2D, live(unit.texture_2d, glIsTexture));
+            glBindTexture(GL_TEXTURE_2D_ARRAY, live(unit.texture_array, glIsTexture));
+            glBindSampler(GLuint(u), live(unit.sampler, glIsSampler));
         }
         glActiveTexture(GLenum(active_texture_));
         for (int i = 0; i < viewports_; ++i) {
@@ -176,7 +186,7 @@ public:
     }
 
 private:
-    static constexpr std::size_t max_viewports = 16, max_draw_buffers = 8;
+    static constexpr std::size_t max_viewports = 16, max_draw_buffers = 16;
     /// Capabilities that change what a pass writes (GL_BLEND and GL_SCISSOR_TEST, per buffer and per
     /// viewport, are apart). Dithering may move 8-bit values; unwritten clip distances are undefined.
     static constexpr std::array<GLenum, 19> capabilities = {
@@ -198,7 +208,7 @@ private:
         GLint depth = 0, max_depth = 0;
         glGetIntegerv(GL_DEBUG_GROUP_STACK_DEPTH, &depth);
         glGetIntegerv(GL_MAX_DEBUG_GROUP_STACK_DEPTH, &max_depth);
-        if (depth + 1 >= max_depth) return;
+        if (depth >= max_depth) return;
         glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, label);
         pushed_group_ = true;
     }

@@ -14,12 +14,18 @@
 
 namespace hairshadow {
 
+/// The extension of `path` in lower case (".tfx"), which names its format.
+inline std::string model_format_extension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
 /// Reads `source`: a `.hair`, `.tfx`, `.data` or `.obj` file, or `procedural:NAME[:key=value...]`.
 /// Throws io_error (files) or argument_error (specs).
 inline hair_model load_model(const std::string& source) {
     if (is_procedural_spec(source)) return make_procedural(parse_procedural_spec(source));
-    std::string ext = std::filesystem::path(source).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string ext = model_format_extension(source);
     if (ext == ".hair") return read_hair(source);
     if (ext == ".tfx") return read_tfx(source);
     if (ext == ".data") return read_data(source);
@@ -29,7 +35,7 @@ inline hair_model load_model(const std::string& source) {
 
 /// Writes a model by extension: `.hair`, `.data` or `.tfx` (TressFX 4).
 inline void save_model(const hair_model& model, const std::string& path) {
-    const std::string ext = std::filesystem::path(path).extension().string();
+    const std::string ext = model_format_extension(path);
     if (ext == ".hair") return write_hair(model, path);
     if (ext == ".data") return write_data(model, path);
     if (ext == ".tfx") return write_tfx(model, path);
