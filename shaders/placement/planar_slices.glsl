@@ -1,11 +1,8 @@
 // Opacity shadow maps' planar slices (Kim & Neumann 2001, section 2): HS_LAYERS maps between D_0 (the
 // nearest fragment of the whole map) and D_N (just beyond the furthest); uniform spacing, or
 // D_i = D_0 + (D_N - D_0)(i/N)^2 when HS_GAMMA_SPACING is defined. Mirrors planar_slices, whose
-// prepare() takes D_0 and D_N from the map's extent as hs_slices() does.
-vec2 hs_slices() {
-    vec2 extent = hs_map_extent();
-    return vec2(extent.x, hs_just_above(extent.y));
-}
+// prepare() takes D_0 and D_N from the map's extent as hs_slices(hs_map_extent()) does.
+vec2 hs_slices(vec2 extent) { return vec2(extent.x, hs_just_above(extent.y)); }
 
 float hs_spacing(float t) {
 #ifdef HS_GAMMA_SPACING
@@ -29,10 +26,11 @@ float hs_boundary(int i, vec2 slices) {
 }
 
 hs_layer_position hs_locate(float depth) {
-    vec2 s = hs_slices();
+    vec2 extent = hs_map_extent(); // one fetch per call
+    vec2 s = hs_slices(extent);
     if (!(depth >= s.x)) return hs_layer_position(-1, 0.0);
     // depth >= D_N, D_N being just above the furthest fragment (a denormal, which GLSL may flush, above 0)
-    if (depth > hs_map_extent().y) return hs_layer_position(HS_LAYERS, 0.0);
+    if (depth > extent.y) return hs_layer_position(HS_LAYERS, 0.0);
     int k = hs_estimate_index(hs_spacing_inverse((depth - s.x) / (s.y - s.x)) * float(HS_LAYERS), HS_LAYERS - 1);
     while (k > 0 && depth < hs_boundary(k, s)) --k;
     while (k < HS_LAYERS - 1 && depth >= hs_boundary(k + 1, s)) ++k;

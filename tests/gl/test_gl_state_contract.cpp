@@ -393,7 +393,7 @@ TEST_CASE("the depth extent reduced on the GPU is the range map's, exactly", "[g
         float nearest = 3e38f, furthest = -3e38f;
         for (std::size_t i = 0; i < std::size_t(res) * std::size_t(res); ++i)
             if (range[4 * i] <= range[4 * i + 3]) nearest = std::min(nearest, range[4 * i]), furthest = std::max(furthest, range[4 * i + 3]);
-        const auto extent = gl::detail::extent_of(range, res);
+        const auto extent = gl::detail::extent_in_extra_row(range, res);
         CAPTURE(res, nearest, furthest);
         REQUIRE(nearest < furthest);
         CHECK(extent.nearest == nearest);
@@ -402,7 +402,7 @@ TEST_CASE("the depth extent reduced on the GPU is the range map's, exactly", "[g
     // No segment at all: the extent is zero, as the CPU's extent_of gives.
     const gl::hair_mesh nothing(test::grid_model(4, 1));
     pass.run(nothing, s.light);
-    const auto extent = gl::detail::extent_of(gl::detail::read_range(*pass.textures()), s.light.resolution());
+    const auto extent = gl::detail::extent_in_extra_row(gl::detail::read_range(*pass.textures()), s.light.resolution());
     CHECK(extent.nearest == 0.0f);
     CHECK(extent.furthest == 0.0f);
 }

@@ -18,7 +18,6 @@
 #include <hairshadow/methods/published.hpp>
 
 #include <memory>
-#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -129,7 +128,7 @@ protected:
     const P& placement_spec() const noexcept { return placement_; }
     /// The CPU placement of the read-back range map `range`.
     const P& placement_from(const std::vector<float>& range) {
-        placement_.prepare(extent_of(range, range_->resolution));
+        placement_.prepare(extent_in_extra_row(range, range_->resolution));
         prepared_generation_ = generation_;
         return placement_;
     }

@@ -170,7 +170,7 @@ inline depth_extent read_extent(const range_textures& t) {
 }
 
 /// The map's extent from a read-back range map (its extra row).
-inline depth_extent extent_of(const std::vector<float>& range, int res) {
+inline depth_extent extent_in_extra_row(const std::vector<float>& range, int res) {
     const float* e = &range[4 * std::size_t(res) * std::size_t(res)];
     return {e[0], e[3]};
 }
