@@ -45,7 +45,7 @@ const int registered = [] {
     for (const std::string model : {"sintel", "curly1.5M"})
         for (int res : {512, 2048})
             for (unsigned threads : {1u, 0u})
-                for (const std::string spec : {"osm:16", "osm:64", "osm:256", "dom:3", "dc:4", "occ:128:4", "docc:128:4", "dom:3:8bit", "dsm"}) {
+                for (const std::string spec : {"osm:16", "osm:64", "osm:256", "dom:3", "dc:4", "occ:128:4", "adsm", "adsm:auto", "docc:128:4", "dom:3:8bit", "dsm"}) {
                     if (spec == "osm:256" && res == 2048) continue; // 4 GiB of maps
                     const std::string name = "build/" + spec + "/" + model + "/" + std::to_string(res) + "/" + (threads == 0 ? "all_threads" : "1_thread");
                     benchmark::RegisterBenchmark(name.c_str(), build_bench, spec, model, res, threads)->Unit(benchmark::kMillisecond)->UseRealTime();

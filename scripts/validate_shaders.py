@@ -91,6 +91,12 @@ for placement, defines in (("planar_slices", "#define HS_LAYERS 64\n#define HS_G
         COMPOSITIONS[f"lookup_layers_{tag}_{accumulation}"] = ("vert", defines, base + ["lookup/layers", "reconstruction/interpolation", "lookup/light",
                                                                                              "lookup/interpolation"], LOOKUP_MAIN)
 
+# Approximate deep shadow maps (gl/fibre_density_maps.hpp): the measured density's pass, and both look-ups.
+COMPOSITIONS["fibre_count"] = ("frag", "", ["raster/coverage", "passes/fibre_count"], "")
+for defines, tag in (("", "fixed"), ("#define HS_MEASURED_DENSITY\n", "measured")):
+    COMPOSITIONS[f"lookup_fibre_density_{tag}"] = ("vert", defines, ["placement/common", "lookup/light", "reconstruction/fibre_density"],
+                                                  LOOKUP_MAIN)
+
 # Density clustering's state passes (cluster_state_pass.hpp).
 COMPOSITIONS["fullscreen_vertex"] = ("vert", "", ["passes/fullscreen_vertex"], "")
 for clusters in (4, 6):

@@ -61,7 +61,7 @@ TEST_CASE("every method spec answers queries: nothing in front, all of it behind
     test::write_text(dir.file("points.txt"), "0.2 " + std::to_string(y) + " 0.9\n0.2 " + std::to_string(y) + " -0.5\n");
     for (const char* method : {"osm:1", "osm:16", "osm:16:gamma", "osm:512", "dom:3", "dom:8", "dc:1", "dc:4", "occ:128:4", "occ:32:1",
                                "occ:256:8", "docc:128:4", "rosm:16", "dsm", "dsm:0.01", "osm:16:8bit", "dom:3:8bit", "dc:4:8bit",
-                               "occ:128:4:8bit"}) {
+                               "occ:128:4:8bit", "adsm:auto"}) {
         CAPTURE(method);
         const auto r = test::run_cli(std::string("query ") + dir.file("sheets.data") + " --method " + method +
                                      " --light dir:0,0,-1 --res 64 --alpha 0.4 --points " + dir.file("points.txt"));

@@ -10,7 +10,7 @@ struct figure_options {
     std::string model = "procedural:curly";
     std::string mesh; ///< an OBJ whose faces are the opaque mesh; procedural models get their sphere
     std::string light = "dir:-0.7,-0.9,-0.45";
-    std::string methods = "osm:16,osm:256,dc:4,dom:3,occ:128:4";
+    std::string methods = "osm:16,osm:256,dc:4,dom:3,occ:128:4,adsm";
     int resolution = 512;    ///< shadow maps
     int size = 400;          ///< each panel, in pixels
     float azimuth = 25.0f, elevation = 10.0f;

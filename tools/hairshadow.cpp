@@ -213,7 +213,7 @@ method_result evaluate(const method_spec& spec, lit_model& s, const map_options&
         r.build_ms = s.gl->build(spec, s.light, s.raster);
         r.transmittance = s.gl->transmittance(points);
         r.bytes = s.gl->memory_bytes();
-        r.layers = spec.layers;
+        r.layers = make_shadow_map(spec)->layer_count(); // the CPU twin's, unbuilt
     } else {
         const auto map = build_map(spec, s, &r.build_ms);
         map->transmittance(points, r.transmittance, o.query(), o.exec());
@@ -474,7 +474,7 @@ int main(int argc, char** argv) {
     add_model(memory, o, false);
     add_map_options(memory, o);
 
-    std::string methods = "osm:16,osm:64,osm:256,dom:3,dom:4,dc:4,occ:128:4,docc:128:4,dom:3:8bit,dsm:0.01";
+    std::string methods = "osm:16,osm:64,osm:256,dom:3,dom:4,dc:4,occ:128:4,adsm,adsm:auto,docc:128:4,dom:3:8bit,dsm:0.01";
     std::string out_dir;
     auto* compare = app.add_subcommand("compare", "compare methods with the exact reference at the model's points");
     add_model(compare, o);
@@ -484,7 +484,7 @@ int main(int argc, char** argv) {
     compare->add_option("--methods", methods, "comma-separated method specs");
     compare->add_option("--out", out_dir, "also write compare.md and compare.csv into this folder");
 
-    std::string bench_methods = "osm:16,osm:64,dom:3,dc:4,occ:128:4,dsm";
+    std::string bench_methods = "osm:16,osm:64,dom:3,dc:4,occ:128:4,adsm,adsm:auto,dsm";
     int repeat = 10;
     auto* bench = app.add_subcommand("bench", "time full rebuilds (rasterise and build) of each method's maps on a model: a Markdown table");
     add_model(bench, o);

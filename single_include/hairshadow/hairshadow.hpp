@@ -3287,15 +3287,17 @@ concept accumulation_policy = requires(typename A::sum_type s, typename A::value
 };
 
 /// Reconstruction: what a texel stores and how it turns into optical depth at a query depth.
+/// Its steps are static functions, or members where the reconstruction holds parameters (then
+/// prepare(light) may give it the light before a build).
 template <class R, class P, class A>
 concept reconstruction_policy =
-    requires(const P& p, const typename P::texel_state& state, std::span<const fragment> frags, std::span<const optical_fragment> tile_frags,
+    std::copyable<R> && requires(const R& r, const P& p, const typename P::texel_state& state, std::span<const fragment> frags, std::span<const optical_fragment> tile_frags,
              typename R::template storage<P, A>& out, const typename R::template storage<P, A>& in, float depth) {
         { R::template accepts<P> } -> std::convertible_to<bool>;
         { R::glsl_name } -> std::convertible_to<std::string_view>;
-        R::template build<P, A>(p, state, frags, out);
-        R::template build<P, A>(p, state, tile_frags, out);
-        { R::template optical_depth<P, A>(p, state, in, depth) } -> std::same_as<float>;
+        r.template build<P, A>(p, state, frags, out);
+        r.template build<P, A>(p, state, tile_frags, out);
+        { r.template optical_depth<P, A>(p, state, in, depth) } -> std::same_as<float>;
     };
 
 } // namespace hairshadow
@@ -3819,7 +3821,7 @@ namespace hairshadow {
 /// (methods/published.hpp); any other valid composition is a hybrid.
 /// @tparam Placement a placement_policy (uniform_slices, gamma_slices, per_pixel_depth, clustered, depth_range)
 /// @tparam Accumulation an accumulation_policy (float_accumulation, emulated_8bit)
-/// @tparam Reconstruction a reconstruction_policy (interpolation, occupancy_bitcount)
+/// @tparam Reconstruction a reconstruction_policy (interpolation, occupancy_bitcount, fibre_density)
 template <class Placement, class Accumulation, class Reconstruction>
 class shadow_method : public map_queries<shadow_method<Placement, Accumulation, Reconstruction>> {
     static_assert(placement_policy<Placement>,
@@ -3834,7 +3836,8 @@ class shadow_method : public map_queries<shadow_method<Placement, Accumulation, 
                   "and glsl_name - see docs/policies.md");
     static_assert(Reconstruction::template accepts<Placement>,
                   "this Reconstruction cannot read this Placement's layers: occupancy_bitcount<B> needs contiguous slices whose "
-                  "count is a multiple of 32 and of B (depth_range, per_pixel_depth, uniform_slices), not clustered bins");
+                  "count is a multiple of 32 and of B (depth_range, per_pixel_depth, uniform_slices), not clustered bins; "
+                  "fibre_density needs the first fragment (per_pixel_depth, depth_range), its measured form also the last (depth_range)");
 
 public:
     using placement_type = Placement;
@@ -3850,7 +3853,9 @@ public:
         friend bool operator==(const texel_maps&, const texel_maps&) = default;
     };
 
-    explicit shadow_method(Placement placement = Placement()) : placement_(std::move(placement)) {}
+    /// A method with its policies' parameters (DOM's layer extent, a fibre density).
+    explicit shadow_method(Placement placement = Placement(), Reconstruction reconstruction = Reconstruction())
+        : placement_(std::move(placement)), reconstruction_(std::move(reconstruction)) {}
 
     /// Builds the maps of `model` for `light`, tile by tile (methods/tiled_build.hpp): the fastest
     /// build, and the one to call every frame, since this object keeps its working memory. The
@@ -3861,7 +3866,7 @@ public:
         auto& w = workspace_.get();
         w.bins.prepare(model, light, options); // bins first: the placement needs the extent before any tile
         built_or_reset([&] {
-            light_ = light;
+            set_light(light);
             extent_ = w.bins.extent();
             placement_.prepare(extent_);
             const std::size_t res = std::size_t(light.resolution());
@@ -3871,7 +3876,7 @@ public:
                 out = texel_maps{};
                 if (in.empty()) return;
                 placement_.prepare_texel(in, out.placement);
-                Reconstruction::template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
+                reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
             });
         });
     }
@@ -3887,7 +3892,7 @@ public:
     void build(const fragment_buffer& fragments, const light_space& light, const depth_extent& extent, const execution& exec = {}) {
         if (fragments.resolution() != light.resolution()) throw argument_error("fragment buffer and light differ in resolution");
         built_or_reset([&] {
-            light_ = light;
+            set_light(light);
             extent_ = extent;
             placement_.prepare(extent);
             fragments_ = fragments.size();
@@ -3897,7 +3902,7 @@ public:
                 if (in.empty()) return;
                 auto& out = texels_[t];
                 placement_.prepare_texel(in, out.placement);
-                Reconstruction::template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
+                reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
             }, 512);
         });
     }
@@ -3907,7 +3912,7 @@ public:
     void adopt(const light_space& light, Placement placement, std::vector<texel_maps> texels) {
         const std::size_t res = std::size_t(light.resolution());
         if (texels.size() != res * res) throw argument_error("adopted maps need one texel per texel of the light's map");
-        light_ = light;
+        set_light(light);
         placement_ = std::move(placement);
         texels_.assign(texels.begin(), texels.end());
     }
@@ -3915,7 +3920,7 @@ public:
     /// Optical depth at linear `depth` in texel (x, y).
     float optical_depth(int x, int y, float depth) const noexcept {
         const auto& t = texel(x, y);
-        return Reconstruction::template optical_depth<Placement, Accumulation>(placement_, t.placement, t.data, depth);
+        return reconstruction_.template optical_depth<Placement, Accumulation>(placement_, t.placement, t.data, depth);
     }
     using map_queries<shadow_method>::transmittance;
 
@@ -3928,6 +3933,7 @@ public:
 
     const texel_maps& texel(int x, int y) const noexcept { return texels_[std::size_t(y) * std::size_t(light_.resolution()) + std::size_t(x)]; }
     const Placement& placement() const noexcept { return placement_; }
+    const Reconstruction& reconstruction() const noexcept { return reconstruction_; }
     /// The whole-map depth extent of the last build: the fragments' own, or the segments' in a build
     /// from the model.
     const depth_extent& map_extent() const noexcept { return extent_; }
@@ -3942,6 +3948,12 @@ public:
     static constexpr std::size_t texel_bytes() noexcept { return sizeof(texel_maps); }
 
 private:
+    /// The light of the maps, given to a reconstruction that needs it (a fibre density's world units).
+    void set_light(const light_space& light) {
+        light_ = light;
+        if constexpr (requires { reconstruction_.prepare(light); }) reconstruction_.prepare(light);
+    }
+
     /// Runs a build; if it throws (out of memory, say), the maps go back to the unbuilt state, never to
     /// a light whose resolution the texels do not match.
     template <class Build>
@@ -3958,6 +3970,7 @@ private:
     }
 
     Placement placement_;
+    [[no_unique_address]] Reconstruction reconstruction_;
     light_space light_;                                  // 1x1 until built, so early queries see no shadow
     std::vector<texel_maps, detail::huge_page_allocator<texel_maps>> texels_ = decltype(texels_)(1);
     depth_extent extent_{};
@@ -4437,6 +4450,158 @@ using gamma_slices = planar_slices<N, gamma_spacing>;
 
 } // namespace hairshadow
 // ---- end hairshadow/placement/planar_slices.hpp
+// ---- begin hairshadow/reconstruction/fibre_density.hpp
+/// @file
+/// Reconstruction by an assumed fibre density: approximate deep shadow maps, as AMD TressFX ships them
+/// (TressFXLighting.hlsl, ComputeShadowAttenuation). A texel keeps only its first fragment's depth z0
+/// (per_pixel_depth's depth map); a point d world units behind it lies behind
+/// n = d / (fibre spacing x fibre radius) fibres, at least one once d > 1e-5 and at most a cap (50 in
+/// TressFX), and T = (1 - alpha)^n. The measured variant takes the density from the texel's own
+/// fragments instead: their count over their depth span (depth_range's nearest and furthest).
+
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <type_traits>
+
+namespace hairshadow {
+
+/// Where the fibre density comes from.
+enum class fibre_density_source {
+    fixed,    ///< the parameters' constant density, TressFX's model
+    measured, ///< each texel's fragment count over its depth span, with the fragments' mean opacity
+};
+
+/// TressFX's hair shadow parameters (TressFXSettings.h defaults), in the model's world units.
+struct fibre_density_parameters {
+    float spacing = 0.4f;    ///< fibre spacing, in fibre radii
+    float radius = 0.0021f;  ///< fibre radius, world units
+    float alpha = 0.35f;     ///< opacity of one fibre
+    float max_fibres = 50.0f; ///< fibres counted at most (m_HairMaxShadowFibers)
+
+    /// World depth per fibre along the light.
+    float fibre_step() const noexcept { return spacing * radius; }
+    /// -ln(1 - alpha): one fibre's optical depth.
+    float fibre_optical_depth() const noexcept { return -std::log1p(-alpha); }
+    /// Throws argument_error unless spacing and radius are positive and finite, alpha is in (0, 1)
+    /// and the cap is at least one fibre.
+    void check() const {
+        const auto positive = [](float v) { return std::isfinite(v) && v > 0.0f; };
+        if (!positive(spacing) || !positive(radius) || !positive(fibre_step()))
+            throw argument_error("fibre density: spacing and radius must be positive and finite, and so must their product");
+        if (!(alpha > 0.0f && alpha < 1.0f)) throw argument_error("fibre density: the fibre alpha must be in (0, 1)");
+        if (!(max_fibres >= 1.0f && std::isfinite(max_fibres))) throw argument_error("fibre density: at least one fibre must count");
+    }
+    friend bool operator==(const fibre_density_parameters&, const fibre_density_parameters&) = default;
+};
+
+namespace detail {
+/// A point this little behind the first fragment (world units) is still on it (TressFX's 1e-5).
+inline constexpr float on_first_fibre = 1e-5f;
+
+template <class P>
+concept first_fragment_state = requires(const typename P::texel_state& s) { s.z0; } || requires(const typename P::texel_state& s) { s.nearest; };
+template <class P>
+concept fragment_span_state = requires(const typename P::texel_state& s) {
+    s.nearest;
+    s.furthest;
+};
+} // namespace detail
+
+/// Optical depth from an assumed density of fibres behind each texel's first fragment.
+/// @tparam Source the parameters' constant density (TressFX) or each texel's measured one
+template <fibre_density_source Source = fibre_density_source::fixed>
+class fibre_density {
+public:
+    static constexpr std::string_view name = "fibre_density";
+    static constexpr std::string_view glsl_name = "reconstruction/fibre_density";
+
+    /// The fixed density needs the first fragment (per_pixel_depth's z0 or depth_range's nearest); the
+    /// measured one also the last (depth_range).
+    template <class Placement>
+    static constexpr bool accepts =
+        Source == fibre_density_source::fixed ? detail::first_fragment_state<Placement> : detail::fragment_span_state<Placement>;
+
+    struct covered {
+        bool any = false; ///< the texel has a fragment (else it casts no shadow)
+        friend bool operator==(const covered&, const covered&) = default;
+    };
+    template <class Accumulation>
+    struct measured {
+        typename Accumulation::value_type optical_depth{}; ///< sum of the fragments' b
+        std::uint32_t fragments = 0;
+        friend bool operator==(const measured&, const measured&) = default;
+    };
+    /// Fixed density: only whether the texel is covered; measured: the texel's fragments summed.
+    template <class Placement, class Accumulation>
+    using storage = std::conditional_t<Source == fibre_density_source::fixed, covered, measured<Accumulation>>;
+
+    explicit fibre_density(fibre_density_parameters parameters = {}) : parameters_(parameters) { parameters_.check(); }
+
+    /// The light's world depth per unit of linear depth, which turns depths into fibre counts.
+    void prepare(const light_space& light) noexcept { depth_scale_ = light.far_plane() - light.near_plane(); }
+
+    template <class Placement, class Accumulation, class Fragment>
+    static void build(const Placement&, const typename Placement::texel_state&, std::span<const Fragment> fragments,
+                      storage<Placement, Accumulation>& out) {
+        if constexpr (Source == fibre_density_source::fixed) {
+            out.any = !fragments.empty();
+        } else {
+            typename Accumulation::sum_type sum{};
+            for (const auto& f : fragments) sum = Accumulation::add(sum, fragment_optical_depth(f));
+            out.optical_depth = Accumulation::store(sum);
+            out.fragments = std::uint32_t(fragments.size());
+        }
+    }
+
+    /// Fibres in front of linear depth `depth`, and the optical depth each one has.
+    template <class Placement, class Accumulation>
+    float optical_depth(const Placement& placement, const typename Placement::texel_state& state, const storage<Placement, Accumulation>& in,
+                        float depth) const noexcept {
+        const float z0 = placement.boundary(state, 0); // the first fragment
+        const float behind = (depth - z0) * depth_scale_;  // world units behind it
+        if (!(behind > detail::on_first_fibre)) return 0.0f;
+        if constexpr (Source == fibre_density_source::fixed) {
+            if (!in.any) return 0.0f;
+            const float fibres = std::clamp(behind / parameters_.fibre_step(), 1.0f, parameters_.max_fibres);
+            return fibres * parameters_.fibre_optical_depth();
+        } else {
+            if (in.fragments == 0) return 0.0f;
+            // n fragments over the span from first to last: n - 1 gaps, so the k-th fragment behind the
+            // first is reached at k gaps and a point on it has k fibres in front, as the exact map says
+            // for evenly spaced fragments; behind the last all n are in front.
+            const float count = float(in.fragments);
+            const float span = state.furthest - state.nearest;
+            const float fibres = span > 0.0f ? std::clamp((depth - z0) / span * (count - 1.0f), 1.0f, count) : count;
+            return fibres * (Accumulation::decode(in.optical_depth) / count);
+        }
+    }
+
+    /// Maps a texel stores, for inspection: none for the fixed density, the texel's summed optical
+    /// depth for the measured one.
+    template <class Placement>
+    static constexpr int stored_maps = Source == fibre_density_source::fixed ? 0 : 1;
+    template <class Placement, class Accumulation>
+    static float stored_optical_depth(const storage<Placement, Accumulation>& in, int) noexcept {
+        if constexpr (Source == fibre_density_source::fixed) return 0.0f;
+        else return Accumulation::decode(in.optical_depth);
+    }
+
+    const fibre_density_parameters& parameters() const noexcept { return parameters_; }
+    /// World units per unit of linear depth, from the last prepare().
+    float depth_scale() const noexcept { return depth_scale_; }
+
+private:
+    fibre_density_parameters parameters_;
+    float depth_scale_ = 1.0f;
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/reconstruction/fibre_density.hpp
 // ---- begin hairshadow/reconstruction/interpolation.hpp
 /// @file
 /// Reconstruction by interpolation: each layer (opacity map, deep opacity layer or density cluster bin)
@@ -4695,6 +4860,14 @@ using density_clustering = shadow_method<clustered<K>, Accumulation, interpolati
 template <int S, int B, class Accumulation = float_accumulation>
 using occupancy_maps = shadow_method<depth_range<S>, Accumulation, occupancy_bitcount<B>>;
 
+/// Approximate deep shadow maps, as AMD TressFX ships them: one depth map (deep opacity maps' z0, no
+/// layers) and a constant density of fibres behind the first (fibre_density_parameters).
+using approximate_deep_shadow_maps = shadow_method<per_pixel_depth<1>, float_accumulation, fibre_density<fibre_density_source::fixed>>;
+
+/// Approximate deep shadow maps with each texel's density measured: occupancy maps' depth range and
+/// the texel's summed optical depth (one opacity layer), spread over its fragment count.
+using measured_density_shadow_maps = shadow_method<depth_range<1>, float_accumulation, fibre_density<fibre_density_source::measured>>;
+
 // Hybrids: compositions no paper describes.
 
 /// Deep opacity maps accumulated the way an RGBA8 target would (Kim & Neumann's 8-bit buffers).
@@ -4730,7 +4903,9 @@ namespace hairshadow {
 inline constexpr std::string_view method_grammar =
     "osm:N[:uniform|gamma] (N = 1, 2, 4, ..., 512) | dom:K (K = 1..8) | dc:K (K = 1..8) | occ:S:B (S = 32, 64, 128, 256; "
     "B = 1, 2, 4, 8) | docc:S:B (hybrid: occupancy slices from each texel's first fragment) | rosm:N (hybrid: opacity maps in "
-    "each texel's depth range, N = 4, 8, ..., 256) | dsm (exact) | dsm:EPS (Lokovic-Veach compression, 0 < EPS < 1); "
+    "each texel's depth range, N = 4, 8, ..., 256) | adsm[:SPACING:RADIUS:ALPHA] (TressFX's approximate deep shadow maps: "
+    "fibre spacing in radii, fibre radius in world units, fibre alpha; default 0.4:0.0021:0.35) | adsm:auto (each texel's "
+    "measured fibre density) | dsm (exact) | dsm:EPS (Lokovic-Veach compression, 0 < EPS < 1); "
     "append :8bit to osm, dom, dc or occ for emulated 8-bit accumulation";
 
 /// A bad method spec; what() quotes the valid grammar.
@@ -4740,7 +4915,7 @@ public:
 };
 
 /// The method families.
-enum class method_family { osm, dom, dc, occ, docc, rosm, dsm };
+enum class method_family { osm, dom, dc, occ, docc, rosm, adsm, dsm };
 
 /// A parsed method spec.
 struct method_spec {
@@ -4751,6 +4926,8 @@ struct method_spec {
     bool gamma = false;             ///< osm: gamma spacing
     bool eight_bit = false;         ///< emulated 8-bit accumulation
     std::optional<float> tolerance; ///< dsm: compression tolerance
+    fibre_density_parameters density; ///< adsm: TressFX's fibre parameters
+    bool measured_density = false;    ///< adsm:auto
 };
 
 namespace detail {
@@ -4808,6 +4985,28 @@ inline method_spec parse_method_spec(std::string_view text) {
         spec.family = method_family::rosm;
         spec.layers = number(parts[1]);
         if (!detail::one_of(spec.layers, detail::rosm_sizes)) throw bad("rosm needs N = 4, 8, ..., 256");
+    } else if (name == "adsm" && (parts.size() == 1 || parts.size() == 2 || parts.size() == 4)) {
+        spec.family = method_family::adsm;
+        if (parts.size() == 2) {
+            if (parts[1] != "auto") throw bad("adsm takes auto or SPACING:RADIUS:ALPHA");
+            spec.measured_density = true;
+        } else if (parts.size() == 4) {
+            auto real = [&](std::string_view s, const char* what) {
+                try {
+                    return detail::parse_number<float>(s, what);
+                } catch (const argument_error&) {
+                    throw bad("the fibre " + std::string(what) + " '" + std::string(s) + "' is not a number");
+                }
+            };
+            spec.density.spacing = real(parts[1], "spacing");
+            spec.density.radius = real(parts[2], "radius");
+            spec.density.alpha = real(parts[3], "alpha");
+            try {
+                spec.density.check();
+            } catch (const argument_error& e) {
+                throw bad(e.what());
+            }
+        }
     } else if (name == "dsm" && (parts.size() == 1 || parts.size() == 2)) {
         spec.family = method_family::dsm;
         if (parts.size() == 2) {
@@ -4823,7 +5022,8 @@ inline method_spec parse_method_spec(std::string_view text) {
     } else {
         throw bad("unknown method or wrong number of fields");
     }
-    if (spec.eight_bit && (spec.family == method_family::dsm || spec.family == method_family::docc || spec.family == method_family::rosm))
+    if (spec.eight_bit && (spec.family == method_family::dsm || spec.family == method_family::docc || spec.family == method_family::rosm ||
+                           spec.family == method_family::adsm))
         throw bad(":8bit applies to osm, dom, dc and occ");
     return spec;
 }

@@ -32,7 +32,8 @@ TEST_CASE("query --backend gl gives the CPU back end's transmittance", "[gl][cli
             points += std::to_string(x) + " " + std::to_string(scene.row_y[scene.row_y.size() / 2 + 1]) + " " + std::to_string(z) + "\n";
     test::write_text(dir.file("points.txt"), points);
     const std::string common = "query " + dir.file("sheets.data") + " --light dir:0,0,-1 --res 64 --alpha 0.4 --points " + dir.file("points.txt");
-    for (const char* method : {"osm:16", "osm:64:gamma", "dom:3", "dc:4", "occ:128:4", "docc:128:4", "rosm:16", "dom:3:8bit", "occ:128:4:8bit"}) {
+    for (const char* method : {"osm:16", "osm:64:gamma", "dom:3", "dc:4", "occ:128:4", "docc:128:4", "rosm:16", "dom:3:8bit", "occ:128:4:8bit",
+                               "adsm:0.5:0.1:0.3", "adsm:auto"}) {
         for (const char* context : {"osmesa", "egl"}) {
             CAPTURE(method, context);
             const auto cpu = test::run_cli(common + " --method " + method);

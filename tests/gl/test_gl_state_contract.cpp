@@ -248,6 +248,7 @@ TEST_CASE("GL builds leave a hostile engine's state as they found it and build t
     SECTION("density clustering") { check_contract<density_clustering<4>>(mesh, s.light); }
     SECTION("occupancy maps") { check_contract<occupancy_maps<128, 4>>(mesh, s.light); }
     SECTION("range opacity maps") { check_contract<range_opacity_maps<16>>(mesh, s.light); }
+    SECTION("measured fibre density") { check_contract<measured_density_shadow_maps>(mesh, s.light); }
 }
 
 TEST_CASE("the hair mesh's upload leaves the caller's vertex array and array buffer bound", "[gl][state]") {
@@ -303,7 +304,7 @@ TEST_CASE("two prefixed look-ups of different methods and lights shade in one sh
 
 TEST_CASE("every method's look-up composes with any other's under different prefixes", "[gl][lookup]") {
     test::gl_context();
-    const std::vector<std::string> specs = {"osm:16", "osm:8:gamma", "dom:3", "dom:4:8bit", "dc:4", "occ:128:4", "rosm:16"};
+    const std::vector<std::string> specs = {"osm:16", "osm:8:gamma", "dom:3", "dom:4:8bit", "dc:4", "occ:128:4", "rosm:16", "adsm", "adsm:auto"};
     for (const auto& a : specs)
         for (const auto& b : specs) {
             const auto first = gl::make_gl_shadow_map(parse_method_spec(a)), second = gl::make_gl_shadow_map(parse_method_spec(b));

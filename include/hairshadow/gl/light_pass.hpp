@@ -41,6 +41,17 @@ inline std::uint64_t next_generation() noexcept {
 }
 
 inline constexpr int extent_tile = 64; // the texels a work group of passes/depth_extent.glsl reduces, per side
+
+/// A program that draws the hair mesh's lines with a fragment pass that needs only each fragment's
+/// depth and optical depth (raster/coverage): the depth-range pass, the fibre count.
+inline program link_line_pass(std::string_view pass_snippet, const std::string& name) {
+    static constexpr std::string_view version = "#version 430 core\n";
+    const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::raster_vertex}, "raster/vertex");
+    const auto fs = compile_shader(GL_FRAGMENT_SHADER,
+                                   {version, "#define HS_ALPHA_MAX " + std::to_string(HAIRSHADOW_ALPHA_MAX) + "\n", shaders::raster_coverage, pass_snippet},
+                                   name);
+    return link_program({&vs, &fs}, name);
+}
 } // namespace detail
 
 /// The depth-range map and depth extent of one hair mesh seen from one light.
@@ -50,12 +61,7 @@ public:
     light_pass() {
         require_version(4, 3, "the GL light pass");
         static constexpr std::string_view version = "#version 430 core\n";
-        const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::raster_vertex}, "raster/vertex");
-        const auto fs = compile_shader(GL_FRAGMENT_SHADER,
-                                       {version, "#define HS_ALPHA_MAX " + std::to_string(HAIRSHADOW_ALPHA_MAX) + "\n", shaders::raster_coverage,
-                                        shaders::passes_depth_range},
-                                       "passes/depth_range");
-        range_program_ = link_program({&vs, &fs}, "depth-range pass");
+        range_program_ = detail::link_line_pass(shaders::passes_depth_range, "depth-range pass");
         const auto tiles = compile_shader(GL_COMPUTE_SHADER, {version, "#define HS_EXTENT_TILES\n", shaders::passes_depth_extent}, "passes/depth_extent tiles");
         const auto whole = compile_shader(GL_COMPUTE_SHADER, {version, shaders::passes_depth_extent}, "passes/depth_extent");
         tiles_program_ = link_program({&tiles}, "depth-extent pass (tiles)");

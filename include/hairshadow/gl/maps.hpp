@@ -1,17 +1,35 @@
 #pragma once
 /// @file
-/// The GL twin of any shadow_method: gl::maps<Method> is interpolated_maps_gl for the interpolation
-/// reconstruction and occupancy_maps_gl for occupancy_bitcount.
+/// The GL twin of any shadow_method, chosen by its reconstruction: gl::maps<Method> is
+/// interpolated_maps_gl for interpolation, occupancy_maps_gl for occupancy_bitcount and
+/// fibre_density_maps_gl for fibre_density. A new reconstruction adds its class and one line here.
 
+#include <hairshadow/gl/fibre_density_maps.hpp>
 #include <hairshadow/gl/interpolated_maps.hpp>
 #include <hairshadow/gl/occupancy_maps.hpp>
 
-#include <type_traits>
-
 namespace hairshadow::gl {
 
+namespace detail {
+template <class Method, class Reconstruction = typename Method::reconstruction_type>
+struct maps_of {
+    static_assert(sizeof(Method) == 0, "this method's reconstruction has no GL twin");
+};
 template <class Method>
-using maps = std::conditional_t<std::is_same_v<typename Method::reconstruction_type, interpolation>, interpolated_maps_gl<Method>,
-                                occupancy_maps_gl<Method>>;
+struct maps_of<Method, interpolation> {
+    using type = interpolated_maps_gl<Method>;
+};
+template <class Method, int B>
+struct maps_of<Method, occupancy_bitcount<B>> {
+    using type = occupancy_maps_gl<Method>;
+};
+template <class Method, fibre_density_source Source>
+struct maps_of<Method, fibre_density<Source>> {
+    using type = fibre_density_maps_gl<Method>;
+};
+} // namespace detail
+
+template <class Method>
+using maps = typename detail::maps_of<Method>::type;
 
 } // namespace hairshadow::gl

@@ -10,6 +10,7 @@
 
 #include <memory>
 #include <optional>
+#include <type_traits>
 
 namespace hairshadow::gl {
 
@@ -44,10 +45,17 @@ private:
 
 namespace detail {
 
+/// The GL maps of a spec, made with the spec's parameters where they take them (a fibre density).
+template <class Method>
+maps<Method> maps_of_spec(const method_spec& spec) {
+    if constexpr (std::is_constructible_v<maps<Method>, const Method&>) return maps<Method>(hairshadow::detail::method_of<Method>(spec));
+    else return maps<Method>();
+}
+
 template <class Method>
 class gl_method_map final : public any_gl_shadow_map {
 public:
-    explicit gl_method_map(method_spec spec) : any_gl_shadow_map(std::move(spec)) {}
+    explicit gl_method_map(method_spec spec) : any_gl_shadow_map(std::move(spec)), maps_(maps_of_spec<Method>(this->spec())) {}
     void build(const hair_mesh& mesh, const light_space& light, const raster_options& options) override {
         maps_.build(mesh, light, options);
         glFinish();

@@ -271,6 +271,14 @@ void main() {
 }
 )hs_glsl";
 
+/// shaders/passes/fibre_count.glsl
+inline constexpr std::string_view passes_fibre_count = R"hs_glsl(// The measured fibre density's pass: every fragment adds its optical depth (r) and a count of one (g)
+// to its texel, by additive blending into an RG32F target.
+layout(location = 0) out vec2 hs_density_out;
+
+void main() { hs_density_out = vec2(hs_fragment_optical_depth(), 1.0); }
+)hs_glsl";
+
 /// shaders/passes/fullscreen_vertex.glsl
 inline constexpr std::string_view passes_fullscreen_vertex = R"hs_glsl(// One triangle covering the viewport, from gl_VertexID alone (draw 3 vertices, no attributes).
 void main() {
@@ -623,6 +631,43 @@ void main() {
     hs_v_depth = (distance_from_light - hs_near) / (hs_far - hs_near);
     hs_v_thickness = hs_thickness;
     hs_v_opacity = hs_opacity;
+}
+)hs_glsl";
+
+/// shaders/reconstruction/fibre_density.glsl
+inline constexpr std::string_view reconstruction_fibre_density = R"hs_glsl(// Approximate deep shadow maps (AMD TressFX, ComputeShadowAttenuation): a point d world units behind
+// its texel's first fragment lies behind n = d / hs_fibre_step fibres, at least 1 once d > 1e-5 and at
+// most hs_max_fibres, each of optical depth hs_fibre_optical_depth. HS_MEASURED_DENSITY takes the
+// density from the texel's own fragments: their count over their span (n - 1 gaps), each with their
+// mean optical depth, and all of them behind the last. Mirrors hairshadow::fibre_density; the range
+// map and the light's frustum are lookup/light's.
+uniform float hs_fibre_step;
+uniform float hs_fibre_optical_depth;
+uniform float hs_max_fibres;
+#ifdef HS_MEASURED_DENSITY
+uniform sampler2D hs_density_texture; // the texel's summed optical depth (r) and fragment count (g)
+#endif
+
+float hs_fibres_optical_depth(ivec2 texel, vec4 range, float depth) {
+    precise float behind = (depth - range.x) * (hs_lookup_far - hs_lookup_near);
+    if (!(behind > 1e-5)) return 0.0;
+#ifdef HS_MEASURED_DENSITY
+    vec2 sums = texelFetch(hs_density_texture, texel, 0).rg;
+    if (!(sums.g > 0.0)) return 0.0;
+    precise float span = range.w - range.x;
+    precise float fibres = span > 0.0 ? clamp((depth - range.x) / span * (sums.g - 1.0), 1.0, sums.g) : sums.g;
+    return fibres * (sums.r / sums.g);
+#else
+    return clamp(behind / hs_fibre_step, 1.0, hs_max_fibres) * hs_fibre_optical_depth;
+#endif
+}
+
+float hs_transmittance(vec3 world_pos) {
+    ivec2 texel;
+    float depth;
+    vec4 range;
+    if (!hs_lookup_locate(world_pos, texel, depth, range)) return 1.0;
+    return exp(-hs_fibres_optical_depth(texel, range, depth));
 }
 )hs_glsl";
 
@@ -1097,7 +1142,7 @@ struct entry {
 };
 
 /// Every snippet, sorted by name.
-inline constexpr std::array<entry, 48> all{{
+inline constexpr std::array<entry, 50> all{{
     {"accumulation/emulated_8bit", accumulation_emulated_8bit},
     {"accumulation/float", accumulation_float},
     {"lookup/interpolation", lookup_interpolation},
@@ -1112,6 +1157,7 @@ inline constexpr std::array<entry, 48> all{{
     {"passes/cluster_variance", passes_cluster_variance},
     {"passes/depth_extent", passes_depth_extent},
     {"passes/depth_range", passes_depth_range},
+    {"passes/fibre_count", passes_fibre_count},
     {"passes/fullscreen_vertex", passes_fullscreen_vertex},
     {"passes/layers", passes_layers},
     {"passes/occupancy_bits", passes_occupancy_bits},
@@ -1123,6 +1169,7 @@ inline constexpr std::array<entry, 48> all{{
     {"placement/planar_slices", placement_planar_slices},
     {"raster/coverage", raster_coverage},
     {"raster/vertex", raster_vertex},
+    {"reconstruction/fibre_density", reconstruction_fibre_density},
     {"reconstruction/interpolation", reconstruction_interpolation},
     {"reconstruction/occupancy_bitcount", reconstruction_occupancy_bitcount},
     {"render/hair_colour", render_hair_colour},

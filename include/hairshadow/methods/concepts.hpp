@@ -44,15 +44,17 @@ concept accumulation_policy = requires(typename A::sum_type s, typename A::value
 };
 
 /// Reconstruction: what a texel stores and how it turns into optical depth at a query depth.
+/// Its steps are static functions, or members where the reconstruction holds parameters (then
+/// prepare(light) may give it the light before a build).
 template <class R, class P, class A>
 concept reconstruction_policy =
-    requires(const P& p, const typename P::texel_state& state, std::span<const fragment> frags, std::span<const optical_fragment> tile_frags,
+    std::copyable<R> && requires(const R& r, const P& p, const typename P::texel_state& state, std::span<const fragment> frags, std::span<const optical_fragment> tile_frags,
              typename R::template storage<P, A>& out, const typename R::template storage<P, A>& in, float depth) {
         { R::template accepts<P> } -> std::convertible_to<bool>;
         { R::glsl_name } -> std::convertible_to<std::string_view>;
-        R::template build<P, A>(p, state, frags, out);
-        R::template build<P, A>(p, state, tile_frags, out);
-        { R::template optical_depth<P, A>(p, state, in, depth) } -> std::same_as<float>;
+        r.template build<P, A>(p, state, frags, out);
+        r.template build<P, A>(p, state, tile_frags, out);
+        { r.template optical_depth<P, A>(p, state, in, depth) } -> std::same_as<float>;
     };
 
 } // namespace hairshadow

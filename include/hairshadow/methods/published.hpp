@@ -9,6 +9,7 @@
 #include <hairshadow/placement/depth_range.hpp>
 #include <hairshadow/placement/per_pixel_depth.hpp>
 #include <hairshadow/placement/planar_slices.hpp>
+#include <hairshadow/reconstruction/fibre_density.hpp>
 #include <hairshadow/reconstruction/interpolation.hpp>
 #include <hairshadow/reconstruction/occupancy_bitcount.hpp>
 
@@ -31,6 +32,14 @@ using density_clustering = shadow_method<clustered<K>, Accumulation, interpolati
 /// Occupancy maps (Sintorn & Assarsson 2009): S one-bit slices in each texel's depth range, B slabs.
 template <int S, int B, class Accumulation = float_accumulation>
 using occupancy_maps = shadow_method<depth_range<S>, Accumulation, occupancy_bitcount<B>>;
+
+/// Approximate deep shadow maps, as AMD TressFX ships them: one depth map (deep opacity maps' z0, no
+/// layers) and a constant density of fibres behind the first (fibre_density_parameters).
+using approximate_deep_shadow_maps = shadow_method<per_pixel_depth<1>, float_accumulation, fibre_density<fibre_density_source::fixed>>;
+
+/// Approximate deep shadow maps with each texel's density measured: occupancy maps' depth range and
+/// the texel's summed optical depth (one opacity layer), spread over its fragment count.
+using measured_density_shadow_maps = shadow_method<depth_range<1>, float_accumulation, fibre_density<fibre_density_source::measured>>;
 
 // Hybrids: compositions no paper describes.
 

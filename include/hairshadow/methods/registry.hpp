@@ -140,6 +140,15 @@ bool visit_with(const method_spec& s, Visit& visit) {
     }
 }
 
+/// The method of a spec with the spec's parameters: policies that take parameters (a fibre density)
+/// are made from them, the others as they default.
+template <class Method>
+Method method_of(const method_spec& spec) {
+    using R = typename Method::reconstruction_type;
+    if constexpr (std::is_constructible_v<R, fibre_density_parameters>) return Method(typename Method::placement_type(), R(spec.density));
+    else return Method();
+}
+
 /// Calls visit.template operator()<Method>() with the shadow_method of a spec (not the exact map's);
 /// false if the spec names none.
 template <class Visit>
@@ -152,6 +161,10 @@ bool visit_method(const method_spec& spec, Visit&& visit) {
         }) && one_of(spec.slabs, slab_sizes);
     case method_family::rosm:
         return with_size<rosm_sizes>(spec.layers, [&](auto n) { visit.template operator()<range_opacity_maps<n()>>(); });
+    case method_family::adsm:
+        if (spec.measured_density) visit.template operator()<measured_density_shadow_maps>();
+        else visit.template operator()<approximate_deep_shadow_maps>();
+        return true;
     default: return spec.eight_bit ? visit_with<emulated_8bit>(spec, visit) : visit_with<float_accumulation>(spec, visit);
     }
 }
@@ -162,7 +175,7 @@ bool visit_method(const method_spec& spec, Visit&& visit) {
 inline std::unique_ptr<any_shadow_map> make_shadow_map(const method_spec& spec) {
     if (spec.family == method_family::dsm) return std::make_unique<detail::reference_map>(spec);
     std::unique_ptr<any_shadow_map> map;
-    detail::visit_method(spec, [&]<class Method>() { map = std::make_unique<detail::method_map<Method>>(spec); });
+    detail::visit_method(spec, [&]<class Method>() { map = std::make_unique<detail::method_map<Method>>(spec, detail::method_of<Method>(spec)); });
     if (!map) throw spec_error("unsupported method spec '" + spec.text + "'; valid: " + std::string(method_grammar));
     return map;
 }

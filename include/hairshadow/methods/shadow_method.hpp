@@ -24,7 +24,7 @@ namespace hairshadow {
 /// (methods/published.hpp); any other valid composition is a hybrid.
 /// @tparam Placement a placement_policy (uniform_slices, gamma_slices, per_pixel_depth, clustered, depth_range)
 /// @tparam Accumulation an accumulation_policy (float_accumulation, emulated_8bit)
-/// @tparam Reconstruction a reconstruction_policy (interpolation, occupancy_bitcount)
+/// @tparam Reconstruction a reconstruction_policy (interpolation, occupancy_bitcount, fibre_density)
 template <class Placement, class Accumulation, class Reconstruction>
 class shadow_method : public map_queries<shadow_method<Placement, Accumulation, Reconstruction>> {
     static_assert(placement_policy<Placement>,
@@ -39,7 +39,8 @@ class shadow_method : public map_queries<shadow_method<Placement, Accumulation, 
                   "and glsl_name - see docs/policies.md");
     static_assert(Reconstruction::template accepts<Placement>,
                   "this Reconstruction cannot read this Placement's layers: occupancy_bitcount<B> needs contiguous slices whose "
-                  "count is a multiple of 32 and of B (depth_range, per_pixel_depth, uniform_slices), not clustered bins");
+                  "count is a multiple of 32 and of B (depth_range, per_pixel_depth, uniform_slices), not clustered bins; "
+                  "fibre_density needs the first fragment (per_pixel_depth, depth_range), its measured form also the last (depth_range)");
 
 public:
     using placement_type = Placement;
@@ -55,7 +56,9 @@ public:
         friend bool operator==(const texel_maps&, const texel_maps&) = default;
     };
 
-    explicit shadow_method(Placement placement = Placement()) : placement_(std::move(placement)) {}
+    /// A method with its policies' parameters (DOM's layer extent, a fibre density).
+    explicit shadow_method(Placement placement = Placement(), Reconstruction reconstruction = Reconstruction())
+        : placement_(std::move(placement)), reconstruction_(std::move(reconstruction)) {}
 
     /// Builds the maps of `model` for `light`, tile by tile (methods/tiled_build.hpp): the fastest
     /// build, and the one to call every frame, since this object keeps its working memory. The
@@ -66,7 +69,7 @@ public:
         auto& w = workspace_.get();
         w.bins.prepare(model, light, options); // bins first: the placement needs the extent before any tile
         built_or_reset([&] {
-            light_ = light;
+            set_light(light);
             extent_ = w.bins.extent();
             placement_.prepare(extent_);
             const std::size_t res = std::size_t(light.resolution());
@@ -76,7 +79,7 @@ public:
                 out = texel_maps{};
                 if (in.empty()) return;
                 placement_.prepare_texel(in, out.placement);
-                Reconstruction::template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
+                reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
             });
         });
     }
@@ -92,7 +95,7 @@ public:
     void build(const fragment_buffer& fragments, const light_space& light, const depth_extent& extent, const execution& exec = {}) {
         if (fragments.resolution() != light.resolution()) throw argument_error("fragment buffer and light differ in resolution");
         built_or_reset([&] {
-            light_ = light;
+            set_light(light);
             extent_ = extent;
             placement_.prepare(extent);
             fragments_ = fragments.size();
@@ -102,7 +105,7 @@ public:
                 if (in.empty()) return;
                 auto& out = texels_[t];
                 placement_.prepare_texel(in, out.placement);
-                Reconstruction::template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
+                reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
             }, 512);
         });
     }
@@ -112,7 +115,7 @@ public:
     void adopt(const light_space& light, Placement placement, std::vector<texel_maps> texels) {
         const std::size_t res = std::size_t(light.resolution());
         if (texels.size() != res * res) throw argument_error("adopted maps need one texel per texel of the light's map");
-        light_ = light;
+        set_light(light);
         placement_ = std::move(placement);
         texels_.assign(texels.begin(), texels.end());
     }
@@ -120,7 +123,7 @@ public:
     /// Optical depth at linear `depth` in texel (x, y).
     float optical_depth(int x, int y, float depth) const noexcept {
         const auto& t = texel(x, y);
-        return Reconstruction::template optical_depth<Placement, Accumulation>(placement_, t.placement, t.data, depth);
+        return reconstruction_.template optical_depth<Placement, Accumulation>(placement_, t.placement, t.data, depth);
     }
     using map_queries<shadow_method>::transmittance;
 
@@ -133,6 +136,7 @@ public:
 
     const texel_maps& texel(int x, int y) const noexcept { return texels_[std::size_t(y) * std::size_t(light_.resolution()) + std::size_t(x)]; }
     const Placement& placement() const noexcept { return placement_; }
+    const Reconstruction& reconstruction() const noexcept { return reconstruction_; }
     /// The whole-map depth extent of the last build: the fragments' own, or the segments' in a build
     /// from the model.
     const depth_extent& map_extent() const noexcept { return extent_; }
@@ -147,6 +151,12 @@ public:
     static constexpr std::size_t texel_bytes() noexcept { return sizeof(texel_maps); }
 
 private:
+    /// The light of the maps, given to a reconstruction that needs it (a fibre density's world units).
+    void set_light(const light_space& light) {
+        light_ = light;
+        if constexpr (requires { reconstruction_.prepare(light); }) reconstruction_.prepare(light);
+    }
+
     /// Runs a build; if it throws (out of memory, say), the maps go back to the unbuilt state, never to
     /// a light whose resolution the texels do not match.
     template <class Build>
@@ -163,6 +173,7 @@ private:
     }
 
     Placement placement_;
+    [[no_unique_address]] Reconstruction reconstruction_;
     light_space light_;                                  // 1x1 until built, so early queries see no shadow
     std::vector<texel_maps, detail::huge_page_allocator<texel_maps>> texels_ = decltype(texels_)(1);
     depth_extent extent_{};

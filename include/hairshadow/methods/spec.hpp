@@ -4,6 +4,7 @@
 
 #include <hairshadow/core/error.hpp>
 #include <hairshadow/core/parse.hpp>
+#include <hairshadow/reconstruction/fibre_density.hpp>
 
 #include <algorithm>
 #include <array>
@@ -17,7 +18,9 @@ namespace hairshadow {
 inline constexpr std::string_view method_grammar =
     "osm:N[:uniform|gamma] (N = 1, 2, 4, ..., 512) | dom:K (K = 1..8) | dc:K (K = 1..8) | occ:S:B (S = 32, 64, 128, 256; "
     "B = 1, 2, 4, 8) | docc:S:B (hybrid: occupancy slices from each texel's first fragment) | rosm:N (hybrid: opacity maps in "
-    "each texel's depth range, N = 4, 8, ..., 256) | dsm (exact) | dsm:EPS (Lokovic-Veach compression, 0 < EPS < 1); "
+    "each texel's depth range, N = 4, 8, ..., 256) | adsm[:SPACING:RADIUS:ALPHA] (TressFX's approximate deep shadow maps: "
+    "fibre spacing in radii, fibre radius in world units, fibre alpha; default 0.4:0.0021:0.35) | adsm:auto (each texel's "
+    "measured fibre density) | dsm (exact) | dsm:EPS (Lokovic-Veach compression, 0 < EPS < 1); "
     "append :8bit to osm, dom, dc or occ for emulated 8-bit accumulation";
 
 /// A bad method spec; what() quotes the valid grammar.
@@ -27,7 +30,7 @@ public:
 };
 
 /// The method families.
-enum class method_family { osm, dom, dc, occ, docc, rosm, dsm };
+enum class method_family { osm, dom, dc, occ, docc, rosm, adsm, dsm };
 
 /// A parsed method spec.
 struct method_spec {
@@ -38,6 +41,8 @@ struct method_spec {
     bool gamma = false;             ///< osm: gamma spacing
     bool eight_bit = false;         ///< emulated 8-bit accumulation
     std::optional<float> tolerance; ///< dsm: compression tolerance
+    fibre_density_parameters density; ///< adsm: TressFX's fibre parameters
+    bool measured_density = false;    ///< adsm:auto
 };
 
 namespace detail {
@@ -95,6 +100,28 @@ inline method_spec parse_method_spec(std::string_view text) {
         spec.family = method_family::rosm;
         spec.layers = number(parts[1]);
         if (!detail::one_of(spec.layers, detail::rosm_sizes)) throw bad("rosm needs N = 4, 8, ..., 256");
+    } else if (name == "adsm" && (parts.size() == 1 || parts.size() == 2 || parts.size() == 4)) {
+        spec.family = method_family::adsm;
+        if (parts.size() == 2) {
+            if (parts[1] != "auto") throw bad("adsm takes auto or SPACING:RADIUS:ALPHA");
+            spec.measured_density = true;
+        } else if (parts.size() == 4) {
+            auto real = [&](std::string_view s, const char* what) {
+                try {
+                    return detail::parse_number<float>(s, what);
+                } catch (const argument_error&) {
+                    throw bad("the fibre " + std::string(what) + " '" + std::string(s) + "' is not a number");
+                }
+            };
+            spec.density.spacing = real(parts[1], "spacing");
+            spec.density.radius = real(parts[2], "radius");
+            spec.density.alpha = real(parts[3], "alpha");
+            try {
+                spec.density.check();
+            } catch (const argument_error& e) {
+                throw bad(e.what());
+            }
+        }
     } else if (name == "dsm" && (parts.size() == 1 || parts.size() == 2)) {
         spec.family = method_family::dsm;
         if (parts.size() == 2) {
@@ -110,7 +137,8 @@ inline method_spec parse_method_spec(std::string_view text) {
     } else {
         throw bad("unknown method or wrong number of fields");
     }
-    if (spec.eight_bit && (spec.family == method_family::dsm || spec.family == method_family::docc || spec.family == method_family::rosm))
+    if (spec.eight_bit && (spec.family == method_family::dsm || spec.family == method_family::docc || spec.family == method_family::rosm ||
+                           spec.family == method_family::adsm))
         throw bad(":8bit applies to osm, dom, dc and occ");
     return spec;
 }

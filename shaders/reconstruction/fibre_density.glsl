@@ -1,0 +1,34 @@
+// Approximate deep shadow maps (AMD TressFX, ComputeShadowAttenuation): a point d world units behind
+// its texel's first fragment lies behind n = d / hs_fibre_step fibres, at least 1 once d > 1e-5 and at
+// most hs_max_fibres, each of optical depth hs_fibre_optical_depth. HS_MEASURED_DENSITY takes the
+// density from the texel's own fragments: their count over their span (n - 1 gaps), each with their
+// mean optical depth, and all of them behind the last. Mirrors hairshadow::fibre_density; the range
+// map and the light's frustum are lookup/light's.
+uniform float hs_fibre_step;
+uniform float hs_fibre_optical_depth;
+uniform float hs_max_fibres;
+#ifdef HS_MEASURED_DENSITY
+uniform sampler2D hs_density_texture; // the texel's summed optical depth (r) and fragment count (g)
+#endif
+
+float hs_fibres_optical_depth(ivec2 texel, vec4 range, float depth) {
+    precise float behind = (depth - range.x) * (hs_lookup_far - hs_lookup_near);
+    if (!(behind > 1e-5)) return 0.0;
+#ifdef HS_MEASURED_DENSITY
+    vec2 sums = texelFetch(hs_density_texture, texel, 0).rg;
+    if (!(sums.g > 0.0)) return 0.0;
+    precise float span = range.w - range.x;
+    precise float fibres = span > 0.0 ? clamp((depth - range.x) / span * (sums.g - 1.0), 1.0, sums.g) : sums.g;
+    return fibres * (sums.r / sums.g);
+#else
+    return clamp(behind / hs_fibre_step, 1.0, hs_max_fibres) * hs_fibre_optical_depth;
+#endif
+}
+
+float hs_transmittance(vec3 world_pos) {
+    ivec2 texel;
+    float depth;
+    vec4 range;
+    if (!hs_lookup_locate(world_pos, texel, depth, range)) return 1.0;
+    return exp(-hs_fibres_optical_depth(texel, range, depth));
+}

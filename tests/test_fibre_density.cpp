@@ -1,0 +1,134 @@
+// Approximate deep shadow maps (AMD TressFX) and their measured-density variant: TressFX's formula
+// behind sheets of strands at known depths, the exact answer at evenly spaced sheets, specs, and the
+// builds every method shares (tiled against buffered, any thread count, the registry).
+#include "sheets.hpp"
+#include "test_support.hpp"
+
+#include <hairshadow/hairshadow.hpp>
+#include <hairshadow/methods/registry.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace hairshadow;
+
+namespace {
+
+/// Transmittance at world points (x, y, z) for each z, on the sheets' middle row.
+template <class Map>
+std::vector<float> along_row(const Map& map, const test::sheets_scene& scene, std::initializer_list<float> zs) {
+    const float y = scene.row_y[scene.row_y.size() / 2];
+    std::vector<float> t;
+    for (float z : zs) t.push_back(map.transmittance(glm::vec3(0.2f, y, z)));
+    return t;
+}
+
+raster_options alpha(float a) {
+    raster_options o;
+    o.fixed_alpha = a;
+    return o;
+}
+
+} // namespace
+
+TEST_CASE("approximate deep shadow maps give TressFX's transmittance behind sheets of strands", "[methods][adsm]") {
+    const auto scene = test::make_sheets(3, 64); // sheets at z = 0.5, 0.3, 0.1, the light travelling along -z
+    // One fibre every 0.5 x 0.2 = 0.1 world units behind the first sheet, each of alpha 0.3.
+    approximate_deep_shadow_maps adsm(per_pixel_depth<1>(), fibre_density<>({.spacing = 0.5f, .radius = 0.2f, .alpha = 0.3f}));
+    adsm.build(scene.model, scene.light, alpha(0.9f)); // the fragments' own alpha plays no part
+    CHECK(adsm.reconstruction().depth_scale() == Approx(scene.light.far_plane() - scene.light.near_plane()));
+    // d = 0 (in front of and on the first sheet), 0.05 (raised to one fibre), 0.2, 0.4, 1.0 behind it.
+    const auto t = along_row(adsm, scene, {0.9f, 0.5f, 0.45f, 0.3f, 0.1f, -0.5f});
+    CHECK(t[0] == 1.0f);
+    CHECK(t[1] == 1.0f);
+    CHECK(t[2] == Approx(0.7f).epsilon(1e-5));
+    CHECK(t[3] == Approx(std::pow(0.7f, 2.0f)).epsilon(1e-4));
+    CHECK(t[4] == Approx(std::pow(0.7f, 4.0f)).epsilon(1e-4));
+    CHECK(t[5] == Approx(std::pow(0.7f, 10.0f)).epsilon(1e-4));
+    // Off the sheets' rows the texels hold no hair: no shadow at any depth.
+    CHECK(adsm.transmittance(glm::vec3(0.2f, 0.49f, -0.5f)) == 1.0f);
+
+    // TressFX caps the fibres counted.
+    approximate_deep_shadow_maps capped(per_pixel_depth<1>(), fibre_density<>({.spacing = 0.5f, .radius = 0.2f, .alpha = 0.3f, .max_fibres = 5}));
+    capped.build(scene.model, scene.light);
+    const auto c = along_row(capped, scene, {0.1f, -0.5f});
+    CHECK(c[0] == Approx(std::pow(0.7f, 4.0f)).epsilon(1e-4));
+    CHECK(c[1] == Approx(std::pow(0.7f, 5.0f)).epsilon(1e-4));
+}
+
+TEST_CASE("the measured fibre density equals the exact answer at evenly spaced sheets", "[methods][adsm]") {
+    const auto scene = test::make_sheets(5, 64); // z = 0.5, 0.3, ..., -0.3
+    measured_density_shadow_maps measured;
+    measured.build(scene.model, scene.light, alpha(0.4f));
+    const deep_shadow_map exact(rasterize(scene.model, scene.light, alpha(0.4f)), scene.light);
+    const auto at_sheets = {0.5f, 0.3f, 0.1f, -0.1f, -0.3f, -0.9f};
+    const auto t = along_row(measured, scene, at_sheets), e = along_row(exact, scene, at_sheets);
+    for (std::size_t j = 0; j < t.size(); ++j) {
+        CAPTURE(j);
+        const float expected = std::pow(0.6f, float(std::min<std::size_t>(j, 5))); // j sheets in front; all five behind the last
+        CHECK(e[j] == Approx(expected).epsilon(1e-4));
+        CHECK(t[j] == Approx(expected).epsilon(1e-4));
+    }
+    // Between sheets the count rises linearly: halfway from the second to the third, 1.5 fibres.
+    CHECK(along_row(measured, scene, {0.2f})[0] == Approx(std::pow(0.6f, 1.5f)).epsilon(1e-4));
+    // Just behind the first sheet, one whole fibre (TressFX's rule), as the exact map says.
+    CHECK(along_row(measured, scene, {0.49f})[0] == Approx(0.6f).epsilon(1e-4));
+    CHECK(measured.stored_optical_depth(32, 32, 0) == Approx(-5.0 * std::log(0.6)).epsilon(1e-5));
+}
+
+TEST_CASE("adsm specs parse TressFX's parameters and refuse bad ones", "[methods][adsm][spec]") {
+    const auto plain = parse_method_spec("adsm");
+    CHECK(plain.family == method_family::adsm);
+    CHECK(plain.density == fibre_density_parameters{});
+    CHECK_FALSE(plain.measured_density);
+    CHECK(parse_method_spec("adsm:auto").measured_density);
+    const auto given = parse_method_spec("adsm:0.5:0.002:0.3");
+    CHECK(given.density.spacing == 0.5f);
+    CHECK(given.density.radius == 0.002f);
+    CHECK(given.density.alpha == 0.3f);
+    for (const char* bad : {"adsm:", "adsm:automatic", "adsm:auto:1", "adsm:1:1", "adsm:0:1:0.5", "adsm:1:-1:0.5", "adsm:1:1:1", "adsm:1:1:0",
+                            "adsm:nan:1:0.5", "adsm:1:inf:0.5", "adsm:1:1:0.5:2", "adsm:8bit", "adsm:1e30:1e30:0.5", "adsm:x:1:0.5"}) {
+        CAPTURE(bad);
+        CHECK_THROWS_AS(parse_method_spec(bad), spec_error);
+    }
+}
+
+TEST_CASE("adsm maps build tile by tile as from fragments, for any thread count, and through the registry", "[methods][adsm][determinism]") {
+    const auto m = read_tfx(test::sintel_hair());
+    const auto light = light_space::fit(light_spec::directional({0.2f, -1, -0.4f}), m.bounds(), 256);
+    const auto fb = rasterize(m, light);
+    auto same_maps = [&](auto method) {
+        auto tiled = method, one = method, three = method;
+        tiled.build(m, light);
+        one.build(fb, light, tiled.map_extent(), execution{1});
+        three.build(fb, light, tiled.map_extent(), execution{3});
+        std::size_t covered = 0;
+        for (int y = 0; y < 256; ++y)
+            for (int x = 0; x < 256; ++x) {
+                if (!(tiled.texel(x, y) == one.texel(x, y)) || !(one.texel(x, y) == three.texel(x, y))) return false;
+                covered += tiled.optical_depth(x, y, 1.0f) > 0.0f;
+            }
+        return covered > 1000;
+    };
+    CHECK(same_maps(approximate_deep_shadow_maps()));
+    CHECK(same_maps(measured_density_shadow_maps()));
+
+    // The registry makes the method with the spec's parameters.
+    const auto map = make_shadow_map("adsm:0.5:0.01:0.2");
+    map->build(m, light);
+    approximate_deep_shadow_maps direct(per_pixel_depth<1>(), fibre_density<>({.spacing = 0.5f, .radius = 0.01f, .alpha = 0.2f}));
+    direct.build(m, light);
+    std::size_t differ = 0, shadowed = 0;
+    for (const auto& p : m.points) {
+        differ += map->transmittance(p) != direct.transmittance(p);
+        shadowed += direct.transmittance(p) < 0.9f;
+    }
+    CHECK(differ == 0);
+    CHECK(shadowed > m.points.size() / 4);
+    CHECK(map->stored_maps() == 0);
+    CHECK(make_shadow_map("adsm:auto")->stored_maps() == 1);
+    // z0 and a covered flag; depth range plus the sum and the count.
+    CHECK(*map->memory_bytes_at(512) == 512u * 512u * 8u + sizeof(float));
+    CHECK(*make_shadow_map("adsm:auto")->memory_bytes_at(512) == 512u * 512u * 16u);
+}
