@@ -37,7 +37,6 @@ TEST_CASE("approximate deep shadow maps give TressFX's transmittance behind shee
     // One fibre every 0.5 x 0.2 = 0.1 world units behind the first sheet, each of alpha 0.3.
     approximate_deep_shadow_maps adsm(per_pixel_depth<1>(), fibre_density<>({.spacing = 0.5f, .radius = 0.2f, .alpha = 0.3f}));
     adsm.build(scene.model, scene.light, alpha(0.9f)); // the fragments' own alpha plays no part
-    CHECK(adsm.reconstruction().depth_scale() == Approx(scene.light.far_plane() - scene.light.near_plane()));
     // d = 0 (in front of and on the first sheet), 0.05 (raised to one fibre), 0.2, 0.4, 1.0 behind it.
     const auto t = along_row(adsm, scene, {0.9f, 0.5f, 0.45f, 0.3f, 0.1f, -0.5f});
     CHECK(t[0] == 1.0f);
@@ -62,11 +61,11 @@ TEST_CASE("the measured fibre density equals the exact answer at evenly spaced s
     measured_density_shadow_maps measured;
     measured.build(scene.model, scene.light, alpha(0.4f));
     const deep_shadow_map exact(rasterize(scene.model, scene.light, alpha(0.4f)), scene.light);
-    const auto at_sheets = {0.5f, 0.3f, 0.1f, -0.1f, -0.3f, -0.9f};
+    const auto at_sheets = {0.5f, 0.3f, 0.1f, -0.1f, -0.3f, -0.35f, -0.9f};
     const auto t = along_row(measured, scene, at_sheets), e = along_row(exact, scene, at_sheets);
     for (std::size_t j = 0; j < t.size(); ++j) {
         CAPTURE(j);
-        const float expected = std::pow(0.6f, float(std::min<std::size_t>(j, 5))); // j sheets in front; all five behind the last
+        const float expected = std::pow(0.6f, float(std::min<std::size_t>(j, 5))); // j sheets in front; all five behind the last, however near
         CHECK(e[j] == Approx(expected).epsilon(1e-4));
         CHECK(t[j] == Approx(expected).epsilon(1e-4));
     }
@@ -83,12 +82,13 @@ TEST_CASE("adsm specs parse TressFX's parameters and refuse bad ones", "[methods
     CHECK(plain.density == fibre_density_parameters{});
     CHECK_FALSE(plain.measured_density);
     CHECK(parse_method_spec("adsm:auto").measured_density);
+    CHECK(parse_method_spec("adsm:0.4:0.0021:0.35:8").density.max_fibres == 8.0f);
     const auto given = parse_method_spec("adsm:0.5:0.002:0.3");
     CHECK(given.density.spacing == 0.5f);
     CHECK(given.density.radius == 0.002f);
     CHECK(given.density.alpha == 0.3f);
     for (const char* bad : {"adsm:", "adsm:automatic", "adsm:auto:1", "adsm:1:1", "adsm:0:1:0.5", "adsm:1:-1:0.5", "adsm:1:1:1", "adsm:1:1:0",
-                            "adsm:nan:1:0.5", "adsm:1:inf:0.5", "adsm:1:1:0.5:2", "adsm:8bit", "adsm:1e30:1e30:0.5", "adsm:x:1:0.5"}) {
+                            "adsm:nan:1:0.5", "adsm:1:inf:0.5", "adsm:1:1:0.5:0.5", "adsm:1:1:0.5:inf", "adsm:1:1:0.5:2:3", "adsm:8bit", "adsm:1e30:1e30:0.5", "adsm:x:1:0.5"}) {
         CAPTURE(bad);
         CHECK_THROWS_AS(parse_method_spec(bad), spec_error);
     }
@@ -127,8 +127,32 @@ TEST_CASE("adsm maps build tile by tile as from fragments, for any thread count,
     CHECK(differ == 0);
     CHECK(shadowed > m.points.size() / 4);
     CHECK(map->stored_maps() == 0);
+    CHECK(map->layer_count() == 0); // a depth map, no layers
+    CHECK(make_shadow_map("adsm:auto")->layer_count() == 1);
     CHECK(make_shadow_map("adsm:auto")->stored_maps() == 1);
     // z0 and a covered flag; depth range plus the sum and the count.
     CHECK(*map->memory_bytes_at(512) == 512u * 512u * 8u + sizeof(float));
     CHECK(*make_shadow_map("adsm:auto")->memory_bytes_at(512) == 512u * 512u * 16u);
+}
+
+TEST_CASE("a point a rounding step behind the first fragment is on it, however deep the light's map", "[methods][adsm]") {
+    // A map 10,000 world units deep: one float step of a linear depth near 1 is 6e-4 world units,
+    // beyond TressFX's 1e-5, so the threshold must also hold in linear depth.
+    aabb box;
+    box.add({-1, -1, 0});
+    box.add({1, 1, 10000});
+    const auto light = light_space::fit(light_spec::directional({0, 0, -1}), box, 8);
+    fibre_density<> fibres({.spacing = 1.0f, .radius = 1.0f, .alpha = 0.3f});
+    fibres.prepare(light);
+    const per_pixel_depth<1> placement;
+    using storage = fibre_density<>::storage<per_pixel_depth<1>, float_accumulation>;
+    const per_pixel_depth<1>::texel_state state{0.9f};
+    const auto od = [&](float depth) { return fibres.optical_depth<per_pixel_depth<1>, float_accumulation>(placement, state, storage{true}, depth); };
+    CHECK(od(0.9f) == 0.0f);
+    CHECK(od(std::nextafter(0.9f, 1.0f)) == 0.0f);
+    CHECK(od(std::nextafter(std::nextafter(0.9f, 1.0f), 1.0f)) == 0.0f);
+    CHECK(od(0.9f + 1e-6f) == Approx(-std::log(0.7f))); // well behind: one whole fibre (0.01 world units)
+    const float deeper = 0.9f + 1e-3f, units = (deeper - 0.9f) * fibres.depth_scale(); // about 10 world units: 10 fibres
+    CHECK(units > 9.0f);
+    CHECK(od(deeper) == Approx(-double(units) * std::log(0.7)));
 }

@@ -1,6 +1,8 @@
 #pragma once
 // The comparison table shared by `compare` and `figure`: one row per method with its layers, memory,
-// build time and the mean, 95th-percentile and maximum |T - T_exact| at the model's points.
+// build time, the mean, 95th-percentile and maximum |T - T_exact| at the model's points, and the
+// transmittance-curve error (reference/transmittance_curve_error.hpp) and the image error
+// (shading/image_error.hpp).
 #include <hairshadow/core/error.hpp>
 
 #include <algorithm>
@@ -20,6 +22,8 @@ struct compare_row {
     int layers = 0;
     std::size_t bytes = 0;
     double build_ms = 0, mean = 0, p95 = 0, max = 0;
+    double curve = 0; ///< mean over texels of the mean |T - T_exact| across the texel's fragments
+    double image_mean = 0, image_p99 = 0; ///< |sRGB difference| from the exact map's render, over hair pixels
 };
 
 /// Fills the error columns of `row` from a method's and the reference's transmittance.
@@ -37,15 +41,17 @@ inline void set_errors(compare_row& row, std::span<const float> t, std::span<con
 /// The table as Markdown (after `preamble`) and as CSV.
 inline std::pair<std::string, std::string> format_table(const std::vector<compare_row>& rows, const std::string& preamble) {
     std::ostringstream md, csv;
-    md << preamble << "\n\n| method | layers | memory (MiB) | build (ms) | mean error | 95th percentile | max error |\n"
-       << "|---|---|---|---|---|---|---|\n";
-    csv << "method,layers,memory_bytes,build_ms,mean_error,p95_error,max_error\n";
-    char line[256];
+    md << preamble
+       << "\n\n| method | layers | memory (MiB) | build (ms) | mean error | 95th percentile | max error | curve error | image error | image p99 |\n"
+       << "|---|---|---|---|---|---|---|---|---|---|\n";
+    csv << "method,layers,memory_bytes,build_ms,mean_error,p95_error,max_error,curve_error,image_error,image_p99\n";
+    char line[512];
     for (const auto& r : rows) {
-        std::snprintf(line, sizeof line, "| %s | %d | %.2f | %.1f | %.4f | %.4f | %.4f |\n", r.method.c_str(), r.layers, double(r.bytes) / 1048576.0,
-                      r.build_ms, r.mean, r.p95, r.max);
+        std::snprintf(line, sizeof line, "| %s | %d | %.2f | %.1f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f |\n", r.method.c_str(), r.layers,
+                      double(r.bytes) / 1048576.0, r.build_ms, r.mean, r.p95, r.max, r.curve, r.image_mean, r.image_p99);
         md << line;
-        std::snprintf(line, sizeof line, "%s,%d,%zu,%.3f,%.6f,%.6f,%.6f\n", r.method.c_str(), r.layers, r.bytes, r.build_ms, r.mean, r.p95, r.max);
+        std::snprintf(line, sizeof line, "%s,%d,%zu,%.3f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", r.method.c_str(), r.layers, r.bytes, r.build_ms, r.mean,
+                      r.p95, r.max, r.curve, r.image_mean, r.image_p99);
         csv << line;
     }
     return {md.str(), csv.str()};

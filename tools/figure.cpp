@@ -16,6 +16,7 @@
 #include <hairshadow/io/png.hpp>
 #include <hairshadow/methods/registry.hpp>
 
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -33,7 +34,8 @@ struct panel {
     std::string label, spec;
     std::unique_ptr<any_shadow_map> map; ///< null: no shadows
     double build_ms = 0;
-    image picture;
+    image picture; ///< the panel, averaged down from `detail`
+    image detail;  ///< the crop's region, rendered at supersample times the panel's size
 };
 
 std::string pretty(const std::string& spec) {
@@ -79,18 +81,31 @@ void save(const fs::path& path, const image& img) {
     std::fprintf(stderr, "wrote %s (%dx%d)\n", path.string().c_str(), img.width, img.height);
 }
 
-constexpr int label_height = 30;
 const glm::vec3 ink{0.05f, 0.05f, 0.05f}, paper{1.0f, 1.0f, 1.0f};
 
-/// A labelled grid of equally sized images.
-image grid(const std::vector<image>& cells, const std::vector<std::string>& labels, int columns) {
-    const int w = cells.front().width, h = cells.front().height, rows = (int(cells.size()) + columns - 1) / columns;
-    image out(columns * w, rows * (h + label_height), paper);
+/// The credit every image of a model must carry: the Sintel model's (its README in ../shared asks
+/// for the Blender Foundation and BenDansie wherever an image of it is shown); none for others.
+std::string credit_for(const figure_options& o) {
+    std::string names = fs::path(o.model).filename().string() + " " + fs::path(o.mesh).filename().string();
+    for (auto& c : names) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (names.find("sintel") == std::string::npos) return "";
+    return "Sintel hair and head: Blender Foundation (Sintel, CC-BY 3.0), Sintel Lite by BenDansie";
+}
+
+/// A labelled grid of equally sized images, each label above its image and inside its column (see
+/// grid_layout), and an optional credit line below.
+image grid(const std::vector<image>& cells, const std::vector<std::string>& labels, int columns, const std::string& credit = "") {
+    const int w = cells.front().width, h = cells.front().height;
+    const auto layout = grid_layout(labels, w, h, columns);
+    const label_layout credit_lines = layout_label(credit, columns * w);
+    const int credit_height = credit.empty() ? 0 : credit_lines.height + 2 * label_margin;
+    image out(columns * w, layout.height + credit_height, paper);
     for (std::size_t i = 0; i < cells.size(); ++i) {
-        const int x = int(i) % columns * w, y = int(i) / columns * (h + label_height);
-        draw_text(out, x + 6, y + 8, labels[i], ink);
-        blit(out, cells[i], x, y + label_height);
+        const auto& box = layout.labels[i];
+        draw_label(out, box.x, box.y, box.text, ink);
+        blit(out, cells[i], box.cell_x, box.cell_y);
     }
+    if (!credit.empty()) draw_label(out, label_margin, layout.height + label_margin, credit_lines, glm::vec3(0.3f));
     return out;
 }
 
@@ -111,12 +126,12 @@ std::vector<std::pair<int, int>> interesting_rays(const fragment_buffer& fragmen
 }
 
 /// The transmittance along each ray, the exact reference against each method, as SVG line plots.
-std::string ray_plots(const std::vector<panel>& panels, const fragment_buffer& fragments) {
+std::string ray_plots(const std::vector<panel>& panels, const fragment_buffer& fragments, const std::string& credit) {
     static const char* colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f"};
     const auto rays = interesting_rays(fragments);
     const int pw = 330, ph = 240, margin = 40, legend = 150;
     std::ostringstream svg;
-    svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << int(rays.size()) * pw + legend << "\" height=\"" << ph + 20
+    svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << int(rays.size()) * pw + legend << "\" height=\"" << ph + (credit.empty() ? 20 : 40)
         << "\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
     for (std::size_t r = 0; r < rays.size(); ++r) {
         const auto [x, y] = rays[r];
@@ -155,6 +170,7 @@ std::string ray_plots(const std::vector<panel>& panels, const fragment_buffer& f
             << "\" stroke-width=\"2\"/><text x=\"" << lx + 30 << "\" y=\"" << ly + 4 << "\">" << p.label << "</text>\n";
         ly += 18;
     }
+    if (!credit.empty()) svg << "<text x=\"6\" y=\"" << ph + 32 << "\" fill=\"#555\">" << credit << "</text>\n";
     svg << "</svg>\n";
     return svg.str();
 }
@@ -163,6 +179,7 @@ std::string ray_plots(const std::vector<panel>& panels, const fragment_buffer& f
 
 int run_figure(const figure_options& o) {
     std::fprintf(stderr, "figure of %s\n", o.model.c_str());
+    const std::string credit = credit_for(o);
     const scene sc = load_scene(o.model, o.mesh, {parse_light_spec(o.light)});
     const auto space = light_space::fit(sc.lights[0].spec, sc.bounds(), o.resolution);
     raster_options raster;
@@ -172,9 +189,9 @@ int run_figure(const figure_options& o) {
     const depth_shadow_map mesh_shadow = step("the mesh's depth shadow map", [&] { return depth_shadow_map(sc.mesh, space, default_mesh_bias, o.exec); });
 
     std::vector<panel> panels;
-    panels.push_back({pretty("none"), "none", nullptr, 0, {}});
-    for (auto part : detail::split(o.methods, ',')) panels.push_back({pretty(std::string(part)), std::string(part), nullptr, 0, {}});
-    panels.push_back({pretty("dsm"), "dsm", nullptr, 0, {}});
+    panels.push_back({pretty("none"), "none", nullptr, 0, {}, {}});
+    for (auto part : detail::split(o.methods, ',')) panels.push_back({pretty(std::string(part)), std::string(part), nullptr, 0, {}, {}});
+    panels.push_back({pretty("dsm"), "dsm", nullptr, 0, {}, {}});
     for (auto& p : panels) {
         if (p.spec == "none") continue;
         p.map = make_shadow_map(p.spec); // throws spec_error for a bad spec, before any work
@@ -192,14 +209,30 @@ int run_figure(const figure_options& o) {
     const auto cam = camera::framing(sc.bounds(), o.azimuth, o.elevation, o.size, o.size, 1.15f);
     render_options ro;
     ro.exec = o.exec;
+    ro.supersample = o.supersample;
+    const auto supersampled = detail::supersampled(cam, ro); // every panel at k x k its size, then averaged down
+    const camera& detail_cam = supersampled.first;
+    const render_options& detail_ro = supersampled.second;
+    const int k = o.supersample;
+    const int cw = o.size / 4, cx = o.size * 11 / 20 - cw / 2, cy = o.size * 7 / 20 - cw / 2; // the crop: upper middle, the hair
+    std::vector<float> detail_coverage(std::size_t(detail_cam.width) * std::size_t(detail_cam.height));
     for (auto& p : panels) {
         const std::vector<lit_light> lights{{sc.lights[0], p.map ? query_of(*p.map, o.exec) : transmittance_query{}, mesh_shadow}};
-        p.picture = step("rendering " + p.label, [&] { return render_cpu(sc, cam, lights, ro); });
+        const image full = step("rendering " + p.label, [&] { return render_cpu(sc, detail_cam, lights, detail_ro, detail_coverage); });
+        p.picture = downsample(full, k);
+        p.detail = crop(full, cx * k, cy * k, cw * k, cw * k);
     }
+    // The pixels the hair covers (the same in every panel), for the image error.
+    std::vector<float> coverage(std::size_t(o.size) * std::size_t(o.size), 0.0f);
+    for (int y = 0; y < detail_cam.height; ++y)
+        for (int x = 0; x < detail_cam.width; ++x)
+            coverage[std::size_t(y / k) * std::size_t(o.size) + std::size_t(x / k)] +=
+                detail_coverage[std::size_t(y) * std::size_t(detail_cam.width) + std::size_t(x)] / float(k * k);
+    const image& exact_picture = panels.back().picture;
+    const image_difference unshadowed = image_error(panels.front().picture, exact_picture, coverage);
 
     fs::create_directories(o.out);
     // 1. The panels, labelled with build times, the crop region outlined.
-    const int cw = o.size / 4, cx = o.size * 11 / 20 - cw / 2, cy = o.size * 7 / 20 - cw / 2; // upper middle: the hair
     std::vector<image> cells;
     std::vector<std::string> labels;
     char label[128];
@@ -224,18 +257,20 @@ int run_figure(const figure_options& o) {
         cells.push_back(info);
         labels.push_back("");
     }
-    save(fs::path(o.out) / "figure.png", grid(cells, labels, 4));
-    // 2. The crops, enlarged three times.
+    save(fs::path(o.out) / "figure.png", grid(cells, labels, 4, credit));
+    // 2. The crops, enlarged three times: from the supersampled render, so that enlarging shows detail
+    // rather than pixels (nearest neighbours only where it has fewer than three times the pixels).
     std::vector<image> crops;
     for (const auto& p : panels) {
-        const image c = crop(p.picture, cx, cy, cw, cw);
         image big(3 * cw, 3 * cw, paper);
-        blit(big, c, 0, 0, 3);
+        for (int y = 0; y < big.height; ++y)
+            for (int x = 0; x < big.width; ++x)
+                big.at(x, y) = p.detail.at(std::min(x * k / 3, p.detail.width - 1), std::min(y * k / 3, p.detail.height - 1));
         crops.push_back(big);
     }
     std::vector<std::string> crop_labels;
     for (const auto& p : panels) crop_labels.push_back(p.label);
-    save(fs::path(o.out) / "crops.png", grid(crops, crop_labels, 4));
+    save(fs::path(o.out) / "crops.png", grid(crops, crop_labels, 4, credit));
     // 3. Heat maps of |T - T_exact| at the hair points, the mesh in grey.
     const auto& exact = *panels.back().map;
     std::vector<float> reference(sc.hair.point_count()), t(sc.hair.point_count());
@@ -255,6 +290,10 @@ int run_figure(const figure_options& o) {
         draw_hair_lines(cell, sc.hair, colours, cam, surface.inv_w, ro);
         compare_row row{p.spec, p.map->layer_count(), p.map->memory_bytes(), p.build_ms};
         set_errors(row, t, reference);
+        row.curve = transmittance_curve_error(*p.map, exact, fragments, 64, o.exec);
+        const auto seen = image_error(p.picture, exact_picture, coverage);
+        row.image_mean = seen.mean;
+        row.image_p99 = seen.p99;
         rows.push_back(row);
         std::snprintf(label, sizeof label, "%s  mean %.3f", p.label.c_str(), row.mean);
         heat_cells.push_back(cell);
@@ -268,9 +307,9 @@ int run_figure(const figure_options& o) {
     draw_text(bar, o.size / 2 + 28, o.size - 50, "0", ink);
     heat_cells.push_back(bar);
     heat_labels.push_back("|T - T_exact|");
-    save(fs::path(o.out) / "heatmaps.png", grid(heat_cells, heat_labels, 3));
+    save(fs::path(o.out) / "heatmaps.png", grid(heat_cells, heat_labels, 3, credit));
     // 4. Transmittance along light rays.
-    write_file(fs::path(o.out) / "rays.svg", ray_plots(panels, fragments));
+    write_file(fs::path(o.out) / "rays.svg", ray_plots(panels, fragments, credit));
     std::fprintf(stderr, "wrote %s\n", (fs::path(o.out) / "rays.svg").string().c_str());
     // 5. The table.
     {
@@ -280,8 +319,16 @@ int run_figure(const figure_options& o) {
     std::ostringstream preamble;
     preamble << "Model `" << o.model << "`" << (o.mesh.empty() ? "" : ", mesh `" + o.mesh + "`") << ", light `" << o.light << "`, " << o.resolution
              << "x" << o.resolution << ", " << sc.hair.point_count() << " points, " << fragments.size() << " fragments, " << o.exec.resolved()
-             << " threads. Errors are |T - T_exact| at the hair's points; times are CPU rebuilds straight from the model (rasterise and "
+             << " threads. Errors are |T - T_exact| at the hair's points, the curve error the mean over texels of the mean |T - T_exact| "
+                "from each texel's first fragment to its last; times are CPU rebuilds straight from the model (rasterise and "
                 "build, tile by tile for the methods), the second of two builds.";
+    char shadows[256];
+    std::snprintf(shadows, sizeof shadows,
+                  " The image error is the mean and 99th percentile over the %zu hair pixels of |sRGB difference| from the exact panel "
+                  "(%dx%d supersampled); the panel with no hair shadows differs from the exact one by %.4f (mean), %.4f (p99).",
+                  unshadowed.pixels, k, k, unshadowed.mean, unshadowed.p99);
+    preamble << shadows;
+    if (!credit.empty()) preamble << " " << credit << ".";
     const auto [md, csv] = format_table(rows, preamble.str());
     write_table(o.out, md, csv);
     std::fputs(md.c_str(), stdout);
@@ -290,6 +337,7 @@ int run_figure(const figure_options& o) {
 
 int run_transparency_figure(const figure_options& o, float hair_opacity) {
     std::fprintf(stderr, "transparency figure of %s\n", o.model.c_str());
+    const std::string credit = credit_for(o);
     const scene sc = load_scene(o.model, o.mesh, {parse_light_spec(o.light)});
     const auto space = light_space::fit(sc.lights[0].spec, sc.bounds(), o.resolution);
     occupancy_maps<128, 4> shadows;
@@ -321,7 +369,8 @@ int run_transparency_figure(const figure_options& o, float hair_opacity) {
     std::vector<std::string> labels;
     std::ostringstream md;
     md << "Model `" << o.model << "`, " << o.size << "x" << o.size << ", hair opacity " << hair_opacity << ", shadows by occupancy maps 128/4 at "
-       << o.resolution << "x" << o.resolution << ", " << o.exec.resolved() << " threads; times are whole CPU renders.\n\n"
+       << o.resolution << "x" << o.resolution << ", " << o.exec.resolved() << " threads; times are whole CPU renders."
+       << (credit.empty() ? "" : " " + credit + ".") << "\n\n"
        << "| blending | render (ms) | mean abs. difference from exact (sRGB) |\n|---|---|---|\n";
     char label[160];
     for (const auto& p : panels) {
@@ -333,7 +382,7 @@ int run_transparency_figure(const figure_options& o, float hair_opacity) {
         md << label;
     }
     fs::create_directories(o.out);
-    save(fs::path(o.out) / "transparency.png", grid(cells, labels, 2));
+    save(fs::path(o.out) / "transparency.png", grid(cells, labels, 2, credit));
     write_file(fs::path(o.out) / "transparency.md", md.str());
     std::fputs(md.str().c_str(), stdout);
     return 0;

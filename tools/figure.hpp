@@ -9,10 +9,11 @@ namespace cli {
 struct figure_options {
     std::string model = "procedural:curly";
     std::string mesh; ///< an OBJ whose faces are the opaque mesh; procedural models get their sphere
-    std::string light = "dir:-0.7,-0.9,-0.45";
+    std::string light = "dir:0.6,-1,0.6"; ///< from above and behind the left: the camera sees the self-shadowed side
     std::string methods = "osm:16,osm:256,dc:4,dom:3,occ:128:4,adsm";
     int resolution = 512;    ///< shadow maps
     int size = 400;          ///< each panel, in pixels
+    int supersample = 3;     ///< render each panel at this many times its size on each side (1 to 8), then average
     float azimuth = 25.0f, elevation = 10.0f;
     std::string out = "out/figure";
     hairshadow::execution exec;

@@ -39,11 +39,13 @@
 
 #include <hairshadow/reference/compressed_deep_shadow_map.hpp>
 #include <hairshadow/reference/deep_shadow_map.hpp>
+#include <hairshadow/reference/transmittance_curve_error.hpp>
 
 #include <hairshadow/shading/camera.hpp>
 #include <hairshadow/shading/cpu_renderer.hpp>
 #include <hairshadow/shading/depth_shadow_map.hpp>
 #include <hairshadow/shading/image.hpp>
+#include <hairshadow/shading/image_error.hpp>
 #include <hairshadow/shading/kajiya_kay.hpp>
 #include <hairshadow/shading/scene.hpp>
 #include <hairshadow/shading/transparency.hpp>

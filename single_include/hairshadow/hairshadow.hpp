@@ -3961,7 +3961,7 @@ private:
         try {
             build();
         } catch (...) {
-            light_ = light_space();
+            set_light(light_space());
             texels_.assign(1, texel_maps{});
             extent_ = {};
             fragments_ = 0;
@@ -4500,8 +4500,11 @@ struct fibre_density_parameters {
 };
 
 namespace detail {
-/// A point this little behind the first fragment (world units) is still on it (TressFX's 1e-5).
+/// A point this little behind the first fragment is still on it: TressFX's 1e-5 world units, and at
+/// least four float steps of a linear depth near 1, so that rounding never puts a point on the first
+/// fibre behind it (CPU and GL compute depths in their own order).
 inline constexpr float on_first_fibre = 1e-5f;
+inline constexpr float on_first_fibre_depth = 2.5e-7f;
 
 template <class P>
 concept first_fragment_state = requires(const typename P::texel_state& s) { s.z0; } || requires(const typename P::texel_state& s) { s.nearest; };
@@ -4564,7 +4567,7 @@ public:
                         float depth) const noexcept {
         const float z0 = placement.boundary(state, 0); // the first fragment
         const float behind = (depth - z0) * depth_scale_;  // world units behind it
-        if (!(behind > detail::on_first_fibre)) return 0.0f;
+        if (!(behind > detail::on_first_fibre) || !(depth - z0 > detail::on_first_fibre_depth)) return 0.0f;
         if constexpr (Source == fibre_density_source::fixed) {
             if (!in.any) return 0.0f;
             const float fibres = std::clamp(behind / parameters_.fibre_step(), 1.0f, parameters_.max_fibres);
@@ -4576,7 +4579,7 @@ public:
             // for evenly spaced fragments; behind the last all n are in front.
             const float count = float(in.fragments);
             const float span = state.furthest - state.nearest;
-            const float fibres = span > 0.0f ? std::clamp((depth - z0) / span * (count - 1.0f), 1.0f, count) : count;
+            const float fibres = span > 0.0f && depth <= state.furthest ? std::clamp((depth - z0) / span * (count - 1.0f), 1.0f, count) : count;
             return fibres * (Accumulation::decode(in.optical_depth) / count);
         }
     }
@@ -4903,8 +4906,8 @@ namespace hairshadow {
 inline constexpr std::string_view method_grammar =
     "osm:N[:uniform|gamma] (N = 1, 2, 4, ..., 512) | dom:K (K = 1..8) | dc:K (K = 1..8) | occ:S:B (S = 32, 64, 128, 256; "
     "B = 1, 2, 4, 8) | docc:S:B (hybrid: occupancy slices from each texel's first fragment) | rosm:N (hybrid: opacity maps in "
-    "each texel's depth range, N = 4, 8, ..., 256) | adsm[:SPACING:RADIUS:ALPHA] (TressFX's approximate deep shadow maps: "
-    "fibre spacing in radii, fibre radius in world units, fibre alpha; default 0.4:0.0021:0.35) | adsm:auto (each texel's "
+    "each texel's depth range, N = 4, 8, ..., 256) | adsm[:SPACING:RADIUS:ALPHA[:MAX]] (TressFX's approximate deep shadow "
+    "maps: fibre spacing in radii, fibre radius in world units, fibre alpha, fibres counted at most; default 0.4:0.0021:0.35:50) | adsm:auto (each texel's "
     "measured fibre density) | dsm (exact) | dsm:EPS (Lokovic-Veach compression, 0 < EPS < 1); "
     "append :8bit to osm, dom, dc or occ for emulated 8-bit accumulation";
 
@@ -4985,12 +4988,12 @@ inline method_spec parse_method_spec(std::string_view text) {
         spec.family = method_family::rosm;
         spec.layers = number(parts[1]);
         if (!detail::one_of(spec.layers, detail::rosm_sizes)) throw bad("rosm needs N = 4, 8, ..., 256");
-    } else if (name == "adsm" && (parts.size() == 1 || parts.size() == 2 || parts.size() == 4)) {
+    } else if (name == "adsm" && (parts.size() == 1 || parts.size() == 2 || parts.size() == 4 || parts.size() == 5)) {
         spec.family = method_family::adsm;
         if (parts.size() == 2) {
-            if (parts[1] != "auto") throw bad("adsm takes auto or SPACING:RADIUS:ALPHA");
+            if (parts[1] != "auto") throw bad("adsm takes auto or SPACING:RADIUS:ALPHA[:MAX]");
             spec.measured_density = true;
-        } else if (parts.size() == 4) {
+        } else if (parts.size() >= 4) {
             auto real = [&](std::string_view s, const char* what) {
                 try {
                     return detail::parse_number<float>(s, what);
@@ -5001,6 +5004,7 @@ inline method_spec parse_method_spec(std::string_view text) {
             spec.density.spacing = real(parts[1], "spacing");
             spec.density.radius = real(parts[2], "radius");
             spec.density.alpha = real(parts[3], "alpha");
+            if (parts.size() == 5) spec.density.max_fibres = real(parts[4], "count");
             try {
                 spec.density.check();
             } catch (const argument_error& e) {
@@ -5229,6 +5233,59 @@ private:
 
 } // namespace hairshadow
 // ---- end hairshadow/reference/compressed_deep_shadow_map.hpp
+// ---- begin hairshadow/reference/transmittance_curve_error.hpp
+/// @file
+/// How far a method's transmittance curves lie from the exact ones: for every texel whose fragments
+/// span a depth range, the mean of |T_method(z) - T_exact(z)| over that range, from the first fragment
+/// to the last (the integral divided by the span), averaged over those texels. Unlike the error at
+/// hair points it does not rest on a convention for a point's own fragment: it weighs the whole curve
+/// inside the hair, where the shadow is.
+
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace hairshadow {
+
+/// The mean transmittance-curve error of `method` against `exact` over the texels of `fragments`
+/// (the fragments both were built from, which give each texel's span) with a span, by the midpoint
+/// rule with `samples` depths a texel; 0 when no texel has a span. Both maps answer
+/// transmittance(x, y, depth). Deterministic for any thread count.
+template <class Method, class Exact>
+double transmittance_curve_error(const Method& method, const Exact& exact, const fragment_buffer& fragments, int samples = 64,
+                                 const execution& exec = {}) {
+    if (samples < 1 || samples > 1 << 16) throw argument_error("transmittance curve error: samples must be in [1, 65536]");
+    const int res = fragments.resolution();
+    struct row_sum {
+        double error = 0.0;
+        std::size_t texels = 0;
+    };
+    std::vector<row_sum> rows(static_cast<std::size_t>(res));
+    parallel_for(std::size_t(res), exec, [&](std::size_t y) {
+        for (int x = 0; x < res; ++x) {
+            const auto in = fragments.texel(x, int(y));
+            if (in.empty()) continue;
+            float lo = in[0].depth, hi = lo;
+            for (const auto& f : in) lo = std::min(lo, f.depth), hi = std::max(hi, f.depth);
+            if (!(hi > lo)) continue;
+            double sum = 0.0;
+            for (int i = 0; i < samples; ++i) {
+                const float z = lo + (hi - lo) * (float(i) + 0.5f) / float(samples);
+                sum += std::abs(double(method.transmittance(x, int(y), z)) - double(exact.transmittance(x, int(y), z)));
+            }
+            rows[y].error += sum / double(samples);
+            ++rows[y].texels;
+        }
+    });
+    double error = 0.0;
+    std::size_t texels = 0;
+    for (const auto& r : rows) error += r.error, texels += r.texels; // in row order: the same sum for any thread count
+    return texels ? error / double(texels) : 0.0;
+}
+
+} // namespace hairshadow
+// ---- end hairshadow/reference/transmittance_curve_error.hpp
 
 // ---- begin hairshadow/shading/camera.hpp
 /// @file
@@ -5418,6 +5475,7 @@ private:
 /// @file
 /// A linear-RGB float image, top row first, and its 8-bit sRGB encoding for PNG files.
 
+
 #include <glm/vec3.hpp>
 
 #include <algorithm>
@@ -5449,6 +5507,17 @@ struct image {
         return std::uint8_t(std::lround(255.0f * s));
     }
 };
+
+/// `hi` averaged over `factor` x `factor` blocks (a box filter): a supersampled render brought down to
+/// its size. The sides of `hi` must be multiples of `factor`.
+inline image downsample(const image& hi, int factor) {
+    if (factor < 1 || hi.width % factor != 0 || hi.height % factor != 0) throw argument_error("downsample: the sides must be multiples of the factor");
+    image out(hi.width / factor, hi.height / factor, glm::vec3(0.0f));
+    const float weight = 1.0f / float(factor * factor);
+    for (int y = 0; y < hi.height; ++y)
+        for (int x = 0; x < hi.width; ++x) out.at(x / factor, y / factor) += weight * hi.at(x, y);
+    return out;
+}
 
 /// Mean absolute difference of two images' sRGB values, in [0, 1]; the sizes must agree.
 inline double mean_absolute_difference(const image& a, const image& b) {
@@ -5577,9 +5646,11 @@ inline triangle_mesh make_sphere(const glm::vec3& centre, float radius, int ring
 } // namespace hairshadow
 // ---- end hairshadow/shading/scene.hpp
 
+#include <algorithm>
 #include <functional>
 #include <limits>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace hairshadow {
@@ -5604,7 +5675,15 @@ transmittance_query query_of(const Map& map, const execution& exec = {}) {
 struct render_options {
     float line_width = 1.0f; ///< hair lines, in pixels
     bool draw_hair = true;   ///< false: the hair is not drawn but still casts its shadows
+    /// Render at this many times the size on each side and average the blocks (1 to 8): smooth edges
+    /// of hair and mesh; lines keep their width in output pixels.
+    int supersample = 1;
     execution exec;
+
+    /// Throws argument_error for a supersampling factor outside 1..8.
+    void check() const {
+        if (supersample < 1 || supersample > 8) throw argument_error("render: supersampling must be 1 to 8");
+    }
 };
 
 /// A light's visibility at `points`: the hair's transmittance times the mesh's depth test (and a
@@ -5744,8 +5823,10 @@ inline std::vector<glm::vec3> shade_hair_points(const scene& sc, const camera& c
 /// interpolated) over `base`, hidden by the mesh's `surface` depths (empty: no mesh). Each pixel
 /// shows its nearest well-covered strand, blended by the largest coverage of any strand in front
 /// of the mesh: order independent, so identical for any thread count.
+/// With `coverage` (one value a pixel), also writes how much of each pixel the hair covers (its
+/// largest line coverage; 0 where no hair is drawn).
 inline void draw_hair_lines(image& base, const hair_model& hair, std::span<const glm::vec3> point_colours, const camera& cam,
-                            const std::vector<float>& surface_inv_w, const render_options& options = {}) {
+                            const std::vector<float>& surface_inv_w, const render_options& options = {}, std::span<float> coverage = {}) {
     const int w = cam.width, h = cam.height;
     const glm::mat4 vp = cam.view_projection();
     std::vector<detail::screen_point> screen(hair.point_count());
@@ -5759,14 +5840,15 @@ inline void draw_hair_lines(image& base, const hair_model& hair, std::span<const
         std::vector<glm::vec3> full_colour(n), best_colour(n);
         std::vector<char> has_full(n, 0);
         detail::for_each_line_pixel(hair, point_colours, cam, surface_inv_w, options.line_width, row0, row1, screen,
-                                    [&](int x, int y, float inv_w, float coverage, const glm::vec3& c) {
+                                    [&](int x, int y, float inv_w, float covered, const glm::vec3& c) {
                                         const std::size_t i = std::size_t(y - row0) * std::size_t(w) + std::size_t(x);
-                                        if (coverage > best_coverage[i]) best_coverage[i] = coverage, best_colour[i] = c;
-                                        if (coverage >= 0.5f && inv_w > full_depth[i]) full_depth[i] = inv_w, full_colour[i] = c, has_full[i] = 1;
+                                        if (covered > best_coverage[i]) best_coverage[i] = covered, best_colour[i] = c;
+                                        if (covered >= 0.5f && inv_w > full_depth[i]) full_depth[i] = inv_w, full_colour[i] = c, has_full[i] = 1;
                                     });
         for (int y = row0; y < row1; ++y)
             for (int x = 0; x < w; ++x) {
                 const std::size_t i = std::size_t(y - row0) * std::size_t(w) + std::size_t(x);
+                if (!coverage.empty()) coverage[std::size_t(y) * std::size_t(w) + std::size_t(x)] = best_coverage[i];
                 if (best_coverage[i] > 0.0f) {
                     auto& px = base.at(x, y);
                     px += best_coverage[i] * ((has_full[i] ? full_colour[i] : best_colour[i]) - px);
@@ -5775,9 +5857,43 @@ inline void draw_hair_lines(image& base, const hair_model& hair, std::span<const
     });
 }
 
-/// Renders the scene from `cam` on the CPU.
-inline image render_cpu(const scene& sc, const camera& cam, std::span<const lit_light> lights, const render_options& options = {}) {
+namespace detail {
+/// `cam` with `factor` times the pixels on each side, and options whose lines are as wide in the
+/// original pixels: what a supersampled render draws.
+inline std::pair<camera, render_options> supersampled(const camera& cam, const render_options& options) {
+    options.check();
+    camera hi = cam;
+    hi.width = cam.width * options.supersample;
+    hi.height = cam.height * options.supersample;
+    camera::check_image_size(hi.width, hi.height);
+    render_options o = options;
+    o.line_width = options.line_width * float(options.supersample);
+    o.supersample = 1;
+    return {hi, o};
+}
+} // namespace detail
+
+/// Renders the scene from `cam` on the CPU; with `coverage` (one value a pixel of the output), also
+/// writes how much of each pixel the hair covers (hair_coverage).
+inline image render_cpu(const scene& sc, const camera& cam, std::span<const lit_light> lights, const render_options& options = {},
+                        std::span<float> coverage = {}) {
     camera::check_image_size(cam.width, cam.height);
+    if (!coverage.empty() && coverage.size() != std::size_t(cam.width) * std::size_t(cam.height))
+        throw argument_error("render: the coverage needs one value a pixel");
+    if (options.supersample != 1) {
+        const auto [hi, o] = detail::supersampled(cam, options);
+        std::vector<float> hi_coverage(coverage.empty() ? 0 : std::size_t(hi.width) * std::size_t(hi.height));
+        const image out = downsample(render_cpu(sc, hi, lights, o, hi_coverage), options.supersample);
+        if (!coverage.empty()) { // averaged like the pixels
+            const int k = options.supersample;
+            std::fill(coverage.begin(), coverage.end(), 0.0f);
+            for (int y = 0; y < hi.height; ++y)
+                for (int x = 0; x < hi.width; ++x)
+                    coverage[std::size_t(y / k) * std::size_t(cam.width) + std::size_t(x / k)] +=
+                        hi_coverage[std::size_t(y) * std::size_t(hi.width) + std::size_t(x)] / float(k * k);
+        }
+        return out;
+    }
     image out(cam.width, cam.height, sc.background);
     // The mesh: Lambert shading, each light scaled by the hair's transmittance and the mesh's own shadow.
     const auto surface = detail::rasterise_mesh(sc.mesh, cam, options.exec);
@@ -5797,14 +5913,63 @@ inline image render_cpu(const scene& sc, const camera& cam, std::span<const lit_
     }
     for (std::size_t k = 0; k < covered.size(); ++k) out.pixels[covered[k]] = radiance[k];
     // The hair over it.
+    if (!coverage.empty()) std::fill(coverage.begin(), coverage.end(), 0.0f);
     if (!options.draw_hair) return out;
     const auto colours = shade_hair_points(sc, cam, lights, options.exec);
-    draw_hair_lines(out, sc.hair, colours, cam, surface.inv_w, options);
+    draw_hair_lines(out, sc.hair, colours, cam, surface.inv_w, options, coverage);
     return out;
 }
 
 } // namespace hairshadow
 // ---- end hairshadow/shading/cpu_renderer.hpp
+// ---- begin hairshadow/shading/image_error.hpp
+/// @file
+/// The difference a person sees between two renders of one scene, over the hair: per pixel, the mean
+/// over the three channels of |sRGB a - sRGB b| (the 8-bit values a PNG holds, as fractions of 255),
+/// at the pixels the hair covers; its mean and 99th percentile. Unlike the error at hair points it
+/// does not rest on a convention for a point's own fragment, and it weighs what the camera sees.
+
+
+#include <algorithm>
+#include <cstdlib>
+#include <span>
+#include <vector>
+
+namespace hairshadow {
+
+struct image_difference {
+    double mean = 0.0;       ///< mean over the hair's pixels, in [0, 1]
+    double p99 = 0.0;        ///< 99th percentile over them
+    std::size_t pixels = 0;  ///< pixels the hair covers
+};
+
+/// The difference of `a` and `b` at the pixels where `coverage` (hair_coverage, one value a pixel) is
+/// above zero; all zero where the hair covers none.
+inline image_difference image_error(const image& a, const image& b, std::span<const float> coverage) {
+    if (a.width != b.width || a.height != b.height || coverage.size() != a.pixels.size())
+        throw argument_error("image error: the images and the coverage must be the same size");
+    const auto x = a.to_srgb8(), y = b.to_srgb8();
+    std::vector<double> differences;
+    for (std::size_t i = 0; i < coverage.size(); ++i) {
+        if (!(coverage[i] > 0.0f)) continue;
+        int sum = 0;
+        for (std::size_t c = 0; c < 3; ++c) sum += std::abs(int(x[3 * i + c]) - int(y[3 * i + c]));
+        differences.push_back(double(sum) / (3.0 * 255.0));
+    }
+    image_difference d;
+    d.pixels = differences.size();
+    if (differences.empty()) return d;
+    double total = 0.0;
+    for (const double v : differences) total += v;
+    d.mean = total / double(differences.size());
+    const std::size_t rank = std::min(differences.size() - 1, std::size_t(0.99 * double(differences.size())));
+    std::nth_element(differences.begin(), differences.begin() + std::ptrdiff_t(rank), differences.end());
+    d.p99 = differences[rank];
+    return d;
+}
+
+} // namespace hairshadow
+// ---- end hairshadow/shading/image_error.hpp
 // ---- begin hairshadow/shading/transparency.hpp
 /// @file
 /// Transparent hair (Sintorn & Assarsson 2009, section 3.4): every hair fragment of the camera's view

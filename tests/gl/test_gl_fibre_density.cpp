@@ -91,6 +91,12 @@ TEST_CASE("the GL look-up gives TressFX's transmittance behind sheets of strands
     CHECK(t[2] == Approx(0.49f).epsilon(1e-4));
     CHECK(t[3] == Approx(std::pow(0.7f, 10.0f)).epsilon(1e-4));
     CHECK(t[4] == 1.0f); // a texel with no hair
+    // New parameters reach the look-up without a rebuild: at most 5 fibres, alpha 0.5.
+    on_gl.set_parameters({.spacing = 0.5f, .radius = 0.2f, .alpha = 0.5f, .max_fibres = 5});
+    const auto capped = test::gl_lookup(on_gl.lookup_source(), [&](GLuint p) { on_gl.bind_lookup(p); }, points);
+    CHECK(capped[2] == Approx(0.25f).epsilon(1e-4));
+    CHECK(capped[3] == Approx(std::pow(0.5f, 5.0f)).epsilon(1e-4));
+    CHECK_THROWS_AS(on_gl.set_parameters({.alpha = 1.0f}), argument_error);
     CHECK(gl::maps<approximate_deep_shadow_maps>::texture_units == 1);
     CHECK(gl::maps<measured_density_shadow_maps>::texture_units == 2);
 }

@@ -248,6 +248,7 @@ TEST_CASE("GL builds leave a hostile engine's state as they found it and build t
     SECTION("density clustering") { check_contract<density_clustering<4>>(mesh, s.light); }
     SECTION("occupancy maps") { check_contract<occupancy_maps<128, 4>>(mesh, s.light); }
     SECTION("range opacity maps") { check_contract<range_opacity_maps<16>>(mesh, s.light); }
+    SECTION("approximate deep shadow maps") { check_contract<approximate_deep_shadow_maps>(mesh, s.light); }
     SECTION("measured fibre density") { check_contract<measured_density_shadow_maps>(mesh, s.light); }
 }
 

@@ -19,7 +19,8 @@ class fibre_density_maps_gl : public detail::maps_base<typename Method::placemen
     using R = typename Method::reconstruction_type;
     using base = detail::maps_base<P>;
     static constexpr bool measured = R::template stored_maps<P> > 0;
-    static_assert(std::is_same_v<typename Method::accumulation_type, float_accumulation>, "fibre densities on GL sum in float");
+    static_assert(!measured || std::is_same_v<typename Method::accumulation_type, float_accumulation>,
+                  "the measured fibre density sums in float on GL");
 
 public:
     /// Texture units the look-up reads (bind_lookup binds them from its first_unit): the range map, and
@@ -123,6 +124,14 @@ public:
         binder.set("hs_max_fibres", fibres.max_fibres);
         if constexpr (measured) binder.texture("hs_density_texture", GL_TEXTURE_2D, sums_.get());
     }
+
+    /// New fibre parameters for the look-up, without a rebuild: they are only uniforms (bind again).
+    void set_parameters(const fibre_density_parameters& parameters) {
+        R changed(parameters); // checks them
+        changed.prepare(this->light_);
+        reconstruction_ = changed;
+    }
+    const fibre_density_parameters& parameters() const noexcept { return reconstruction_.parameters(); }
 
     /// Bytes of the textures the look-up reads: the depth range (RGBA32F, one extra row) and the
     /// measured density's sums (RG32F), at the last build's resolution.

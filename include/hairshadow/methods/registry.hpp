@@ -28,7 +28,8 @@ public:
     virtual float optical_depth(int x, int y, float depth) const = 0;
     virtual const light_space& light() const = 0;
     virtual std::size_t memory_bytes() const = 0;
-    /// Layers, clusters or slices the method stores per texel; 0 for the exact map.
+    /// Layers, clusters or slices the method stores per texel; 0 for the exact map and for a fixed
+    /// fibre density (a depth map only).
     virtual int layer_count() const = 0;
     /// Bytes per texel and global bytes, known before building; nullopt for the exact map, whose size
     /// depends on the fragments.
@@ -60,7 +61,7 @@ public:
     float optical_depth(int x, int y, float depth) const override { return method_.optical_depth(x, y, depth); }
     const light_space& light() const override { return method_.light(); }
     std::size_t memory_bytes() const override { return method_.memory_bytes(); }
-    int layer_count() const override { return Method::layer_count; }
+    int layer_count() const override { return Method::stored_maps == 0 ? 0 : Method::layer_count; }
     std::optional<std::size_t> memory_bytes_at(int resolution) const override {
         return std::size_t(resolution) * std::size_t(resolution) * Method::texel_bytes() + Method::placement_type::global_bytes();
     }

@@ -164,7 +164,7 @@ private:
         try {
             build();
         } catch (...) {
-            light_ = light_space();
+            set_light(light_space());
             texels_.assign(1, texel_maps{});
             extent_ = {};
             fragments_ = 0;

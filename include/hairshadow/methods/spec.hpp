@@ -18,8 +18,8 @@ namespace hairshadow {
 inline constexpr std::string_view method_grammar =
     "osm:N[:uniform|gamma] (N = 1, 2, 4, ..., 512) | dom:K (K = 1..8) | dc:K (K = 1..8) | occ:S:B (S = 32, 64, 128, 256; "
     "B = 1, 2, 4, 8) | docc:S:B (hybrid: occupancy slices from each texel's first fragment) | rosm:N (hybrid: opacity maps in "
-    "each texel's depth range, N = 4, 8, ..., 256) | adsm[:SPACING:RADIUS:ALPHA] (TressFX's approximate deep shadow maps: "
-    "fibre spacing in radii, fibre radius in world units, fibre alpha; default 0.4:0.0021:0.35) | adsm:auto (each texel's "
+    "each texel's depth range, N = 4, 8, ..., 256) | adsm[:SPACING:RADIUS:ALPHA[:MAX]] (TressFX's approximate deep shadow "
+    "maps: fibre spacing in radii, fibre radius in world units, fibre alpha, fibres counted at most; default 0.4:0.0021:0.35:50) | adsm:auto (each texel's "
     "measured fibre density) | dsm (exact) | dsm:EPS (Lokovic-Veach compression, 0 < EPS < 1); "
     "append :8bit to osm, dom, dc or occ for emulated 8-bit accumulation";
 
@@ -100,12 +100,12 @@ inline method_spec parse_method_spec(std::string_view text) {
         spec.family = method_family::rosm;
         spec.layers = number(parts[1]);
         if (!detail::one_of(spec.layers, detail::rosm_sizes)) throw bad("rosm needs N = 4, 8, ..., 256");
-    } else if (name == "adsm" && (parts.size() == 1 || parts.size() == 2 || parts.size() == 4)) {
+    } else if (name == "adsm" && (parts.size() == 1 || parts.size() == 2 || parts.size() == 4 || parts.size() == 5)) {
         spec.family = method_family::adsm;
         if (parts.size() == 2) {
-            if (parts[1] != "auto") throw bad("adsm takes auto or SPACING:RADIUS:ALPHA");
+            if (parts[1] != "auto") throw bad("adsm takes auto or SPACING:RADIUS:ALPHA[:MAX]");
             spec.measured_density = true;
-        } else if (parts.size() == 4) {
+        } else if (parts.size() >= 4) {
             auto real = [&](std::string_view s, const char* what) {
                 try {
                     return detail::parse_number<float>(s, what);
@@ -116,6 +116,7 @@ inline method_spec parse_method_spec(std::string_view text) {
             spec.density.spacing = real(parts[1], "spacing");
             spec.density.radius = real(parts[2], "radius");
             spec.density.alpha = real(parts[3], "alpha");
+            if (parts.size() == 5) spec.density.max_fibres = real(parts[4], "count");
             try {
                 spec.density.check();
             } catch (const argument_error& e) {

@@ -51,8 +51,11 @@ struct fibre_density_parameters {
 };
 
 namespace detail {
-/// A point this little behind the first fragment (world units) is still on it (TressFX's 1e-5).
+/// A point this little behind the first fragment is still on it: TressFX's 1e-5 world units, and at
+/// least four float steps of a linear depth near 1, so that rounding never puts a point on the first
+/// fibre behind it (CPU and GL compute depths in their own order).
 inline constexpr float on_first_fibre = 1e-5f;
+inline constexpr float on_first_fibre_depth = 2.5e-7f;
 
 template <class P>
 concept first_fragment_state = requires(const typename P::texel_state& s) { s.z0; } || requires(const typename P::texel_state& s) { s.nearest; };
@@ -115,7 +118,7 @@ public:
                         float depth) const noexcept {
         const float z0 = placement.boundary(state, 0); // the first fragment
         const float behind = (depth - z0) * depth_scale_;  // world units behind it
-        if (!(behind > detail::on_first_fibre)) return 0.0f;
+        if (!(behind > detail::on_first_fibre) || !(depth - z0 > detail::on_first_fibre_depth)) return 0.0f;
         if constexpr (Source == fibre_density_source::fixed) {
             if (!in.any) return 0.0f;
             const float fibres = std::clamp(behind / parameters_.fibre_step(), 1.0f, parameters_.max_fibres);
@@ -127,7 +130,7 @@ public:
             // for evenly spaced fragments; behind the last all n are in front.
             const float count = float(in.fragments);
             const float span = state.furthest - state.nearest;
-            const float fibres = span > 0.0f ? std::clamp((depth - z0) / span * (count - 1.0f), 1.0f, count) : count;
+            const float fibres = span > 0.0f && depth <= state.furthest ? std::clamp((depth - z0) / span * (count - 1.0f), 1.0f, count) : count;
             return fibres * (Accumulation::decode(in.optical_depth) / count);
         }
     }

@@ -11,9 +11,11 @@
 #include <hairshadow/shading/image.hpp>
 #include <hairshadow/shading/scene.hpp>
 
+#include <algorithm>
 #include <functional>
 #include <limits>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace hairshadow {
@@ -38,7 +40,15 @@ transmittance_query query_of(const Map& map, const execution& exec = {}) {
 struct render_options {
     float line_width = 1.0f; ///< hair lines, in pixels
     bool draw_hair = true;   ///< false: the hair is not drawn but still casts its shadows
+    /// Render at this many times the size on each side and average the blocks (1 to 8): smooth edges
+    /// of hair and mesh; lines keep their width in output pixels.
+    int supersample = 1;
     execution exec;
+
+    /// Throws argument_error for a supersampling factor outside 1..8.
+    void check() const {
+        if (supersample < 1 || supersample > 8) throw argument_error("render: supersampling must be 1 to 8");
+    }
 };
 
 /// A light's visibility at `points`: the hair's transmittance times the mesh's depth test (and a
@@ -178,8 +188,10 @@ inline std::vector<glm::vec3> shade_hair_points(const scene& sc, const camera& c
 /// interpolated) over `base`, hidden by the mesh's `surface` depths (empty: no mesh). Each pixel
 /// shows its nearest well-covered strand, blended by the largest coverage of any strand in front
 /// of the mesh: order independent, so identical for any thread count.
+/// With `coverage` (one value a pixel), also writes how much of each pixel the hair covers (its
+/// largest line coverage; 0 where no hair is drawn).
 inline void draw_hair_lines(image& base, const hair_model& hair, std::span<const glm::vec3> point_colours, const camera& cam,
-                            const std::vector<float>& surface_inv_w, const render_options& options = {}) {
+                            const std::vector<float>& surface_inv_w, const render_options& options = {}, std::span<float> coverage = {}) {
     const int w = cam.width, h = cam.height;
     const glm::mat4 vp = cam.view_projection();
     std::vector<detail::screen_point> screen(hair.point_count());
@@ -193,14 +205,15 @@ inline void draw_hair_lines(image& base, const hair_model& hair, std::span<const
         std::vector<glm::vec3> full_colour(n), best_colour(n);
         std::vector<char> has_full(n, 0);
         detail::for_each_line_pixel(hair, point_colours, cam, surface_inv_w, options.line_width, row0, row1, screen,
-                                    [&](int x, int y, float inv_w, float coverage, const glm::vec3& c) {
+                                    [&](int x, int y, float inv_w, float covered, const glm::vec3& c) {
                                         const std::size_t i = std::size_t(y - row0) * std::size_t(w) + std::size_t(x);
-                                        if (coverage > best_coverage[i]) best_coverage[i] = coverage, best_colour[i] = c;
-                                        if (coverage >= 0.5f && inv_w > full_depth[i]) full_depth[i] = inv_w, full_colour[i] = c, has_full[i] = 1;
+                                        if (covered > best_coverage[i]) best_coverage[i] = covered, best_colour[i] = c;
+                                        if (covered >= 0.5f && inv_w > full_depth[i]) full_depth[i] = inv_w, full_colour[i] = c, has_full[i] = 1;
                                     });
         for (int y = row0; y < row1; ++y)
             for (int x = 0; x < w; ++x) {
                 const std::size_t i = std::size_t(y - row0) * std::size_t(w) + std::size_t(x);
+                if (!coverage.empty()) coverage[std::size_t(y) * std::size_t(w) + std::size_t(x)] = best_coverage[i];
                 if (best_coverage[i] > 0.0f) {
                     auto& px = base.at(x, y);
                     px += best_coverage[i] * ((has_full[i] ? full_colour[i] : best_colour[i]) - px);
@@ -209,9 +222,43 @@ inline void draw_hair_lines(image& base, const hair_model& hair, std::span<const
     });
 }
 
-/// Renders the scene from `cam` on the CPU.
-inline image render_cpu(const scene& sc, const camera& cam, std::span<const lit_light> lights, const render_options& options = {}) {
+namespace detail {
+/// `cam` with `factor` times the pixels on each side, and options whose lines are as wide in the
+/// original pixels: what a supersampled render draws.
+inline std::pair<camera, render_options> supersampled(const camera& cam, const render_options& options) {
+    options.check();
+    camera hi = cam;
+    hi.width = cam.width * options.supersample;
+    hi.height = cam.height * options.supersample;
+    camera::check_image_size(hi.width, hi.height);
+    render_options o = options;
+    o.line_width = options.line_width * float(options.supersample);
+    o.supersample = 1;
+    return {hi, o};
+}
+} // namespace detail
+
+/// Renders the scene from `cam` on the CPU; with `coverage` (one value a pixel of the output), also
+/// writes how much of each pixel the hair covers (hair_coverage).
+inline image render_cpu(const scene& sc, const camera& cam, std::span<const lit_light> lights, const render_options& options = {},
+                        std::span<float> coverage = {}) {
     camera::check_image_size(cam.width, cam.height);
+    if (!coverage.empty() && coverage.size() != std::size_t(cam.width) * std::size_t(cam.height))
+        throw argument_error("render: the coverage needs one value a pixel");
+    if (options.supersample != 1) {
+        const auto [hi, o] = detail::supersampled(cam, options);
+        std::vector<float> hi_coverage(coverage.empty() ? 0 : std::size_t(hi.width) * std::size_t(hi.height));
+        const image out = downsample(render_cpu(sc, hi, lights, o, hi_coverage), options.supersample);
+        if (!coverage.empty()) { // averaged like the pixels
+            const int k = options.supersample;
+            std::fill(coverage.begin(), coverage.end(), 0.0f);
+            for (int y = 0; y < hi.height; ++y)
+                for (int x = 0; x < hi.width; ++x)
+                    coverage[std::size_t(y / k) * std::size_t(cam.width) + std::size_t(x / k)] +=
+                        hi_coverage[std::size_t(y) * std::size_t(hi.width) + std::size_t(x)] / float(k * k);
+        }
+        return out;
+    }
     image out(cam.width, cam.height, sc.background);
     // The mesh: Lambert shading, each light scaled by the hair's transmittance and the mesh's own shadow.
     const auto surface = detail::rasterise_mesh(sc.mesh, cam, options.exec);
@@ -231,9 +278,10 @@ inline image render_cpu(const scene& sc, const camera& cam, std::span<const lit_
     }
     for (std::size_t k = 0; k < covered.size(); ++k) out.pixels[covered[k]] = radiance[k];
     // The hair over it.
+    if (!coverage.empty()) std::fill(coverage.begin(), coverage.end(), 0.0f);
     if (!options.draw_hair) return out;
     const auto colours = shade_hair_points(sc, cam, lights, options.exec);
-    draw_hair_lines(out, sc.hair, colours, cam, surface.inv_w, options);
+    draw_hair_lines(out, sc.hair, colours, cam, surface.inv_w, options, coverage);
     return out;
 }
 

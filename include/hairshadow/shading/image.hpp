@@ -2,6 +2,8 @@
 /// @file
 /// A linear-RGB float image, top row first, and its 8-bit sRGB encoding for PNG files.
 
+#include <hairshadow/core/error.hpp>
+
 #include <glm/vec3.hpp>
 
 #include <algorithm>
@@ -33,6 +35,17 @@ struct image {
         return std::uint8_t(std::lround(255.0f * s));
     }
 };
+
+/// `hi` averaged over `factor` x `factor` blocks (a box filter): a supersampled render brought down to
+/// its size. The sides of `hi` must be multiples of `factor`.
+inline image downsample(const image& hi, int factor) {
+    if (factor < 1 || hi.width % factor != 0 || hi.height % factor != 0) throw argument_error("downsample: the sides must be multiples of the factor");
+    image out(hi.width / factor, hi.height / factor, glm::vec3(0.0f));
+    const float weight = 1.0f / float(factor * factor);
+    for (int y = 0; y < hi.height; ++y)
+        for (int x = 0; x < hi.width; ++x) out.at(x / factor, y / factor) += weight * hi.at(x, y);
+    return out;
+}
 
 /// Mean absolute difference of two images' sRGB values, in [0, 1]; the sizes must agree.
 inline double mean_absolute_difference(const image& a, const image& b) {
