@@ -7,6 +7,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 using namespace hairshadow;
 
 TEST_CASE("the image error is the mean and 99th percentile of |sRGB difference| over hair pixels", "[shading][image_error]") {
@@ -60,6 +62,32 @@ TEST_CASE("renders of sheets: the hair's coverage, supersampling, and the shadow
     std::vector<float> background(coverage.size());
     for (std::size_t i = 0; i < coverage.size(); ++i) background[i] = coverage[i] > 0.0f ? 0.0f : 1.0f;
     CHECK(image_error(plain, with_shadow, background).mean == 0.0);
+
+    // A known image: with no ambient light and a black background every hair pixel's linear value is
+    // its light times the transmittance, so a transmittance of 1/2 everywhere halves each one
+    // exactly; the image error is then the sRGB difference of each value from its half.
+    scene dark = sc;
+    dark.material.ambient = 0.0f;
+    dark.background = glm::vec3(0.0f);
+    const transmittance_query half = [](std::span<const glm::vec3>, std::span<float> out) { std::fill(out.begin(), out.end(), 0.5f); };
+    const std::vector<lit_light> full_light{{dark.lights[0], {}, {}}}, half_light{{dark.lights[0], half, {}}};
+    std::vector<float> dark_coverage(64 * 64);
+    const image lit = render_cpu(dark, cam, full_light, options, dark_coverage);
+    const image halved = render_cpu(dark, cam, half_light, options);
+    double expected = 0.0;
+    std::size_t pixels = 0;
+    for (std::size_t i = 0; i < lit.pixels.size(); ++i) {
+        if (!(dark_coverage[i] > 0.0f)) continue;
+        ++pixels;
+        for (int c = 0; c < 3; ++c) {
+            CHECK(halved.pixels[i][c] == 0.5f * lit.pixels[i][c]);
+            expected += std::abs(int(image::encode(lit.pixels[i][c])) - int(image::encode(0.5f * lit.pixels[i][c]))) / (3.0 * 255.0);
+        }
+    }
+    const auto known = image_error(lit, halved, dark_coverage);
+    CHECK(known.pixels == pixels);
+    CHECK(known.mean == Approx(expected / double(pixels)));
+    CHECK(known.mean > 0.05);
 
     // Supersampled: the same picture averaged from 3x3 samples a pixel, with fractional coverage at
     // the strands' edges where one sample a pixel gives whole pixels.
