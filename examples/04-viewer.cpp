@@ -1,14 +1,14 @@
 // An interactive viewer: the hair on its mesh, lit by one light whose shadows come from any method,
 // built on the GPU every time something changes.
 //
-//   04-viewer [MODEL] [--mesh OBJ] [--transparency MODE] [--frames N] [--screenshot FILE.png]
+//   04-viewer [MODEL] [--mesh OBJ] [--transparency MODE] [--sway] [--frames N] [--screenshot FILE.png]
 //
 // Drag with the left mouse button (or the arrow keys) to orbit the camera, WASD to move the light,
 // keys 1-7 to switch methods (no hair shadows, OSM, DOM, DC, OCC, deep occupancy, TressFX's approximate
 // deep shadow maps; the exact reference is CPU-only), [ and ] to halve or double the layer count, T to cycle the hair's transparency (opaque,
 // occupancy-ordered, weighted averages, exact by depth peeling), - and = to change the hair's
-// opacity, Esc to quit. The title shows the method, its GL build time, the transparency and the
-// frame rate. --frames N draws N frames and exits (tests run it under Xvfb); --screenshot writes the
+// opacity, M to let the hair sway in the wind (its maps then rebuilt every frame), Esc to quit. The
+// title shows the method, its GL build time, the transparency and the frame rate. --frames N draws N frames and exits (tests run it under Xvfb); --screenshot writes the
 // last one.
 #include <glad/gl.h>
 
@@ -20,6 +20,7 @@
 #include <hairshadow/io/load.hpp>
 #include <hairshadow/io/obj_format.hpp>
 #include <hairshadow/io/png.hpp>
+#include <hairshadow/procedural/motion.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -39,6 +40,7 @@ struct state {
     transparency hair = transparency::none;
     float hair_opacity = 0.4f;
     bool dirty = true;
+    bool sway = false; // the hair moves: new points and maps every frame
     bool dragging = false;
     double last_x = 0, last_y = 0;
 };
@@ -65,6 +67,7 @@ void on_key(GLFWwindow* window, int key, int, int action, int) {
     auto& s = *static_cast<state*>(glfwGetWindowUserPointer(window));
     if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window, 1);
     if (key >= GLFW_KEY_1 && key <= GLFW_KEY_7) s.family = key - GLFW_KEY_0, s.dirty = true;
+    if (key == GLFW_KEY_M) s.sway = !s.sway;
     if (key == GLFW_KEY_T) s.hair = transparency((int(s.hair) + 1) % 4);
     if (key == GLFW_KEY_MINUS) s.hair_opacity = std::max(0.05f, s.hair_opacity - 0.05f);
     if (key == GLFW_KEY_EQUAL) s.hair_opacity = std::min(1.0f, s.hair_opacity + 0.05f);
@@ -111,8 +114,9 @@ int run(int argc, char** argv) {
                 return std::fprintf(stderr, "error: %s\n", e.what()), 2;
             }
         }
+        else if (a == "--sway") s.sway = true;
         else if (!a.starts_with("--")) model = a;
-        else return std::fprintf(stderr, "usage: 04-viewer [MODEL] [--mesh OBJ] [--transparency none|occupancy|weighted|exact] [--frames N] [--screenshot FILE.png]\n"), 2;
+        else return std::fprintf(stderr, "usage: 04-viewer [MODEL] [--mesh OBJ] [--transparency none|occupancy|weighted|exact] [--sway] [--frames N] [--screenshot FILE.png]\n"), 2;
     }
     scene sc;
     sc.hair = load_model(model);
@@ -134,15 +138,38 @@ int run(int argc, char** argv) {
     glfwSetCursorPosCallback(window, on_move);
 
     {
-        const gl::hair_mesh hair_mesh(sc.hair);
+        // The wind, and one box for the light's frustum and the camera that holds every pose.
+        const sway_motion sway(sc.hair, {.amplitude_degrees = 18.0f, .period = 2.5f});
+        aabb box = sc.bounds();
+        for (int i = 0; i < 16; ++i) {
+            const aabb b = sway.pose(2.5f * float(i) / 16.0f).bounds();
+            box.add(b.min), box.add(b.max);
+        }
+        gl::hair_mesh hair_mesh(sc.hair);
         gl::scene_renderer renderer(sc);
         std::unique_ptr<gl::any_gl_shadow_map> maps;
+        light_space space;
         double build_ms = 0, fps = 0;
-        auto last = std::chrono::steady_clock::now();
+        bool swaying = false;
+        const auto started = std::chrono::steady_clock::now();
+        auto last = started;
         for (long frame = 0; !glfwWindowShouldClose(window) && frame != frames; ++frame) {
-            if (s.dirty) { // new method or light: rebuild the maps on the GPU
+            if (s.sway || swaying) { // the hair moves (or comes back to rest): new points, then the same maps rebuilt
+                if (s.sway) sway.pose(float(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count()), sc.hair);
+                else sc.hair.points = sway.rest().points; // back to rest
+                hair_mesh.update(sc.hair.points);
+                renderer.update_hair();
+                swaying = s.sway;
+                if (maps && !s.dirty) {
+                    const auto start = std::chrono::steady_clock::now();
+                    maps->build(hair_mesh, space);
+                    glFinish();
+                    build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+                }
+            }
+            if (s.dirty) { // new method or light: new maps, built on the GPU
                 sc.lights = {{light_spec::directional(light_direction(s)), glm::vec3(1.1f)}};
-                const auto space = light_space::fit(sc.lights[0].spec, sc.bounds(), 512);
+                space = light_space::fit(sc.lights[0].spec, box, 512);
                 renderer.clear_lights();
                 const auto spec = spec_of(s);
                 const auto start = std::chrono::steady_clock::now();
@@ -159,7 +186,7 @@ int run(int argc, char** argv) {
             }
             int fb_width = 0, fb_height = 0;
             glfwGetFramebufferSize(window, &fb_width, &fb_height);
-            const auto cam = camera::framing(sc.bounds(), s.azimuth, s.elevation, std::max(fb_width, 1), std::max(fb_height, 1), 1.15f);
+            const auto cam = camera::framing(box, s.azimuth, s.elevation, std::max(fb_width, 1), std::max(fb_height, 1), 1.15f);
             renderer.set_transparency(s.hair, s.hair_opacity);
             renderer.present(cam, 0);
             if (frame + 1 == frames && !screenshot.empty()) {
@@ -180,12 +207,14 @@ int run(int argc, char** argv) {
                                      : s.hair == transparency::weighted ? "weighted-average hair"
                                                                         : "exact hair (" + std::to_string(renderer.peeled_layers()) + " layers peeled)";
             char title[256];
-            std::snprintf(title, sizeof title, "hairshadow viewer - %s (1-6 method, [ ] layers) - built in %.1f ms - %s, opacity %.2f (T, - =) - %.1f fps",
-                          spec_of(s).c_str(), build_ms, hair.c_str(), s.hair_opacity, fps);
+            std::snprintf(title, sizeof title, "hairshadow viewer - %s (1-7 method, [ ] layers) - %s in %.1f ms - %s (M) - %s, opacity %.2f (T, - =) - %.1f fps",
+                          spec_of(s).c_str(), s.sway ? "rebuilt every frame" : "built", build_ms, s.sway ? "swaying" : "still", hair.c_str(),
+                          s.hair_opacity, fps);
             glfwSetWindowTitle(window, title);
         }
         const char* modes[] = {"none", "occupancy", "weighted", "exact"};
-        std::printf("%s: %ld frames, last build %.1f ms, transparency %s\n", spec_of(s).c_str(), frames, build_ms, modes[int(s.hair)]);
+        std::printf("%s: %ld frames, last build %.1f ms, transparency %s%s\n", spec_of(s).c_str(), frames, build_ms, modes[int(s.hair)],
+                    s.sway ? ", swaying" : "");
     }
     glfwDestroyWindow(window);
     glfwTerminate();

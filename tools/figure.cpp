@@ -6,6 +6,7 @@
 #include "figure.hpp"
 
 #include "compare_table.hpp"
+#include "panel_grid.hpp"
 #include "progress.hpp"
 #include "scene_setup.hpp"
 #include "text.hpp"
@@ -38,28 +39,12 @@ struct panel {
     image detail;  ///< the crop's region, rendered at supersample times the panel's size
 };
 
-std::string pretty(const std::string& spec) {
-    if (spec == "none") return "no hair shadows";
-    if (spec == "dsm") return "exact (deep shadow map)";
-    std::string out = spec;
-    for (auto& c : out) c = c == ':' ? ' ' : char(std::toupper(static_cast<unsigned char>(c)));
-    const auto slash = out.find(' ', out.find(' ') + 1);
-    if (out.starts_with("OCC") && slash != std::string::npos) out[slash] = '/';
-    return out;
-}
-
 /// A colour ramp for errors in [0, 1]: black, blue, magenta, orange, yellow.
 glm::vec3 heat(float v) {
     static const glm::vec3 stops[] = {{0.02f, 0.02f, 0.05f}, {0.10f, 0.15f, 0.75f}, {0.75f, 0.10f, 0.55f}, {1.0f, 0.45f, 0.05f}, {1.0f, 1.0f, 0.35f}};
     const float x = (v > 0.0f ? std::min(v, 1.0f) : 0.0f) * 4.0f; // NaN counts as 0
     const int i = std::min(3, int(x));
     return stops[i] + (x - float(i)) * (stops[i + 1] - stops[i]);
-}
-
-void blit(image& dst, const image& src, int x0, int y0, int scale = 1) {
-    for (int y = 0; y < src.height * scale; ++y)
-        for (int x = 0; x < src.width * scale; ++x)
-            if (x0 + x < dst.width && y0 + y < dst.height) dst.at(x0 + x, y0 + y) = src.at(x / scale, y / scale);
 }
 
 void outline(image& img, int x0, int y0, int w, int h, const glm::vec3& colour) {
@@ -73,39 +58,6 @@ image crop(const image& src, int x0, int y0, int w, int h) {
     image out(w, h, glm::vec3(0.0f));
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) out.at(x, y) = src.at(std::clamp(x0 + x, 0, src.width - 1), std::clamp(y0 + y, 0, src.height - 1));
-    return out;
-}
-
-void save(const fs::path& path, const image& img) {
-    write_png(path.string(), img.width, img.height, 3, img.to_srgb8());
-    std::fprintf(stderr, "wrote %s (%dx%d)\n", path.string().c_str(), img.width, img.height);
-}
-
-const glm::vec3 ink{0.05f, 0.05f, 0.05f}, paper{1.0f, 1.0f, 1.0f};
-
-/// The credit every image of a model must carry: the Sintel model's (its README in ../shared asks
-/// for the Blender Foundation and BenDansie wherever an image of it is shown); none for others.
-std::string credit_for(const figure_options& o) {
-    std::string names = fs::path(o.model).filename().string() + " " + fs::path(o.mesh).filename().string();
-    for (auto& c : names) c = char(std::tolower(static_cast<unsigned char>(c)));
-    if (names.find("sintel") == std::string::npos) return "";
-    return "Sintel hair and head: Blender Foundation (Sintel, CC-BY 3.0), Sintel Lite by BenDansie";
-}
-
-/// A labelled grid of equally sized images, each label above its image and inside its column (see
-/// grid_layout), and an optional credit line below.
-image grid(const std::vector<image>& cells, const std::vector<std::string>& labels, int columns, const std::string& credit = "") {
-    const int w = cells.front().width, h = cells.front().height;
-    const auto layout = grid_layout(labels, w, h, columns);
-    const label_layout credit_lines = layout_label(credit, columns * w);
-    const int credit_height = credit.empty() ? 0 : credit_lines.height + 2 * label_margin;
-    image out(columns * w, layout.height + credit_height, paper);
-    for (std::size_t i = 0; i < cells.size(); ++i) {
-        const auto& box = layout.labels[i];
-        draw_label(out, box.x, box.y, box.text, ink);
-        blit(out, cells[i], box.cell_x, box.cell_y);
-    }
-    if (!credit.empty()) draw_label(out, label_margin, layout.height + label_margin, credit_lines, glm::vec3(0.3f));
     return out;
 }
 
@@ -179,7 +131,7 @@ std::string ray_plots(const std::vector<panel>& panels, const fragment_buffer& f
 
 int run_figure(const figure_options& o) {
     std::fprintf(stderr, "figure of %s\n", o.model.c_str());
-    const std::string credit = credit_for(o);
+    const std::string credit = credit_for(o.model, o.mesh);
     const scene sc = load_scene(o.model, o.mesh, {parse_light_spec(o.light)});
     const auto space = light_space::fit(sc.lights[0].spec, sc.bounds(), o.resolution);
     raster_options raster;
@@ -337,7 +289,7 @@ int run_figure(const figure_options& o) {
 
 int run_transparency_figure(const figure_options& o, float hair_opacity) {
     std::fprintf(stderr, "transparency figure of %s\n", o.model.c_str());
-    const std::string credit = credit_for(o);
+    const std::string credit = credit_for(o.model, o.mesh);
     const scene sc = load_scene(o.model, o.mesh, {parse_light_spec(o.light)});
     const auto space = light_space::fit(sc.lights[0].spec, sc.bounds(), o.resolution);
     occupancy_maps<128, 4> shadows;

@@ -12,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "animate.hpp"
 #include "bench_command.hpp"
 #include "compare_table.hpp"
 #include "figure.hpp"
@@ -534,6 +535,27 @@ int main(int argc, char** argv) {
     bench->add_option("--repeat", repeat, "rebuilds timed after the cold one, 1 to 10000")->check(CLI::Range(1, 10000));
     bench->add_option("--threads", o.threads, "worker threads; 0 = all cores");
 
+    cli::animate_options anim;
+    std::string motion = "both";
+    auto* animate = app.add_subcommand("animate", "the methods side by side over frames of swaying hair and an orbiting light: "
+                                                  "an animated PNG (and MP4 with ffmpeg) and a table of error and flicker over time");
+    animate->add_option("MODEL", anim.model, "a .hair, .tfx, .data or .obj file, or " + std::string(procedural_grammar))->required();
+    animate->add_option("--mesh", anim.mesh, "an OBJ whose faces are the opaque mesh (e.g. the Sintel head)");
+    animate->add_option("--light", anim.light, "the light at the first frame: " + std::string(light_grammar));
+    animate->add_option("--methods", anim.methods, "comma-separated method specs; the exact reference is always the last panel");
+    animate->add_option("--frames", anim.frames, "frames, 1 to 1000")->check(CLI::Range(1, 1000));
+    animate->add_option("--fps", anim.fps, "frames per second, 1 to 100")->check(CLI::Range(1, 100));
+    animate->add_option("--motion", motion, "sway (the hair), light (an orbit) or both")->check(CLI::IsMember({"sway", "light", "both"}));
+    animate->add_option("--amplitude", anim.amplitude, "the sway's largest turn of a strand's tip, 0 to 90 degrees")
+        ->check(finite_number & CLI::Range(0.0f, 90.0f));
+    animate->add_option("--seed", anim.seed, "the sway's seed");
+    animate->add_option("--res", anim.resolution, "shadow map resolution")->check(CLI::Range(1, HAIRSHADOW_MAX_RESOLUTION));
+    animate->add_option("--size", anim.size, "panel size in pixels, 16 to 1024")->check(CLI::Range(16, 1024));
+    animate->add_option("--supersample", anim.supersample, "render each panel at N x N samples a pixel, 1 to 4")->check(CLI::Range(1, 4));
+    animate->add_option("--azimuth", anim.azimuth, "camera azimuth in degrees about +y")->check(finite_number);
+    animate->add_option("--elevation", anim.elevation, "camera elevation in degrees")->check(finite_number & CLI::Range(-89.0f, 89.0f));
+    animate->add_option("--out", anim.out, "output folder");
+
     cli::figure_options fig;
     auto* figure = app.add_subcommand("figure", "the comparison figure: shaded hair with each method, crops, error heat maps, ray plots, table");
     figure->add_option("--model", fig.model, "a model file or " + std::string(procedural_grammar) + " (procedural models stand on their sphere)");
@@ -566,6 +588,19 @@ int main(int argc, char** argv) {
         if (*memory) return run_memory(o);
         if (*compare) return run_compare(o, methods, out_dir);
         if (*bench) return run_bench(o, bench_methods, repeat);
+        if (*animate) {
+            try { // everything a usage error can be, before any work
+                check_resolution(anim.resolution);
+                if (is_procedural_spec(anim.model)) parse_procedural_spec(anim.model);
+            } catch (const argument_error& e) {
+                throw usage_error(e.what());
+            }
+            for (auto part : detail::split(anim.methods, ',')) parse_method(std::string(part));
+            parse_light(anim.light);
+            anim.motion = motion == "sway" ? cli::motion_kind::sway : motion == "light" ? cli::motion_kind::light : cli::motion_kind::both;
+            anim.exec = o.exec();
+            return cli::run_animate(anim);
+        }
         if (*figure) {
             try { // everything a usage error can be, before any work
                 check_resolution(fig.resolution);

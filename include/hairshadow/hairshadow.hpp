@@ -27,6 +27,7 @@
 #include <hairshadow/io/tfx_format.hpp>
 
 #include <hairshadow/procedural/generators.hpp>
+#include <hairshadow/procedural/motion.hpp>
 
 #include <hairshadow/raster/fragment.hpp>
 #include <hairshadow/raster/line_rule.hpp>

@@ -4,6 +4,7 @@
 #include "gl_test_context.hpp"
 
 #include <hairshadow/gl.hpp>
+#include <hairshadow/gl/scene_renderer.hpp>
 #include <hairshadow/gl/registry.hpp>
 
 #include "../test_support.hpp"
@@ -259,6 +260,52 @@ TEST_CASE("the hair mesh's upload leaves the caller's vertex array and array buf
     const auto before = engine_state::read();
     const gl::hair_mesh mesh(test::grid_model(3, 4));
     CHECK(engine_state::read() == before);
+    hostile_engine::reset();
+}
+
+TEST_CASE("meshes over the user's buffers, update and update_hair leave the caller's state as they found it", "[gl][state][motion]") {
+    test::gl_context();
+    scene sc;
+    sc.hair = test::grid_model(3, 4); // strands of 4 points
+    gl::scene_renderer renderer(sc);
+    gl::hair_mesh own(sc.hair);
+    gl::buffer points_buffer = gl::make_buffer(), index_buffer = gl::make_buffer();
+    std::vector<float> xyz;
+    for (const auto& p : sc.hair.points) xyz.insert(xyz.end(), {p.x, p.y, p.z});
+    const std::uint32_t pairs[2] = {0, 1};
+    glBindBuffer(GL_ARRAY_BUFFER, points_buffer.get());
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(xyz.size() * sizeof(float)), xyz.data(), GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, index_buffer.get());
+    glBufferData(GL_ARRAY_BUFFER, sizeof pairs, pairs, GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    gl::point_buffers points;
+    points.point_count = sc.hair.point_count();
+    points.positions = {points_buffer.get(), 0, 0};
+    points.uniform_thickness = 0.01f;
+
+    const hostile_engine engine;
+    engine.apply();
+    // The engine's vertex array (bound by apply) holds an element buffer and instanced attributes.
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, index_buffer.get());
+    for (GLuint a = 0; a < 3; ++a) glVertexAttribDivisor(a, a + 2);
+    const auto before = engine_state::read();
+    const auto vertex_array_state = [] {
+        std::array<GLint, 4> v{};
+        glGetIntegerv(GL_ELEMENT_ARRAY_BUFFER_BINDING, &v[0]);
+        for (GLuint a = 0; a < 3; ++a) glGetVertexAttribiv(a, GL_VERTEX_ATTRIB_ARRAY_DIVISOR, &v[a + 1]);
+        return v;
+    };
+    const auto engine_vertex_array = vertex_array_state();
+    {
+        const gl::hair_mesh strands(points, gl::strand_segments{3, 4});
+        const gl::hair_mesh indexed(points, gl::index_segments{index_buffer.get(), 0, 1});
+    }
+    own.update(sc.hair.points);
+    renderer.update_hair();
+    CHECK(engine_state::read() == before);
+    CHECK(vertex_array_state() == engine_vertex_array);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+    for (GLuint a = 0; a < 3; ++a) glVertexAttribDivisor(a, 0);
     hostile_engine::reset();
 }
 

@@ -51,3 +51,27 @@ TEST_CASE("the viewer draws transparent hair, and refuses an unknown mode", "[gl
     CHECK(WEXITSTATUS(status) == 2);
     CHECK_THAT(test::read_text(dir.file("bad.txt")), Catch::Contains("unknown transparency"));
 }
+
+TEST_CASE("the viewer sways the hair and rebuilds its maps every frame", "[gl][viewer][motion]") {
+    test::temp_dir dir("viewer_sway");
+    const std::string still = dir.file("still.png"), swaying = dir.file("sway.png");
+    const std::string viewer = "xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(HAIRSHADOW_VIEWER) + " procedural:straight:strands=600:segments=8";
+    for (const auto& [flags, shot] : {std::pair{std::string(""), still}, std::pair{std::string(" --sway"), swaying}}) {
+        const std::string command = viewer + flags + " --frames 6 --screenshot " + shot + " > " + dir.file("log.txt") + " 2>&1";
+        const int status = std::system(command.c_str());
+        CAPTURE(command, test::read_text(dir.file("log.txt")));
+        REQUIRE(status == 0);
+        if (!flags.empty()) CHECK_THAT(test::read_text(dir.file("log.txt")), Catch::Contains("swaying"));
+    }
+    int w = 0, h = 0, n = 0, w2 = 0, h2 = 0;
+    unsigned char* a = stbi_load(still.c_str(), &w, &h, &n, 3);
+    unsigned char* b = stbi_load(swaying.c_str(), &w2, &h2, &n, 3);
+    REQUIRE(a != nullptr);
+    REQUIRE(b != nullptr);
+    REQUIRE(w * h == w2 * h2);
+    long moved = 0;
+    for (int i = 0; i < 3 * w * h; ++i) moved += std::abs(int(a[i]) - int(b[i])) > 40;
+    stbi_image_free(a);
+    stbi_image_free(b);
+    CHECK(moved > 200); // the hair is somewhere else
+}

@@ -26,6 +26,8 @@ struct aabb {
     glm::vec3 extent() const noexcept { return max - min; }
     /// Length of the diagonal.
     float diagonal() const noexcept { return glm::length(extent()); }
+    /// The box grown by `margin` on every side (an empty box stays empty).
+    aabb expanded(float margin) const noexcept { return empty() ? *this : aabb{min - glm::vec3(margin), max + glm::vec3(margin)}; }
 };
 
 } // namespace hairshadow

@@ -35,15 +35,13 @@ public:
     /// Uploads the hair (points and tangents) and the mesh (vertices and smooth normals).
     explicit scene_renderer(const scene& sc) : scene_(sc) {
         require_version(4, 3, "the GL renderer");
-        const auto tangents = hairshadow::detail::strand_tangents(sc.hair);
-        std::vector<float> hair;
-        for (std::size_t i = 0; i < sc.hair.point_count(); ++i)
-            hair.insert(hair.end(), {sc.hair.points[i].x, sc.hair.points[i].y, sc.hair.points[i].z, tangents[i].x, tangents[i].y, tangents[i].z});
+        const std::vector<float> hair = hair_vertices();
         std::vector<std::uint32_t> lines;
         for (std::size_t s = 0; s < sc.hair.strand_count(); ++s)
             for (std::uint32_t i = sc.hair.strand_offsets[s]; i + 1 < sc.hair.strand_offsets[s + 1]; ++i) lines.insert(lines.end(), {i, i + 1});
         upload(hair_, hair, lines);
         hair_count_ = GLsizei(lines.size());
+        hair_floats_ = hair.size();
         const auto normals = hairshadow::detail::vertex_normals(sc.mesh);
         std::vector<float> mesh;
         for (std::size_t i = 0; i < sc.mesh.vertices.size(); ++i)
@@ -56,6 +54,19 @@ public:
         const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::raster_vertex}, "raster/vertex");
         const auto fs = compile_shader(GL_FRAGMENT_SHADER, {version, shaders::render_mesh_depth}, "render/mesh_depth");
         depth_program_ = link_program({&vs, &fs}, "mesh depth pass");
+    }
+
+    /// Reads the scene's hair points again after the hair moved (the same strands, points moved in
+    /// place: gl::hair_mesh::update's twin for the camera's passes). Throws argument_error if the
+    /// point count changed.
+    void update_hair() {
+        const std::vector<float> hair = hair_vertices();
+        if (hair.size() != hair_floats_) throw argument_error("scene_renderer::update_hair: the hair's point count changed");
+        if (hair.empty()) return;
+        state_guard guard("hairshadow: scene renderer hair update");
+        glBindBuffer(GL_ARRAY_BUFFER, hair_.vertices.get());
+        glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(hair.size() * sizeof(float)), hair.data());
+        check("scene_renderer::update_hair");
     }
 
     /// Adds a light whose hair shadows come from `maps` (a built gl::maps<Method>, kept alive by the
@@ -198,6 +209,17 @@ private:
     static constexpr std::string_view version = "#version 430 core\n";
     /// The mesh's depth map sits on the last of the 16 units GL 4.3 guarantees, clear of any look-up's.
     static constexpr int mesh_depth_unit = 15;
+
+    /// Points and tangents of the scene's hair, six floats a point.
+    std::vector<float> hair_vertices() const {
+        const auto& h = scene_.hair;
+        const auto tangents = hairshadow::detail::strand_tangents(h);
+        std::vector<float> hair;
+        hair.reserve(6 * h.point_count());
+        for (std::size_t i = 0; i < h.point_count(); ++i)
+            hair.insert(hair.end(), {h.points[i].x, h.points[i].y, h.points[i].z, tangents[i].x, tangents[i].y, tangents[i].z});
+        return hair;
+    }
 
     struct geometry {
         vertex_array vao = make_vertex_array();
@@ -411,6 +433,7 @@ private:
 
     const scene& scene_;
     geometry hair_, mesh_;
+    std::size_t hair_floats_ = 0;
     GLsizei hair_count_ = 0, mesh_count_ = 0;
     program depth_program_, present_program_;
     mutable program inv_w_program_;

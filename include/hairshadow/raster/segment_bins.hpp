@@ -223,7 +223,12 @@ private:
         });
         by_load_.resize(tiles);
         std::iota(by_load_.begin(), by_load_.end(), 0u);
-        std::stable_sort(by_load_.begin(), by_load_.end(), [&](std::uint32_t a, std::uint32_t b) { return tile_load(a) > tile_load(b); });
+        // The most loaded first, ties in tile order: stable_sort's order, without the buffer it
+        // allocates on every call (a rebuild allocates nothing).
+        std::sort(by_load_.begin(), by_load_.end(), [&](std::uint32_t a, std::uint32_t b) {
+            const auto la = tile_load(a), lb = tile_load(b);
+            return la != lb ? la > lb : a < b;
+        });
     }
 
     /// Counts segment s in each tile it reaches and returns its first tile (with more_tiles set when
