@@ -37,6 +37,7 @@ struct decoded_apng {
     bool order_ok = true;    ///< IHDR first, acTL before any image data, IEND last
     bool controls_ok = true; ///< every fcTL 26 bytes, the whole image at (0, 0), dispose and blend 0
     std::vector<std::pair<int, int>> delays; ///< each frame's delay_num, delay_den
+    int palette_colours = 0;                 ///< 0: full colour
     std::vector<std::vector<std::uint8_t>> frames; ///< RGB, each frame's data decoded as a PNG of its own
 };
 
@@ -57,7 +58,7 @@ decoded_apng decode_apng(const std::string& path) {
     REQUIRE(bytes.size() > 8);
     const std::uint8_t signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
     REQUIRE(std::equal(signature, signature + 8, bytes.begin()));
-    std::vector<std::uint8_t> ihdr, data;
+    std::vector<std::uint8_t> ihdr, plte, data;
     std::uint32_t expected_sequence = 0;
     bool seen_actl = false, seen_data = false, seen_iend = false;
     std::size_t chunks = 0;
@@ -65,6 +66,7 @@ decoded_apng decode_apng(const std::string& path) {
         if (data.empty()) return;
         std::vector<std::uint8_t> png{0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
         chunk(png, "IHDR", ihdr.data(), ihdr.size());
+        if (!plte.empty()) chunk(png, "PLTE", plte.data(), plte.size());
         chunk(png, "IDAT", data.data(), data.size());
         chunk(png, "IEND", nullptr, 0);
         int w = 0, h = 0, n = 0;
@@ -88,6 +90,10 @@ decoded_apng decode_apng(const std::string& path) {
             ihdr.assign(body, body + length);
             d.width = int(detail::get_u32(body));
             d.height = int(detail::get_u32(body + 4));
+        } else if (type == "PLTE") {
+            d.order_ok = d.order_ok && !seen_data;
+            plte.assign(body, body + length);
+            d.palette_colours = int(length / 3);
         } else if (type == "acTL") {
             d.announced = detail::get_u32(body);
         } else if (type == "fcTL") {
@@ -146,12 +152,50 @@ TEST_CASE("an animated PNG decodes to the frames written", "[animate][io]") {
     CHECK(std::equal(written[0].begin(), written[0].end(), first));
     stbi_image_free(first);
 
+    CHECK(d.palette_colours == 0);
+
     CHECK_THROWS_AS(apng_writer(dir.file("b.png"), 0, 4, 3, 1, 1, 10), argument_error);
+    CHECK_THROWS_AS(apng_writer(dir.file("b.png"), 4, 4, 4, 1, 1, 10, png_colours::palette), argument_error);
     CHECK_THROWS_AS(apng_writer(dir.file("b.png"), 4, 4, 3, 0, 1, 10), argument_error);
     apng_writer short_of_frames(dir.file("c.png"), 4, 4, 3, 2, 1, 10);
     CHECK_THROWS_AS(short_of_frames.add_frame(std::vector<std::uint8_t>(5)), argument_error);
     short_of_frames.add_frame(std::vector<std::uint8_t>(48, 9));
     CHECK_THROWS_AS(short_of_frames.finish(), io_error);
+}
+
+TEST_CASE("a palette APNG keeps up to 256 colours exactly and comes close with more", "[animate][io]") {
+    test::temp_dir dir("apng_palette");
+    const int w = 64, h = 48;
+    const auto frame = [&](int f, int colours) {
+        std::vector<std::uint8_t> rgb(std::size_t(w * h * 3));
+        for (int i = 0; i < w * h; ++i) {
+            const int c = (i * 7 + f) % colours; // a colour ramp of `colours` steps across the channels
+            rgb[std::size_t(3 * i)] = std::uint8_t(c * 255 / (colours - 1));
+            rgb[std::size_t(3 * i + 1)] = std::uint8_t(255 - c * 255 / (colours - 1));
+            rgb[std::size_t(3 * i + 2)] = std::uint8_t((c * 37) % 256);
+        }
+        return rgb;
+    };
+    for (const int colours : {200, 3000}) {
+        CAPTURE(colours);
+        std::vector<std::vector<std::uint8_t>> written;
+        apng_writer apng(dir.file("p.png"), w, h, 3, 3, 1, 10, png_colours::palette);
+        for (int f = 0; f < 3; ++f) apng.add_frame(written.emplace_back(frame(f, colours)));
+        apng.finish();
+        const auto d = decode_apng(dir.file("p.png"));
+        CHECK(d.crc_ok);
+        CHECK(d.order_ok);
+        CHECK(d.palette_colours == std::min(colours, 256));
+        REQUIRE(d.frames.size() == 3);
+        double error = 0;
+        for (int f = 0; f < 3; ++f)
+            for (std::size_t i = 0; i < written[0].size(); ++i) error += std::abs(int(d.frames[std::size_t(f)][i]) - int(written[std::size_t(f)][i]));
+        error /= 3.0 * double(written[0].size());
+        CAPTURE(error);
+        if (colours <= 256) CHECK(error == 0.0); // every colour of the first frame, and the others use the same ones
+        else CHECK(error < 6.0);                 // 3000 colours in 256: within a few levels
+        if (colours > 256) CHECK(error > 0.0);
+    }
 }
 
 TEST_CASE("animate writes the frames asked for and a table whose exact row is zero", "[cli][animate]") {
@@ -170,6 +214,7 @@ TEST_CASE("animate writes the frames asked for and a table whose exact row is ze
     REQUIRE(d.frames.size() == 4);
     CHECK(d.width == 3 * 48); // dom:3, occ:128:4 and the exact reference, side by side
     CHECK(d.frames[0] != d.frames[1]); // the hair and the light move
+    CHECK(d.palette_colours > 16);     // one palette, by default
     const auto csv = test::read_text(dir.file("anim/animate.csv"));
     CHECK_THAT(csv, Catch::StartsWith("method,mean_error,flicker,rebuild_median_ms"));
     CHECK_THAT(csv, Catch::Contains("\ndsm,0.000000,0.000000,"));

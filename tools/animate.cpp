@@ -192,7 +192,8 @@ int run_animate(const animate_options& o) {
         const auto rgb = frame.to_srgb8();
         if (!apng) {
             apng = std::make_unique<apng_writer>((fs::path(o.out) / "animate.png").string(), frame.width, frame.height, 3, o.frames,
-                                                 std::uint16_t(1), std::uint16_t(o.fps));
+                                                 std::uint16_t(1), std::uint16_t(o.fps),
+                                                 o.full_colour ? png_colours::full : png_colours::palette);
             if (!ffmpeg.empty()) mp4 = std::make_unique<mp4_pipe>(ffmpeg, fs::path(o.out) / "animate.mp4", frame.width, frame.height, o.fps);
         }
         apng->add_frame(rgb);

@@ -23,11 +23,12 @@ struct animate_options {
     float amplitude = 14.0f; ///< the sway's largest turn of a tip, degrees
     unsigned seed = 1;
     float azimuth = 25.0f, elevation = 10.0f;
+    bool full_colour = false; ///< the APNG in full colour rather than one 256-colour palette (about 3x the size)
     std::string out = "out/animate";
     hairshadow::execution exec;
 };
 
-/// Writes animate.png (APNG), animate.mp4 when ffmpeg is on the PATH, animate.md and animate.csv into
+/// Writes animate.png (APNG, in one palette of 256 colours unless full_colour), animate.mp4 when ffmpeg is on the PATH, animate.md and animate.csv into
 /// options.out. The animation loops: the sway and the light's orbit each take the whole animation.
 int run_animate(const animate_options& options);
 

@@ -555,6 +555,7 @@ int main(int argc, char** argv) {
     animate->add_option("--azimuth", anim.azimuth, "camera azimuth in degrees about +y")->check(finite_number);
     animate->add_option("--elevation", anim.elevation, "camera elevation in degrees")->check(finite_number & CLI::Range(-89.0f, 89.0f));
     animate->add_option("--out", anim.out, "output folder");
+    animate->add_flag("--full-colour", anim.full_colour, "write the animated PNG in full colour, not in one 256-colour palette (about 3x the size)");
 
     cli::figure_options fig;
     auto* figure = app.add_subcommand("figure", "the comparison figure: shaded hair with each method, crops, error heat maps, ray plots, table");
