@@ -1,6 +1,7 @@
 // Map build time on GL under OSMesa (llvmpipe) beside the CPU kernels, in one run: for each method,
-// the GL passes (glFinish included), the CPU's tiled build straight from the model, and the CPU's
-// older path (a reused rasterizer's fragment buffer, then the build), on the Sintel model at 512x512.
+// GL's two build paths (compute shaders, and the papers' raster passes; glFinish included), the CPU's
+// tiled build straight from the model, and the CPU's older path (a reused rasterizer's fragment
+// buffer, then the build), on the Sintel model at 512x512.
 // Run: build/bench/hairshadow_gl_bench
 #include <glad/gl.h>
 
@@ -36,10 +37,11 @@ scene& sintel() {
     return s;
 }
 
-template <class GLMaps>
+template <class GLMaps, gl::build_path Path>
 void gl_build(benchmark::State& state) {
     auto& s = sintel();
     GLMaps maps;
+    maps.set_build_path(Path);
     maps.build(*s.mesh, s.light);
     glFinish();
     for (auto _ : state) {
@@ -68,7 +70,8 @@ void cpu_buffer_build(benchmark::State& state) {
 #define HAIRSHADOW_BENCH_PAIR(NAME, METHOD, GLMAPS)                                                                                 \
     BENCHMARK_TEMPLATE(cpu_build, METHOD)->Name("cpu_tiled/" NAME)->Unit(benchmark::kMillisecond)->UseRealTime();               \
     BENCHMARK_TEMPLATE(cpu_buffer_build, METHOD)->Name("cpu_buffer/" NAME)->Unit(benchmark::kMillisecond)->UseRealTime();       \
-    BENCHMARK_TEMPLATE(gl_build, GLMAPS)->Name("gl_osmesa/" NAME)->Unit(benchmark::kMillisecond)->UseRealTime();
+    BENCHMARK_TEMPLATE(gl_build, GLMAPS, gl::build_path::compute)->Name("gl_compute/" NAME)->Unit(benchmark::kMillisecond)->UseRealTime(); \
+    BENCHMARK_TEMPLATE(gl_build, GLMAPS, gl::build_path::raster)->Name("gl_raster/" NAME)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 using osm16 = opacity_shadow_maps<16>;
 using osm64 = opacity_shadow_maps<64>;

@@ -106,6 +106,37 @@ for clusters in (4, 6):
         COMPOSITIONS[f"cluster_{name}_{clusters}"] = ("frag", defines, ["raster/coverage"] + clustering + [f"passes/cluster_{name}"], "")
     COMPOSITIONS[f"cluster_resolve_{clusters}"] = ("frag", defines, clustering + ["passes/cluster_resolve"], "")
 
+# The compute build (gl/compute_raster.hpp and each maps' build_compute): the segment passes, then each
+# method's tile pass over its placement's snippets, float and 8-bit, as compute_pieces composes them.
+COMPUTE = "#define HS_SUBPIXEL_BITS 8\n"
+COMPOSITIONS["compute_prepare"] = ("comp", COMPUTE, ["compute/common", "compute/prepare"], "")
+COMPOSITIONS["compute_scan"] = ("comp", COMPUTE, ["compute/common", "compute/scan"], "")
+COMPOSITIONS["compute_scatter"] = ("comp", COMPUTE, ["compute/common", "compute/scatter"], "")
+COMPOSITIONS["compute_range"] = ("comp", COMPUTE + "#define HS_DEPTH_ONLY\n", ["compute/common", "compute/range"], "")
+COMPOSITIONS["compute_fibre_count"] = ("comp", COMPUTE + "#define HS_SUM_SLOTS 1\n", ["compute/common", "accumulation/float", "compute/tile_sums",
+                                                                                 "compute/fibre_count"], "")
+for accumulation, eight in (("float", ""), ("emulated_8bit", "#define HS_EIGHT_BIT\n")):
+    form = "rgba8" if eight else "rgba32f"
+    for placement, defines in (("planar_slices", "#define HS_LAYERS 16\n#define HS_GAMMA_SPACING\n#define HS_CUMULATIVE\n"),
+                               ("per_pixel_depth", "#define HS_LAYERS 3\n#define HS_CUMULATIVE\n"),
+                               ("depth_range", "#define HS_LAYERS 16\n#define HS_CUMULATIVE\n")):
+        COMPOSITIONS[f"compute_layers_{placement}_{accumulation}"] = (
+            "comp", COMPUTE + defines + eight + f"#define HS_LAYER_GROUP 8\n#define HS_SUM_SLOTS 8\n#define HS_LAYERS_FORMAT {form}\n",
+            ["compute/common", "accumulation/" + accumulation, "compute/tile_sums", "placement/common", "placement/" + placement,
+             "texel_state/" + placement, "compute/layers"], "")
+    for clusters, rows in ((4, 16), (8, 8)):
+        COMPOSITIONS[f"compute_clusters_{clusters}_{accumulation}"] = (
+            "comp", COMPUTE + f"#define HS_LAYERS {clusters}\n" + eight +
+            f"#define HS_FIXED_SUMS\n#define HS_SUM_SLOTS {2 * clusters}\n#define HS_STRIP_ROWS {rows}\n#define HS_SUM_TEXELS {16 * rows}\n"
+            f"#define HS_LAYERS_FORMAT {form}\n",
+            ["compute/common", "accumulation/" + accumulation, "compute/tile_sums", "placement/common", "placement/clustered", "compute/clusters"], "")
+    for layers, slabs in ((128, 4), (256, 8)):
+        COMPOSITIONS[f"compute_occupancy_{layers}_{slabs}_{accumulation}"] = (
+            "comp", COMPUTE + eight + f"#define HS_LAYERS {layers}\n#define HS_SLABS {slabs}\n#define HS_BIT_TARGETS {(layers + 127) // 128}\n"
+            f"#define HS_SLAB_TARGETS {(slabs + 3) // 4}\n#define HS_SUM_SLOTS {slabs}\n#define HS_SLABS_FORMAT {form}\n",
+            ["compute/common", "accumulation/" + accumulation, "compute/tile_sums", "placement/common", "placement/depth_range",
+             "texel_state/depth_range", "compute/occupancy"], "")
+
 # The shaded renderer (gl/scene_renderer.hpp), over one method's look-up.
 DOM_LOOKUP = ["accumulation/float", "placement/common", "placement/per_pixel_depth", "texel_state/per_pixel_depth", "lookup/layers",
               "reconstruction/interpolation", "lookup/light", "lookup/interpolation"]

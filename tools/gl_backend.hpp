@@ -19,10 +19,12 @@ namespace cli {
 
 class gl_backend {
 public:
-    /// Opens a context of `kind` ("osmesa" or "egl") and loads GL; throws hairshadow::error when it cannot.
-    static std::unique_ptr<gl_backend> open(const std::string& kind);
+    /// Opens a context of `kind` ("osmesa" or "egl") and loads GL, building maps on `path` ("compute"
+    /// or "raster"; "": compute wherever the context runs it); throws hairshadow::error when it cannot
+    /// (gl::feature_error for a path the context lacks).
+    static std::unique_ptr<gl_backend> open(const std::string& kind, const std::string& path = "");
     virtual ~gl_backend() = default;
-    /// "OpenGL <version> on <renderer>".
+    /// "OpenGL <version> on <renderer>, <path> build".
     virtual std::string description() const = 0;
     /// Uploads the model that build() draws.
     virtual void set_model(const hairshadow::hair_model& model) = 0;
@@ -30,6 +32,8 @@ public:
     /// first compiles the driver's shader variants), until the GPU finished.
     virtual double build(const hairshadow::method_spec& spec, const hairshadow::light_space& light, const hairshadow::raster_options& options) = 0;
     /// Builds the last built maps again; returns the wall time in milliseconds, until the GPU finished.
+    /// The GPU's own time for it, by a GL_TIME_ELAPSED query, is last_gpu_ms() after.
+    virtual double last_gpu_ms() const = 0;
     virtual double rebuild(const hairshadow::light_space& light, const hairshadow::raster_options& options) = 0;
     /// Builds the maps of every spec for one light, each with a light pass of its own (`shared` false)
     /// or all from one shared light pass; returns the wall time in milliseconds until the GPU

@@ -4,7 +4,7 @@
 
 namespace cli {
 
-std::unique_ptr<gl_backend> gl_backend::open(const std::string&) {
+std::unique_ptr<gl_backend> gl_backend::open(const std::string&, const std::string&) {
     throw hairshadow::error("this hairshadow was built without the GL back end (it needs python3-glad, libosmesa6-dev and libegl-dev)");
 }
 

@@ -70,6 +70,7 @@ struct map_options {
     unsigned threads = 0;
     std::string backend = "cpu";
     std::string context = "egl";
+    std::string gl_path; ///< --gl-path: compute, raster, or "" for compute wherever the context runs it
 
     bool on_gl() const { return backend == "gl"; }
 
@@ -130,6 +131,7 @@ lit_model prepare_scene(const map_options& o, bool cpu_fragments) {
     if (o.on_gl() && o.wide > 0.0f) throw usage_error("--wide needs --backend cpu: core GL draws lines one pixel wide");
     if (o.on_gl() && (o.box_filter || o.jitter || o.bias != 0.0f))
         throw usage_error("--filter, --jitter and --bias are CPU queries; the GLSL look-up has none: use --backend cpu");
+    if (!o.on_gl() && !o.gl_path.empty()) throw usage_error("--gl-path chooses how --backend gl builds; add --backend gl");
     lit_model s{load(o.model), {}, {}, {}, 0.0, nullptr};
     s.light = light_space::fit(light, s.model.bounds(), o.resolution);
     s.raster.exec = o.exec();
@@ -141,7 +143,7 @@ lit_model prepare_scene(const map_options& o, bool cpu_fragments) {
         s.raster_ms = milliseconds_since(start);
     }
     if (o.on_gl()) {
-        s.gl = cli::gl_backend::open(o.context);
+        s.gl = cli::gl_backend::open(o.context, o.gl_path);
         s.gl->set_model(s.model);
     }
     return s;
@@ -278,6 +280,7 @@ int run_shaded(const map_options& o, const render_view& v, const std::string& ou
         }
     }
     if (o.on_gl() && o.wide > 0.0f) throw usage_error("--wide needs --backend cpu: core GL draws lines one pixel wide");
+    if (!o.on_gl() && !o.gl_path.empty()) throw usage_error("--gl-path chooses how --backend gl builds; add --backend gl");
     const auto mode = parse_transparency(v.transparency);
     if (mode != transparency::none && v.size > 4096) throw usage_error("--transparency needs --size up to 4096");
     std::fprintf(stderr, "render of %s with %s, %zu light(s), on the %s\n", o.model.c_str(), spec.text.c_str(), lights.size(), o.backend.c_str());
@@ -291,7 +294,7 @@ int run_shaded(const map_options& o, const render_view& v, const std::string& ou
     for (const auto& l : sc.lights) spaces.push_back(light_space::fit(l.spec, sc.bounds(), o.resolution));
     image picture;
     if (o.on_gl()) {
-        const auto gl = cli::gl_backend::open(o.context);
+        const auto gl = cli::gl_backend::open(o.context, o.gl_path);
         picture = cli::step("building the maps and rendering on GL (transparency " + v.transparency + ")",
                             [&] { return gl->render_scene(sc, cam, spec, spaces, ro, mode, v.hair_opacity); });
         if (mode == transparency::exact) std::fprintf(stderr, "depth peeling: %d layers\n", gl->peeled_layers());
@@ -459,6 +462,10 @@ void add_backend_options(CLI::App* cmd, map_options& o) {
     cmd->add_option("--backend", o.backend, "build the maps on the CPU or on GL (queried by the GLSL look-up)")->check(CLI::IsMember({"cpu", "gl"}));
     cmd->add_option("--context", o.context, "headless GL context for --backend gl: egl (a GPU, else Mesa) or osmesa")
         ->check(CLI::IsMember({"osmesa", "egl"}));
+    cmd->add_option("--gl-path", o.gl_path,
+                    "how --backend gl builds the maps: compute (compute shaders, the CPU's fragments) or raster (the papers' blended line "
+                    "passes); default compute wherever the context runs it")
+        ->check(CLI::IsMember({"compute", "raster"}));
 }
 
 void add_query_options(CLI::App* cmd, map_options& o) {

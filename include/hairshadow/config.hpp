@@ -38,3 +38,16 @@
 #define HAIRSHADOW_ALWAYS_INLINE
 #endif
 #endif
+
+namespace hairshadow::detail {
+/// x itself, as a rounded float: a fence that keeps the compiler from fusing the multiplication that
+/// made x with a later addition. A fused multiply-add rounds once, not twice, so fusing would make
+/// the vector and scalar paths of the tiled build, builds with and without -mfma, or the CPU and the
+/// GPU's compute build, differ.
+HAIRSHADOW_ALWAYS_INLINE inline float rounded(float x) noexcept {
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+    __asm__("" : "+x"(x));
+#endif
+    return x;
+}
+} // namespace hairshadow::detail

@@ -50,6 +50,19 @@
 #define HAIRSHADOW_ALWAYS_INLINE
 #endif
 #endif
+
+namespace hairshadow::detail {
+/// x itself, as a rounded float: a fence that keeps the compiler from fusing the multiplication that
+/// made x with a later addition. A fused multiply-add rounds once, not twice, so fusing would make
+/// the vector and scalar paths of the tiled build, builds with and without -mfma, or the CPU and the
+/// GPU's compute build, differ.
+HAIRSHADOW_ALWAYS_INLINE inline float rounded(float x) noexcept {
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+    __asm__("" : "+x"(x));
+#endif
+    return x;
+}
+} // namespace hairshadow::detail
 // ---- end hairshadow/config.hpp
 
 // ---- begin hairshadow/core/bounds.hpp
@@ -435,17 +448,6 @@ inline void check_resolution(long long resolution) {
         throw argument_error("resolution " + std::to_string(resolution) + " is outside 1.." + std::to_string(HAIRSHADOW_MAX_RESOLUTION));
 }
 
-namespace detail {
-/// x itself, as a rounded float: a fence that keeps the compiler from fusing the multiplication that
-/// made x with a later addition. A fused multiply-add rounds once, not twice, so fusing would make
-/// the vector and scalar paths of the tiled build, or builds with and without -mfma, differ.
-HAIRSHADOW_ALWAYS_INLINE inline float rounded(float x) noexcept {
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-    __asm__("" : "+x"(x));
-#endif
-    return x;
-}
-} // namespace detail
 
 /// A world point seen from the light: window coordinates in texels, linear depth in [0, 1] inside the
 /// frustum, and the clip-space w (1 for orthographic lights).
@@ -589,6 +591,8 @@ public:
         return texel_depth{int(p.window.x), int(p.window.y), p.depth};
     }
 
+    /// Half the map's width: in world units for a directional light, else the tangent of the half-angle.
+    float half_extent() const noexcept { return half_extent_; }
     /// World-space width of one texel at a linear depth (constant for a directional light).
     float texel_size(float depth) const noexcept {
         if (!perspective()) return 2.0f * half_extent_ / float(resolution_);
@@ -1957,6 +1961,8 @@ inline light_spec orbit_light(const light_spec& light, float t, float period, co
 /// @file
 /// Light-space fragments and the per-texel buffer that holds them.
 
+
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -1974,8 +1980,37 @@ struct fragment {
 };
 
 /// A fragment's optical depth b = -ln(1 - alpha): what it adds to the optical depth behind it. Every
-/// method sums it from this one function, so a fragment's b is the same in every build path.
-inline float optical_depth_of(float alpha) noexcept { return -std::log1p(-alpha); }
+/// method sums it from this one function, so a fragment's b is the same in every build path, the
+/// GPU's compute build included: it uses only float operations that IEEE rounds exactly (no fused
+/// multiply-adds, see rounded()), mirrored in shaders/compute/common.glsl, so both give the same bits.
+/// Within 3e-7 relative of -log1p(-alpha) for alpha in [0, 1); other values (which no rasteriser
+/// makes) go to std::log1p.
+inline float optical_depth_of(float alpha) noexcept {
+    using detail::rounded;
+    if (alpha >= 0.0f && alpha < 0.5f) {
+        // -ln(1 - a) = 2 atanh(s), s = a / (2 - a) <= 1/3: 2 s (1 + s^2/3 + s^4/5 + ... + s^14/15),
+        // whose first term left out is below 2e-8 of the sum. 1 - a itself would lose a's low bits.
+        const float s = alpha / (2.0f - alpha), s2 = rounded(s * s);
+        float p = 1.0f / 15.0f;
+        for (const float c : {1.0f / 13.0f, 1.0f / 11.0f, 1.0f / 9.0f, 1.0f / 7.0f, 1.0f / 5.0f, 1.0f / 3.0f, 1.0f}) p = c + rounded(s2 * p);
+        return rounded(2.0f * s) * p;
+    }
+    if (alpha >= 0.5f && alpha < 1.0f) {
+        // u = 1 - a, exact here, is m 2^e with m in [sqrt(1/2), sqrt(2)): ln u = e ln 2 + 2 atanh(s),
+        // s = (m - 1) / (m + 1), |s| <= 0.172, five terms of the series.
+        const float u = 1.0f - alpha;
+        const std::uint32_t bits = std::bit_cast<std::uint32_t>(u);
+        int e = int((bits >> 23) & 0xffu) - 127;
+        float m = std::bit_cast<float>((bits & 0x7fffffu) | 0x3f800000u);
+        if (m > 1.41421356f) m *= 0.5f, ++e;
+        const float s = (m - 1.0f) / (m + 1.0f), s2 = rounded(s * s);
+        float p = 1.0f / 11.0f;
+        for (const float c : {1.0f / 9.0f, 1.0f / 7.0f, 1.0f / 5.0f, 1.0f / 3.0f, 1.0f}) p = c + rounded(s2 * p);
+        const float ln_u = rounded(float(e) * 0.693147182f) + rounded(rounded(2.0f * s) * p);
+        return -ln_u;
+    }
+    return -std::log1p(-alpha);
+}
 
 /// A fragment whose optical depth is already known: what the tiled build keeps per fragment, having
 /// computed b once per segment wherever the segment's alpha is constant.
@@ -4124,15 +4159,17 @@ private:
 // ---- begin hairshadow/placement/clustered.hpp
 /// @file
 /// Density clustering's per-texel bins (Mertens et al. 2004, sections 3.2-3.3). Fragment depths are
-/// clustered by k-means with weights b = -ln(1 - alpha): K centres start uniform between the texel's
-/// nearest and furthest fragment and take one iteration (the weighted means); a second pass gives each
-/// cluster's weighted standard deviation around its mean. Cluster j's histogram bin spans
+/// clustered by k-means with weights b = -ln(1 - alpha), summed in fixed point so that no order of the
+/// fragments changes a bit: K centres start uniform between the texel's nearest and furthest fragment
+/// and take one iteration (the weighted means); a second pass gives each cluster's weighted standard
+/// deviation around its mean. Cluster j's histogram bin spans
 /// mu_j +- sqrt(3) sigma_j (a uniform distribution's width from its variance); overlapping bins meet at
 /// the midpoint of the overlap; a fragment outside every bin goes to the nearest cluster.
 
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstddef>
 #include <numbers>
 #include <span>
@@ -4179,29 +4216,35 @@ public:
         // Initial centres: the middles of K equal parts of [nearest, furthest].
         std::array<float, K> centre;
         for (int j = 0; j < K; ++j) centre[std::size_t(j)] = lo + (hi - lo) * (float(j) + 0.5f) / float(K);
-        // One k-means iteration: weighted means of the fragments nearest each centre.
-        std::array<double, K> weight{}, sum{};
+        // One k-means iteration: weighted means of the fragments nearest each centre. The sums are
+        // exact integers (fixed_sum), so no order of the fragments changes them, and the GPU's compute
+        // build, summing in whatever order its threads run, gets the same means bit for bit.
+        std::array<std::int64_t, K> weight{}, sum{};
         for (const auto& f : fragments) {
             const auto j = std::size_t(nearest(centre, f.depth, [](int) { return true; }));
             const double b = fragment_optical_depth(f);
-            weight[j] += b;
-            sum[j] += b * f.depth;
+            weight[j] += fixed_sum(b);
+            sum[j] += fixed_sum(b * double(f.depth)); // exact in double: two floats' product
         }
         for (std::size_t j = 0; j < std::size_t(K); ++j) {
-            s.mean[j] = weight[j] > 0.0 ? float(sum[j] / weight[j]) : centre[j];
-            s.sigma[j] = weight[j] > 0.0 ? 0.0f : -1.0f;
+            s.mean[j] = weight[j] > 0 ? float(double(sum[j]) / double(weight[j])) : centre[j];
+            s.sigma[j] = weight[j] > 0 ? 0.0f : -1.0f;
         }
         // Second pass: weighted variance of each cluster's fragments around its mean.
-        std::array<double, K> var_weight{}, var_sum{};
+        std::array<std::int64_t, K> var_weight{}, var_sum{};
         for (const auto& f : fragments) {
             const auto j = std::size_t(nearest(s.mean, f.depth, [&](int i) { return s.sigma[std::size_t(i)] >= 0.0f; }));
             const double b = fragment_optical_depth(f), d = double(f.depth) - s.mean[j];
-            var_weight[j] += b;
-            var_sum[j] += b * d * d;
+            var_weight[j] += fixed_sum(b);
+            var_sum[j] += fixed_sum(b * d * d);
         }
         for (std::size_t j = 0; j < std::size_t(K); ++j)
-            if (s.sigma[j] >= 0.0f && var_weight[j] > 0.0) s.sigma[j] = float(std::sqrt(var_sum[j] / var_weight[j]));
+            if (s.sigma[j] >= 0.0f && var_weight[j] > 0) s.sigma[j] = float(std::sqrt(double(var_sum[j]) / double(var_weight[j])));
     }
+
+    /// A k-means term in fixed point, 2^-36 (truncated toward zero): sums of up to 2^24 terms of
+    /// optical depth below 7 (alpha <= HAIRSHADOW_ALPHA_MAX) times a depth within [-2, 2] stay exact.
+    static std::int64_t fixed_sum(double x) noexcept { return std::int64_t(x * 68719476736.0); }
 
     /// The bins of a texel in depth order; adjacent overlapping bins meet at the overlap's midpoint.
     std::array<bin, K> bins(const texel_state& s) const noexcept {

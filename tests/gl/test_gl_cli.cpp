@@ -63,6 +63,58 @@ TEST_CASE("compare and render --backend gl", "[gl][cli]") {
     CHECK(std::filesystem::exists(dir.file("maps/map_003.png")));
 }
 
+TEST_CASE("query --backend gl on either build path gives the CPU's transmittance", "[gl][cli][compute]") {
+    test::temp_dir dir("gl_cli_path");
+    const auto scene = test::make_sheets(3, 64);
+    write_data(scene.model, dir.file("sheets.data"));
+    std::string points;
+    for (float x : {-0.6f, 0.3f})
+        for (float z : {0.9f, scene.sheet_z[1] - 0.05f, -0.9f})
+            points += std::to_string(x) + " " + std::to_string(scene.row_y[scene.row_y.size() / 2 + 1]) + " " + std::to_string(z) + "\n";
+    test::write_text(dir.file("points.txt"), points);
+    const std::string common = "query " + dir.file("sheets.data") + " --light dir:0,0,-1 --res 64 --alpha 0.4 --points " + dir.file("points.txt");
+    for (const char* method : {"dom:3", "dc:4", "occ:128:4:8bit", "adsm:auto"}) {
+        const auto cpu = test::run_cli(common + " --method " + method);
+        REQUIRE(cpu.status == 0);
+        for (const char* path : {"compute", "raster"}) {
+            CAPTURE(method, path);
+            const auto gl = test::run_cli(common + " --method " + method + " --backend gl --context osmesa --gl-path " + path);
+            REQUIRE(gl.status == 0);
+            const auto a = numbers(cpu.out), b = numbers(gl.out);
+            REQUIRE(b.size() == a.size());
+            for (std::size_t i = 0; i < a.size(); ++i) CHECK(b[i] == Approx(a[i]).margin(1e-4));
+        }
+    }
+    for (const char* path : {"compute", "raster"}) {
+        CAPTURE(path);
+        const auto bench = test::run_cli("bench " + dir.file("sheets.data") + " --methods dom:3,occ:128:4 --res 64 --repeat 2 --backend gl --context osmesa --gl-path " +
+                                         path);
+        REQUIRE(bench.status == 0);
+        CHECK_THAT(bench.out, Catch::Contains("GPU median (ms)") && Catch::Contains(std::string(path) + " build"));
+    }
+    for (const char* bad : {" --gl-path compute", " --backend gl --gl-path blend"}) {
+        CAPTURE(bad);
+        const auto r = test::run_cli(common + " --method dom:3" + bad);
+        CHECK(r.status == 2);
+        CHECK_THAT(r.err, Catch::Contains("--gl-path"));
+    }
+}
+
+TEST_CASE("an explicit --gl-path compute names the extension a context lacks; the default falls back to raster", "[gl][cli][compute][errors]") {
+    // Mesa hides an extension when told to: here the 64-bit integers the line rule needs.
+    test::temp_dir dir("gl_cli_no_int64");
+    test::write_text(dir.file("points.txt"), "0 0 0\n0.1 -0.1 0\n");
+    ::setenv("MESA_EXTENSION_OVERRIDE", "-GL_ARB_gpu_shader_int64", 1);
+    const std::string common =
+        "query procedural:straight:strands=20:segments=6 --backend gl --context osmesa --res 32 --method dom:3 --points " + dir.file("points.txt");
+    const auto compute = test::run_cli(common + " --gl-path compute");
+    CHECK(compute.status == 1);
+    CHECK_THAT(compute.err, Catch::Contains("GL_ARB_gpu_shader_int64") && Catch::Contains("--gl-path raster"));
+    const auto fallback = test::run_cli(common);
+    CHECK(fallback.status == 0);
+    ::unsetenv("MESA_EXTENSION_OVERRIDE");
+}
+
 TEST_CASE("the GL back end refuses what only the CPU does, with a usage error", "[gl][cli]") {
     const std::string model = "procedural:straight:strands=10:segments=4";
     struct refusal {

@@ -1,4 +1,4 @@
-// Approximate deep shadow maps on GL against the CPU kernels, both built from the fragments GL
+// Approximate deep shadow maps on GL's raster path against the CPU kernels, both built from the fragments GL
 // rasterised: the depth map and the measured sums read back, and the GLSL look-up against the CPU
 // query; TressFX's parameters reach the look-up.
 #include "gl_test_context.hpp"
@@ -20,6 +20,7 @@ void check_fibre_density(const Method& parameters, const light_space& light, con
     Method cpu = parameters;
     cpu.build(fragments, light);
     gl::maps<Method> on_gl(parameters);
+    on_gl.set_build_path(gl::build_path::raster); // the papers' passes, against the CPU run on GL's own fragments
     on_gl.build(mesh, light);
     const auto texels = on_gl.read_back();
     const int res = light.resolution();
@@ -82,6 +83,7 @@ TEST_CASE("the GL look-up gives TressFX's transmittance behind sheets of strands
     const gl::hair_mesh mesh(scene.model);
     const approximate_deep_shadow_maps parameters(per_pixel_depth<1>(), fibre_density<>({.spacing = 0.5f, .radius = 0.2f, .alpha = 0.3f}));
     gl::maps<approximate_deep_shadow_maps> on_gl(parameters);
+    on_gl.set_build_path(gl::build_path::raster); // the papers' passes, against the CPU run on GL's own fragments
     on_gl.build(mesh, scene.light);
     const float y = scene.row_y[scene.row_y.size() / 2];
     const std::vector<glm::vec3> points = {{0.2f, y, 0.9f}, {0.2f, y, 0.45f}, {0.2f, y, 0.3f}, {0.2f, y, -0.5f}, {0.2f, 0.49f, -0.5f}};

@@ -1,4 +1,4 @@
-// Opacity shadow maps, deep opacity maps (float and 8-bit) and range opacity maps on GL against the
+// Opacity shadow maps, deep opacity maps (float and 8-bit) and range opacity maps on GL's raster path against the
 // CPU kernels, both built from the fragments GL rasterised.
 #include "gl_test_context.hpp"
 
@@ -44,6 +44,7 @@ void check_interpolated(const light_space& light, const gl::hair_mesh& mesh, con
     Method cpu;
     cpu.build(fragments, light);
     gl::interpolated_maps_gl<Method> on_gl;
+    on_gl.set_build_path(gl::build_path::raster); // the papers' passes, against the CPU run on GL's own fragments
     on_gl.build(mesh, light, raster_options{});
     const auto texels = on_gl.read_back();
     const int res = light.resolution();
@@ -80,6 +81,7 @@ void check_clustered(const light_space& light, const gl::hair_mesh& mesh, const 
     Method cpu;
     cpu.build(fragments, light);
     gl::interpolated_maps_gl<Method> on_gl;
+    on_gl.set_build_path(gl::build_path::raster); // the papers' passes, against the CPU run on GL's own fragments
     on_gl.build(mesh, light, raster_options{});
     const auto texels = on_gl.read_back();
     const int res = light.resolution();

@@ -1,4 +1,4 @@
-// Occupancy maps on GL against the CPU kernel, both built from the fragments GL rasterised.
+// Occupancy maps on GL's raster path against the CPU kernel, both built from the fragments GL rasterised.
 #include "gl_test_context.hpp"
 
 #include <hairshadow/gl.hpp>
@@ -28,6 +28,7 @@ void check_occupancy(const hair_model& model, const light_space& light) {
     Method cpu;
     cpu.build(fragments, light);
     gl::occupancy_maps_gl<Method> on_gl;
+    on_gl.set_build_path(gl::build_path::raster); // the papers' passes, against the CPU run on GL's own fragments
     on_gl.build(mesh, light, options);
     const auto texels = on_gl.read_back();
     const int res = light.resolution();

@@ -28,7 +28,8 @@ struct engine_state {
     std::array<GLboolean, 8> blend{};
     std::array<std::array<GLint, 6>, 8> blend_functions{};
     std::array<std::array<GLint, 3>, 8> units{}; // 2D, 2D array, sampler
-    GLint image_name = 0, image_format = 0;
+    std::array<std::array<GLint, 2>, 4> images{};      // units 0 to 3: name, format
+    std::array<std::array<GLint64, 3>, 8> storage{};   // indexed storage bindings 0 to 7: name, start, size
     GLfloat line_width = 0;
     friend bool operator==(const engine_state&, const engine_state&) = default;
 
@@ -70,8 +71,17 @@ struct engine_state {
             glGetIntegerv(GL_SAMPLER_BINDING, &s.units[std::size_t(u)][2]);
         }
         glActiveTexture(GLenum(s.active_texture));
-        glGetIntegeri_v(GL_IMAGE_BINDING_NAME, 0, &s.image_name);
-        glGetIntegeri_v(GL_IMAGE_BINDING_FORMAT, 0, &s.image_format);
+        for (GLuint i = 0; i < 4; ++i) {
+            glGetIntegeri_v(GL_IMAGE_BINDING_NAME, i, &s.images[i][0]);
+            glGetIntegeri_v(GL_IMAGE_BINDING_FORMAT, i, &s.images[i][1]);
+        }
+        for (GLuint i = 0; i < 8; ++i) {
+            GLint name = 0;
+            glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, i, &name);
+            s.storage[i][0] = name;
+            glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, i, &s.storage[i][1]);
+            glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, i, &s.storage[i][2]);
+        }
         return s;
     }
 };
@@ -95,6 +105,9 @@ public:
         glBindBuffer(GL_PIXEL_PACK_BUFFER, pack_.get());
         glBufferData(GL_PIXEL_PACK_BUFFER, 64, nullptr, GL_STREAM_READ);
         glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, storage_.get());
+        glBufferData(GL_SHADER_STORAGE_BUFFER, 1024, nullptr, GL_DYNAMIC_DRAW);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     }
     ~hostile_engine() { glDeleteSamplers(1, &sampler_); }
 
@@ -132,7 +145,10 @@ public:
         glPixelStorei(GL_PACK_ALIGNMENT, 8);
         glPixelStorei(GL_PACK_ROW_LENGTH, 7);
         for (GLuint u = 0; u < 8; ++u) glBindSampler(u, sampler_);
-        glBindImageTexture(0, colour_.get(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
+        for (GLuint i = 0; i < 4; ++i) glBindImageTexture(i, colour_.get(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
+        // The compute build's storage bindings, each a range of the engine's buffer.
+        for (GLuint i = 0; i < 8; ++i) glBindBufferRange(GL_SHADER_STORAGE_BUFFER, i, storage_.get(), GLintptr(64 * i), 64);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer_.get());
         glActiveTexture(GL_TEXTURE5);
         glBindTexture(GL_TEXTURE_2D, colour_.get());
         glBindTexture(GL_TEXTURE_2D_ARRAY, array_texture_.get());
@@ -175,7 +191,9 @@ public:
             glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
         }
         glActiveTexture(GL_TEXTURE0);
-        glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8);
+        for (GLuint i = 0; i < 4; ++i) glBindImageTexture(i, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8);
+        for (GLuint i = 0; i < 8; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, 0);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
         REQUIRE(glGetError() == GL_NO_ERROR);
     }
 
@@ -184,7 +202,7 @@ private:
     gl::framebuffer fbo_ = gl::make_framebuffer();
     gl::texture colour_, array_texture_;
     gl::vertex_array vao_ = gl::make_vertex_array();
-    gl::buffer buffer_ = gl::make_buffer(), pack_ = gl::make_buffer();
+    gl::buffer buffer_ = gl::make_buffer(), pack_ = gl::make_buffer(), storage_ = gl::make_buffer();
     GLuint sampler_ = 0;
 };
 
@@ -193,17 +211,28 @@ struct test_scene {
     light_space light = light_space::fit(light_spec::directional({0.2f, -1.0f, -0.6f}), model.bounds(), 96);
 };
 
-/// Builds `Method` on GL from a clean state and from the hostile one: the state comes back unchanged
-/// after the build and after the read-back, and the maps are equal.
+/// Builds `Method` on GL from a clean state and from the hostile one, on both build paths: the state
+/// comes back unchanged after the build and after the read-back, and the maps are equal.
+template <class Method>
+void check_contract(const gl::hair_mesh& mesh, const light_space& light, gl::build_path path);
 template <class Method>
 void check_contract(const gl::hair_mesh& mesh, const light_space& light) {
+    for (const auto path : {gl::build_path::compute, gl::build_path::raster}) {
+        CAPTURE(gl::to_string(path));
+        check_contract<Method>(mesh, light, path);
+    }
+}
+template <class Method>
+void check_contract(const gl::hair_mesh& mesh, const light_space& light, gl::build_path path) {
     hostile_engine::reset();
     gl::maps<Method> clean;
+    clean.set_build_path(path);
     clean.build(mesh, light);
     const auto expected = clean.read_back();
 
     const hostile_engine engine;
     gl::maps<Method> hostile;
+    hostile.set_build_path(path);
     engine.apply();
     const auto before = engine_state::read();
     REQUIRE_NOTHROW(hostile.build(mesh, light)); // the caller's unread error does not fail it
@@ -430,11 +459,12 @@ TEST_CASE("a rebuild at a new resolution, with the old maps bound for a look-up,
     hostile_engine::reset();
 }
 
-TEST_CASE("the depth extent reduced on the GPU is the range map's, exactly", "[gl][state]") {
+TEST_CASE("the raster path's depth extent reduced on the GPU is the range map's, exactly", "[gl][state]") {
+    // (The compute path takes it from the segments' ends, as the CPU does: test_gl_compute.cpp.)
     test::gl_context();
     const test_scene s;
     const gl::hair_mesh mesh(s.model);
-    gl::light_pass pass;
+    gl::light_pass pass(gl::build_path::raster);
     // Tile counts of 1, a partial tile, whole tiles, one more, and many.
     for (int res : {1, 63, 64, 65, 96, 300}) {
         pass.run(mesh, light_space::fit(light_spec::directional({0.2f, -1.0f, -0.6f}), s.model.bounds(), res));

@@ -106,17 +106,6 @@ inline void check_resolution(long long resolution) {
         throw argument_error("resolution " + std::to_string(resolution) + " is outside 1.." + std::to_string(HAIRSHADOW_MAX_RESOLUTION));
 }
 
-namespace detail {
-/// x itself, as a rounded float: a fence that keeps the compiler from fusing the multiplication that
-/// made x with a later addition. A fused multiply-add rounds once, not twice, so fusing would make
-/// the vector and scalar paths of the tiled build, or builds with and without -mfma, differ.
-HAIRSHADOW_ALWAYS_INLINE inline float rounded(float x) noexcept {
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-    __asm__("" : "+x"(x));
-#endif
-    return x;
-}
-} // namespace detail
 
 /// A world point seen from the light: window coordinates in texels, linear depth in [0, 1] inside the
 /// frustum, and the clip-space w (1 for orthographic lights).
@@ -260,6 +249,8 @@ public:
         return texel_depth{int(p.window.x), int(p.window.y), p.depth};
     }
 
+    /// Half the map's width: in world units for a directional light, else the tangent of the half-angle.
+    float half_extent() const noexcept { return half_extent_; }
     /// World-space width of one texel at a linear depth (constant for a directional light).
     float texel_size(float depth) const noexcept {
         if (!perspective()) return 2.0f * half_extent_ / float(resolution_);

@@ -116,6 +116,13 @@ public:
         return s;
     }
 
+    /// The state texture (means, then deviations; RGBA32F layers) at resolution `res`, for the compute
+    /// build to write.
+    GLuint state_texture(int res) {
+        allocate(res);
+        return state_.get();
+    }
+
 private:
     static constexpr std::string_view version = "#version 430 core\n";
 

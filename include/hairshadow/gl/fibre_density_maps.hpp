@@ -56,21 +56,33 @@ public:
                 sums_ = make_texture_2d(GL_RG32F, res, res);
                 allocated_ = res;
             }
-            glBindFramebuffer(GL_FRAMEBUFFER, this->fbo_.get());
-            glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, sums_.get(), 0);
-            for (int t = 1; t < 8; ++t) glFramebufferTexture(GL_FRAMEBUFFER, GLenum(GL_COLOR_ATTACHMENT0 + t), 0, 0);
-            const GLenum attachment = GL_COLOR_ATTACHMENT0;
-            glDrawBuffers(1, &attachment);
-            if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) throw gl_error("fibre density: incomplete framebuffer");
-            glViewport(0, 0, res, res);
-            const float zero[4] = {0, 0, 0, 0};
-            glClearBufferfv(GL_COLOR, 0, zero);
-            glEnable(GL_BLEND);
-            glBlendEquation(GL_FUNC_ADD);
-            glBlendFunc(GL_ONE, GL_ONE);
-            glUseProgram(count_program_.get());
-            set_light_uniforms(count_program_.get(), this->light_, pass.options());
-            pass.mesh().draw();
+            if (pass.compute()) {
+                // shaders/compute/fibre_count: one work group per tile of the light pass's lists.
+                if (!compute_program_)
+                    compute_program_ = detail::link_compute_pass("#define HS_SUM_SLOTS 1\n", {shaders::accumulation_float, shaders::compute_tile_sums},
+                                                                 shaders::compute_fibre_count, "compute/fibre_count");
+                glUseProgram(compute_program_.get());
+                pass.compute()->bind_for_tiles(compute_program_.get());
+                glBindImageTexture(0, sums_.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+                pass.compute()->dispatch_tiles();
+                glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            } else {
+                glBindFramebuffer(GL_FRAMEBUFFER, this->fbo_.get());
+                glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, sums_.get(), 0);
+                for (int t = 1; t < 8; ++t) glFramebufferTexture(GL_FRAMEBUFFER, GLenum(GL_COLOR_ATTACHMENT0 + t), 0, 0);
+                const GLenum attachment = GL_COLOR_ATTACHMENT0;
+                glDrawBuffers(1, &attachment);
+                if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) throw gl_error("fibre density: incomplete framebuffer");
+                glViewport(0, 0, res, res);
+                const float zero[4] = {0, 0, 0, 0};
+                glClearBufferfv(GL_COLOR, 0, zero);
+                glEnable(GL_BLEND);
+                glBlendEquation(GL_FUNC_ADD);
+                glBlendFunc(GL_ONE, GL_ONE);
+                glUseProgram(count_program_.get());
+                set_light_uniforms(count_program_.get(), this->light_, pass.options());
+                pass.mesh().draw();
+            }
             check("fibre density: count pass");
         }
         this->built();
@@ -143,7 +155,7 @@ public:
 private:
     R reconstruction_;
     int allocated_ = 0;
-    program count_program_;
+    program count_program_, compute_program_;
     texture sums_;
 };
 

@@ -81,6 +81,7 @@ public:
         point_attribute(0, 3, at(0));
         point_attribute(1, 1, at(3 * n));
         point_attribute(2, 1, at(4 * n));
+        sources_.points = {n, at(0), at(3 * n), at(4 * n)};
         index_range(e);
         glBindVertexArray(0);
         check("hair_mesh upload");
@@ -131,6 +132,8 @@ public:
         view_points(points);
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, segments.buffer);
         index_offset_ = segments.offset;
+        sources_.index_buffer = segments.buffer;
+        sources_.index_offset = segments.offset;
         index_count_ = GLsizei(e.size());
         glBindVertexArray(0);
         check("hair_mesh over user buffers");
@@ -161,6 +164,16 @@ public:
     std::size_t point_count() const noexcept { return point_count_; }
     std::size_t segment_count() const noexcept { return std::size_t(index_count_) / 2; }
 
+    /// Where the mesh's data lives, for passes that read buffers rather than draw (the compute
+    /// build): the points' buffers, and two uint32 indices per segment from `index_offset` bytes into
+    /// `index_buffer`.
+    struct buffer_sources {
+        point_buffers points;
+        GLuint index_buffer = 0;
+        GLintptr index_offset = 0;
+    };
+    const buffer_sources& sources() const noexcept { return sources_; }
+
 private:
     static void upload(GLenum target, GLuint name, std::size_t bytes, const void* data) {
         glBindBuffer(target, name);
@@ -172,6 +185,8 @@ private:
         if (e.size() > std::size_t(std::numeric_limits<GLsizei>::max())) throw argument_error("hair_mesh: more segments than one draw holds");
         upload(GL_ELEMENT_ARRAY_BUFFER, indices_.get(), e.size() * sizeof(std::uint32_t), e.data());
         index_count_ = GLsizei(e.size());
+        sources_.index_buffer = indices_.get();
+        sources_.index_offset = 0;
     }
 
     /// Throws unless `name` is a buffer holding `count` values of `value_bytes` from `offset`, `stride` apart.
@@ -213,6 +228,7 @@ private:
         else if (!(points.uniform_opacity >= 0.0f && points.uniform_opacity <= 1.0f))
             throw argument_error("hair_mesh: without an opacity buffer, uniform_opacity must be 0 to 1");
         point_count_ = n;
+        sources_.points = points;
         const float constants[2] = {points.uniform_thickness, points.uniform_opacity};
         glBindVertexArray(vao_.get());
         upload(GL_ARRAY_BUFFER, vertices_.get(), sizeof constants, constants);
@@ -230,6 +246,7 @@ private:
     GLintptr index_offset_ = 0;
     std::size_t point_count_ = 0;
     bool owns_points_ = false;
+    buffer_sources sources_;
 };
 
 /// Sets the uniforms of raster/vertex.glsl and raster/coverage.glsl on the current program.

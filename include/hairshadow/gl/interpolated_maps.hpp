@@ -45,6 +45,21 @@ struct range_state {
 template <class P>
 struct placement_glsl; // what a placement needs on GL
 
+/// Whether a placement's per-texel state comes from the range map alone (else it has state passes of
+/// its own: density clustering's k-means).
+template <class P>
+inline constexpr bool range_placement = std::is_same_v<typename placement_glsl<P>::state_pass, range_state>;
+
+/// The program of a compute build pass: the shared compute snippets, the method's snippets, the pass.
+inline program link_compute_pass(const std::string& defines, const std::vector<std::string_view>& snippets, std::string_view pass,
+                                 const std::string& name) {
+    auto pieces = compute_pieces(defines);
+    pieces.insert(pieces.end(), snippets.begin(), snippets.end());
+    pieces.push_back(pass);
+    const auto s = compile_shader(GL_COMPUTE_SHADER, pieces, name);
+    return link_program({&s}, name);
+}
+
 template <int N, class Spacing>
 struct placement_glsl<planar_slices<N, Spacing>> {
     using state_pass = range_state;
@@ -88,6 +103,14 @@ template <class P>
 class maps_base {
 public:
     const light_space& light() const noexcept { return light_; }
+    /// The path build(mesh, light, options) takes from the next build on (build(pass) takes the
+    /// pass's): at first default_build_path(), compute wherever the context runs it. Throws
+    /// feature_error for compute where the context lacks what it needs.
+    void set_build_path(build_path path) {
+        if (path == build_path::compute) require_compute_path("the compute build path");
+        path_ = path;
+    }
+    build_path path() const noexcept { return path_; }
     /// The placement as the CPU method's, prepared from the map's extent: the first call after a
     /// build reads the extent back (one texel, and a wait for the GPU).
     const P& placement() const {
@@ -100,11 +123,11 @@ public:
     }
 
 protected:
-    explicit maps_base(P placement) : placement_(std::move(placement)) {}
+    explicit maps_base(P placement) : placement_(std::move(placement)), path_(default_build_path()) {}
 
-    /// The maps' own light pass, run for build(mesh, light, options).
+    /// The maps' own light pass, run for build(mesh, light, options), on the maps' path.
     const light_pass& own_pass(const hair_mesh& mesh, const light_space& light, const raster_options& options) {
-        if (!own_pass_) own_pass_ = std::make_unique<light_pass>();
+        if (!own_pass_ || own_pass_->path() != path_) own_pass_ = std::make_unique<light_pass>(path_);
         own_pass_->run(mesh, light, options);
         return *own_pass_;
     }
@@ -123,6 +146,15 @@ protected:
         if (range_->generation != generation_)
             throw argument_error("the light pass these maps were built from has run again since: build them again from it");
         return *range_;
+    }
+    /// Makes `prog`, a compute pass over the light pass's lists, current, with its lists, uniforms
+    /// and the range map bound (texture unit 0); the caller binds its output images and dispatches.
+    void begin_compute_pass(const light_pass& pass, GLuint prog) const {
+        glUseProgram(prog);
+        pass.compute()->bind_for_tiles(prog);
+        lookup_binder binder(prog, 0, default_lookup_prefix);
+        binder.texture("hs_range_map", GL_TEXTURE_2D, range_->range.get());
+        placement_glsl<P>::set_uniforms(binder, placement_);
     }
     /// The placement as constructed (the parameters its GLSL twin takes as uniforms), unprepared.
     const P& placement_spec() const noexcept { return placement_; }
@@ -148,6 +180,7 @@ private:
     mutable P placement_;
     mutable std::uint64_t prepared_generation_ = 0;
     std::unique_ptr<light_pass> own_pass_;
+    build_path path_;
 };
 } // namespace detail
 
@@ -210,6 +243,12 @@ public:
         const int res = this->light_.resolution();
         allocate(res);
         const GLuint range = this->range_->range.get();
+        if (pass.compute()) {
+            build_compute(pass);
+            check("interpolated maps: compute pass");
+            this->built();
+            return;
+        }
         state_.run(pass.mesh(), this->light_, pass.options(), *this->range_, this->fbo_.get()); // density clustering's passes; nothing for the others
 
         // Layers, 4 per target, up to 8 targets a pass.
@@ -311,9 +350,41 @@ private:
         allocated_ = res;
     }
 
+    /// The compute build, one work group per tile of the light pass's lists: shaders/compute/layers,
+    /// or for density clustering shaders/compute/clusters, which also writes the cluster state.
+    void build_compute(const light_pass& pass) {
+        if (!compute_program_) compute_program_ = link_compute_program();
+        this->begin_compute_pass(pass, compute_program_.get());
+        glBindImageTexture(0, layers_.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, eight_bit ? GL_RGBA8 : GL_RGBA32F);
+        if constexpr (!detail::range_placement<P>)
+            glBindImageTexture(1, state_.state_texture(this->light_.resolution()), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        pass.compute()->dispatch_tiles();
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    }
+    static program link_compute_program() {
+        const std::string format = std::string("#define HS_LAYERS_FORMAT ") + (eight_bit ? "rgba8" : "rgba32f") + "\n" + (eight_bit ? "#define HS_EIGHT_BIT\n" : "");
+        if constexpr (detail::range_placement<P>) {
+            const int group = std::min(8, 4 * array_layers); // layers summed per walk: 16 KiB of sums
+            return detail::link_compute_pass(defines(1) + format + "#define HS_LAYER_GROUP " + std::to_string(group) + "\n#define HS_SUM_SLOTS " +
+                                                 std::to_string(group) + "\n",
+                                             {accumulation_snippet(), shaders::compute_tile_sums, shaders::placement_common,
+                                              detail::placement_glsl<P>::snippet, detail::placement_glsl<P>::state},
+                                             shaders::compute_layers, "compute/layers");
+        } else {
+            // Strips of the tile small enough that a strip's k-means sums, state and range fit 30 KiB.
+            int rows = detail::compute_tile;
+            while (rows > 1 && detail::compute_tile * rows * (6 * layers + 2) * 4 > 30 * 1024) rows /= 2;
+            return detail::link_compute_pass(defines(1) + format + "#define HS_FIXED_SUMS\n#define HS_SUM_SLOTS " + std::to_string(2 * layers) +
+                                                 "\n#define HS_STRIP_ROWS " + std::to_string(rows) + "\n#define HS_SUM_TEXELS " +
+                                                 std::to_string(detail::compute_tile * rows) + "\n",
+                                             {accumulation_snippet(), shaders::compute_tile_sums, shaders::placement_common, detail::placement_glsl<P>::snippet},
+                                             shaders::compute_clusters, "compute/clusters");
+        }
+    }
+
     int allocated_ = 0, targets_per_pass_ = 1;
     state_pass state_;
-    program layers_program_;
+    program layers_program_, compute_program_;
     texture layers_;
 };
 

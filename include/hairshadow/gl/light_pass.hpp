@@ -3,9 +3,13 @@
 /// The pre-pass every GL method starts with (Sintorn & Assarsson 2009, section 3.1): each texel's
 /// nearest fragment under MIN blending (red) and furthest under MAX blending (alpha), then the whole
 /// map's depth extent reduced from it on the GPU by two compute dispatches, so no build reads anything
-/// back. Several methods for one light and one mesh share one light_pass: run it, then build each
-/// method's maps from it.
+/// back. That is build_path::raster; on build_path::compute the pass prepares and bins the segments
+/// on the GPU instead (compute_raster.hpp), writes the same range map from the CPU's fragments and
+/// takes the extent from the segments' ends, as the CPU does; the maps built from it walk its lists.
+/// Several methods for one light and one mesh share one light_pass: run it, then build each method's
+/// maps from it.
 
+#include <hairshadow/gl/compute_raster.hpp>
 #include <hairshadow/gl/hair_mesh.hpp>
 #include <hairshadow/gl/shaders.generated.hpp>
 #include <hairshadow/gl/state_guard.hpp>
@@ -57,9 +61,16 @@ inline program link_line_pass(std::string_view pass_snippet, const std::string& 
 /// The depth-range map and depth extent of one hair mesh seen from one light.
 class light_pass {
 public:
-    /// Compiles the passes; throws feature_error without GL 4.3 (compute shaders).
-    light_pass() {
+    /// Compiles the passes of `path` (by default compute wherever the context runs it); throws
+    /// feature_error without GL 4.3 (compute shaders), or for compute where the context lacks what
+    /// it needs (compute_path_missing()).
+    light_pass() : light_pass(default_build_path()) {}
+    explicit light_pass(build_path path) : path_(path) {
         require_version(4, 3, "the GL light pass");
+        if (path == build_path::compute) {
+            compute_ = std::make_unique<detail::compute_segments>();
+            return;
+        }
         static constexpr std::string_view version = "#version 430 core\n";
         range_program_ = detail::link_line_pass(shaders::passes_depth_range, "depth-range pass");
         const auto tiles = compile_shader(GL_COMPUTE_SHADER, {version, "#define HS_EXTENT_TILES\n", shaders::passes_depth_extent}, "passes/depth_extent tiles");
@@ -81,6 +92,14 @@ public:
         mesh_ = &mesh;
         light_ = light;
         options_ = options;
+        if (compute_) {
+            compute_->run(mesh, light, options, textures_->range.get());
+            // Later passes fetch the range map or walk the lists, read-backs copy it.
+            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                            GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+            check("light pass: compute build");
+            return;
+        }
 
         // 1. Nearest and furthest fragment of each texel.
         glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
@@ -127,6 +146,10 @@ public:
     }
     const light_space& light() const noexcept { return light_; }
     const raster_options& options() const noexcept { return options_; }
+    /// How this pass, and the maps built from it, are built.
+    build_path path() const noexcept { return path_; }
+    /// The prepared and binned segments of the last run, on build_path::compute (else null).
+    const detail::compute_segments* compute() const noexcept { return compute_.get(); }
     /// The textures of the last run (shared: maps built from it keep them alive).
     const std::shared_ptr<detail::range_textures>& textures() const noexcept { return textures_; }
 
@@ -141,6 +164,8 @@ private:
         textures_->resolution = res;
     }
 
+    build_path path_;
+    std::unique_ptr<detail::compute_segments> compute_;
     program range_program_, tiles_program_, extent_program_;
     framebuffer fbo_ = make_framebuffer();
     std::shared_ptr<detail::range_textures> textures_;

@@ -30,6 +30,9 @@ class occupancy_maps_gl : public detail::maps_base<typename Method::placement_ty
 public:
     static constexpr int bit_targets = (S + 127) / 128;
     static constexpr int slab_targets = (B + 3) / 4;
+    /// Whether build_path::compute builds these maps (else the raster passes run after a compute light
+    /// pass): its images fit 4 units, and a tile's bits and sums 30 KiB of shared memory.
+    static constexpr bool computes_on_gpu = detail::range_placement<P> && bit_targets + slab_targets <= 4 && S * 32 + B * 2048 + 2048 <= 30 * 1024;
     /// Texture units the look-up reads (bind_lookup binds them from its first_unit): the range map,
     /// the occupancy words and the slabs.
     static constexpr int texture_units = 1 + bit_targets + slab_targets;
@@ -78,6 +81,12 @@ public:
         state_guard guard("hairshadow: occupancy maps");
         guard.set_pass_state();
         allocate(this->light_.resolution());
+        if (pass.compute() && computes_on_gpu) {
+            build_compute(pass);
+            check("occupancy maps: compute pass");
+            this->built();
+            return;
+        }
         glBindFramebuffer(GL_FRAMEBUFFER, this->fbo_.get());
         glViewport(0, 0, allocated_, allocated_);
 
@@ -184,6 +193,25 @@ private:
         allocated_ = res;
     }
 
+    /// The compute build (shaders/compute/occupancy): one work group per tile of the light pass's lists.
+    void build_compute(const light_pass& pass) {
+        if (!compute_program_) {
+            const std::string d = defines() + "#define HS_SUM_SLOTS " + std::to_string(B) + "\n#define HS_SLABS_FORMAT " +
+                                  (eight_bit ? "rgba8" : "rgba32f") + "\n" + (eight_bit ? "#define HS_EIGHT_BIT\n" : "");
+            compute_program_ = detail::link_compute_pass(d,
+                                                         {accumulation_snippet(), shaders::compute_tile_sums, shaders::placement_common,
+                                                          detail::placement_glsl<P>::snippet, detail::placement_glsl<P>::state},
+                                                         shaders::compute_occupancy, "compute/occupancy");
+        }
+        this->begin_compute_pass(pass, compute_program_.get());
+        for (int t = 0; t < bit_targets; ++t)
+            glBindImageTexture(GLuint(t), bits_[std::size_t(t)].get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32UI);
+        for (int t = 0; t < slab_targets; ++t)
+            glBindImageTexture(GLuint(bit_targets + t), slabs_[std::size_t(t)].get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, eight_bit ? GL_RGBA8 : GL_RGBA32F);
+        pass.compute()->dispatch_tiles();
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    }
+
     static void attach(const std::vector<GLuint>& textures) {
         std::vector<GLenum> buffers;
         for (std::size_t i = 0; i < 8; ++i) glFramebufferTexture(GL_FRAMEBUFFER, GLenum(GL_COLOR_ATTACHMENT0 + i), i < textures.size() ? textures[i] : 0, 0);
@@ -202,7 +230,7 @@ private:
     }
 
     int allocated_ = 0;
-    program bits_program_, slabs_program_;
+    program bits_program_, slabs_program_, compute_program_;
     std::vector<texture> bits_, slabs_;
 };
 

@@ -18,6 +18,9 @@ namespace hairshadow::gl {
 class any_gl_shadow_map {
 public:
     virtual ~any_gl_shadow_map() = default;
+    /// The path build(mesh, light, options) takes (maps_base::set_build_path); build(pass) takes the pass's.
+    virtual void set_build_path(build_path path) = 0;
+    virtual build_path path() const = 0;
     /// Draws the maps of `mesh` seen from `light`; returns when the GPU has finished.
     virtual void build(const hair_mesh& mesh, const light_space& light, const raster_options& options = {}) = 0;
     /// The same from a light pass that has run, shared with other methods for its light.
@@ -56,6 +59,8 @@ template <class Method>
 class gl_method_map final : public any_gl_shadow_map {
 public:
     explicit gl_method_map(method_spec spec) : any_gl_shadow_map(std::move(spec)), maps_(maps_of_spec<Method>(this->spec())) {}
+    void set_build_path(build_path path) override { maps_.set_build_path(path); }
+    build_path path() const override { return maps_.path(); }
     void build(const hair_mesh& mesh, const light_space& light, const raster_options& options) override {
         maps_.build(mesh, light, options);
         glFinish();

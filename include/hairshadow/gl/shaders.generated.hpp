@@ -24,6 +24,864 @@ float hs_encode(float optical_depth) { return optical_depth; }
 float hs_decode(float stored) { return stored; }
 )hs_glsl";
 
+/// shaders/compute/clusters.glsl
+inline constexpr std::string_view compute_clusters = R"hs_glsl(// Compute build of density clustering (Mertens et al. 2004, section 3.3; one work group per tile, in
+// strips of HS_STRIP_ROWS rows so that a strip's sums fit shared memory): three walks of the tile's
+// segments per strip. Walk 1 sums each fragment's b and b depth into the cluster of its nearest initial
+// centre; walk 2 sums b (depth - mean)^2 into the cluster of its nearest mean; walk 3 adds b to the
+// bin placement/clustered assigns it. The k-means sums are hairshadow::clustered's fixed-point integers
+// (2^-36), so the means and deviations are the CPU's bit for bit; the histogram is summed as the
+// layers pass sums. Writes the state (means, then deviations) and the histogram where the raster passes
+// put them.
+layout(local_size_x = 16, local_size_y = 16) in;
+layout(binding = 0, HS_LAYERS_FORMAT) writeonly uniform image2DArray hs_layers_image;
+layout(binding = 1, rgba32f) writeonly uniform image2DArray hs_state_image;
+
+const int HS_STRIP = HS_TILE * HS_STRIP_ROWS; // texels of a strip
+shared float hs_mean[HS_STRIP * HS_LAYERS], hs_sigma[HS_STRIP * HS_LAYERS];
+shared vec2 hs_texel_range[HS_STRIP];
+ivec2 hs_origin;
+int hs_walk_kind;
+
+const double HS_FIXED = 68719476736.0lf; // 2^36: clustered::fixed_sum
+int64_t hs_fixed(double x) { return int64_t(x * HS_FIXED); }
+
+// Initial k-means centre j: the middle of the j-th of K equal parts of [nearest, furthest].
+float hs_centre(vec2 range, int j) {
+    precise float width = (range.y - range.x) * (float(j) + 0.5);
+    precise float centre = range.x + hs_divide(width, float(HS_LAYERS));
+    return centre;
+}
+
+void hs_emit(int x, int y) {
+    uint texel = uint((y - hs_origin.y) * HS_TILE + (x - hs_origin.x));
+    float depth, b;
+    hs_shade(x, y, depth, b);
+    uint state = texel * uint(HS_LAYERS);
+    if (hs_walk_kind == 0) {
+        float centre[HS_LAYERS], unused[HS_LAYERS];
+        for (int j = 0; j < HS_LAYERS; ++j) {
+            centre[j] = hs_centre(hs_texel_range[texel], j);
+            unused[j] = 0.0;
+        }
+        uint j = uint(hs_nearest_cluster(centre, unused, true, depth));
+        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + j, hs_fixed(double(b)));
+        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + uint(HS_LAYERS) + j, hs_fixed(double(b) * double(depth)));
+        return;
+    }
+    float mean[HS_LAYERS], sigma[HS_LAYERS];
+    for (int j = 0; j < HS_LAYERS; ++j) {
+        mean[j] = hs_mean[state + uint(j)];
+        sigma[j] = hs_sigma[state + uint(j)];
+    }
+    if (hs_walk_kind == 1) {
+        uint j = uint(hs_nearest_cluster(mean, sigma, false, depth));
+        precise double d = double(depth) - double(mean[j]);
+        precise double bdd = double(b) * d * d;
+        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + j, hs_fixed(double(b)));
+        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + uint(HS_LAYERS) + j, hs_fixed(bdd));
+        return;
+    }
+    hs_add_sum(texel * uint(HS_SUM_SLOTS) + uint(hs_assign(mean, sigma, depth)), b);
+}
+
+int64_t hs_signed_sum(uint slot) { return int64_t(hs_sum(slot)); }
+
+void main() {
+    uint tile = gl_WorkGroupID.y * uint(hs_tiles_x) + gl_WorkGroupID.x;
+    ivec4 rect = hs_tile_rect(tile);
+    uint me = gl_LocalInvocationIndex;
+    for (int strip = 0; strip * HS_STRIP_ROWS < HS_TILE; ++strip) {
+        hs_origin = ivec2(rect.x, rect.y + strip * HS_STRIP_ROWS);
+        ivec4 clip = ivec4(hs_origin, rect.z, min(hs_origin.y + HS_STRIP_ROWS, rect.w));
+        bool mine = me < uint(HS_STRIP); // this invocation resolves texel `me` of the strip
+        ivec2 texel = hs_origin + ivec2(int(me) % HS_TILE, int(me) / HS_TILE);
+        bool inside = mine && texel.x < clip.z && texel.y < clip.w;
+        if (mine) hs_texel_range[me] = inside ? texelFetch(hs_range_map, texel, 0).xw : vec2(0.0);
+        for (hs_walk_kind = 0; hs_walk_kind < 3; ++hs_walk_kind) {
+            hs_clear_sums();
+            barrier();
+            if (clip.y < clip.w) hs_walk_tile_rect(tile, clip);
+            barrier();
+            if (mine) {
+                uint sums = me * uint(HS_SUM_SLOTS), state = me * uint(HS_LAYERS);
+                for (int j = 0; j < HS_LAYERS; ++j) {
+                    int64_t weight = hs_signed_sum(sums + uint(j)), total = hs_signed_sum(sums + uint(HS_LAYERS + j));
+                    if (hs_walk_kind == 0) {
+                        hs_mean[state + uint(j)] = weight > 0L ? float(double(total) / double(weight)) : hs_centre(hs_texel_range[me], j);
+                        // Selected as bits: a compiler may turn a select of 0.0 and -1.0 into -float(!cond),
+                        // which gives -0 where the CPU has +0.
+                        hs_sigma[state + uint(j)] = uintBitsToFloat(weight > 0L ? 0u : floatBitsToUint(-1.0));
+                    } else if (hs_walk_kind == 1) {
+                        if (hs_sigma[state + uint(j)] >= 0.0 && weight > 0L) hs_sigma[state + uint(j)] = float(sqrt(double(total) / double(weight)));
+                    }
+                }
+                if (inside && hs_walk_kind == 1) {
+                    for (int t = 0; t < (HS_LAYERS + 3) / 4; ++t) {
+                        vec4 m = vec4(0.0), s = vec4(-1.0);
+                        for (int c = 0; c < 4 && 4 * t + c < HS_LAYERS; ++c) {
+                            m[c] = hs_mean[state + uint(4 * t + c)];
+                            // -0 stored as +0, the CPU's zero: llvmpipe makes -0 deviations (a select or a
+                            // root rewritten); they compare as +0, so only the stored bits differ.
+                            uint bits = floatBitsToUint(hs_sigma[state + uint(4 * t + c)]);
+                            s[c] = uintBitsToFloat(bits == 0x80000000u ? 0u : bits);
+                        }
+                        imageStore(hs_state_image, ivec3(texel, t), m);
+                        imageStore(hs_state_image, ivec3(texel, (HS_LAYERS + 3) / 4 + t), s);
+                    }
+                }
+                if (inside && hs_walk_kind == 2) {
+                    for (int t = 0; t < (HS_LAYERS + 3) / 4; ++t) {
+                        vec4 v = vec4(0.0);
+                        for (int c = 0; c < 4 && 4 * t + c < HS_LAYERS; ++c) v[c] = hs_stored(hs_sum(sums + uint(4 * t + c)));
+                        imageStore(hs_layers_image, ivec3(texel, t), v);
+                    }
+                }
+            }
+            barrier();
+        }
+    }
+}
+)hs_glsl";
+
+/// shaders/compute/common.glsl
+inline constexpr std::string_view compute_common = R"hs_glsl(// What every pass of the compute build shares (gl/compute_raster.hpp): the prepared segments and their
+// tiles, and the line rule of raster/line_rule.hpp in 64-bit integers, so that a tile's work group
+// makes exactly the fragments the CPU rasteriser makes. A pass defines hs_emit(x, y), which the walk
+// calls for every fragment of the current segment inside the tile. Needs GL_ARB_gpu_shader_int64 and
+// double precision (GL 4.0), the one extension and feature the compute path asks for.
+#extension GL_ARB_gpu_shader_int64 : require
+
+const int64_t HS_S = int64_t(1) << HS_SUBPIXEL_BITS; // sub-pixel steps per texel
+const int64_t HS_H = HS_S / 2;
+
+// A prepared segment (hairshadow::detail::prepared_segment and its segment_attributes): snapped ends,
+// linear depth and 1/w at both ends, thickness and opacity at both ends. Both ends equal: nothing to draw.
+struct hs_segment {
+    ivec4 ends;         // ax, ay, bx, by
+    vec4 depth_w;       // depth_a, depth_b, inv_w_a, inv_w_b
+    vec4 attributes;    // thickness_a, thickness_b, opacity_a, opacity_b
+};
+layout(std430, binding = 0) buffer hs_segment_buffer { hs_segment hs_segments[]; };
+layout(std430, binding = 1) buffer hs_tile_count_buffer { uint hs_tile_counts[]; };   // per tile; the scatter's cursors
+// The whole map's extent as ordered bits (hs_ordered), the number of segment-tile pairs and of long
+// segments, and each tile's first pair (tiles + 1 exclusive prefix sums).
+layout(std430, binding = 2) buffer hs_tile_offset_buffer {
+    uint hs_nearest_bits;
+    uint hs_furthest_bits;
+    uint hs_pairs;
+    uint hs_long_count;
+    uint hs_tile_offsets[];
+};
+// Segment indices: tile by tile in [0, hs_pairs), then from hs_long_first the long segments, whose
+// box covers more than HS_SHORT_TILES tiles. Binning only the short ones bounds the lists by the
+// segment count (HS_SHORT_TILES + 1 words a segment), so the buffer is sized before the build, with no
+// count read back; each tile's work group walks the few long ones that reach it as well.
+layout(std430, binding = 3) buffer hs_binned_buffer { uint hs_binned[]; };
+const int HS_SHORT_TILES = 4;
+uniform uint hs_long_first;
+
+uniform int hs_resolution;
+uniform int hs_tiles_x;
+const int HS_TILE = 16; // texels per side of a tile: one work group of 256 invocations each
+
+// The segment of a per-segment pass's invocation: groups of 256 in rows of up to 65535 groups.
+uint hs_segment_index() { return gl_WorkGroupID.y * gl_NumWorkGroups.x * 256u + gl_GlobalInvocationID.x; }
+
+// Tile `tile`'s texels, (x0, y0, x1, y1) half-open, clipped to the map.
+ivec4 hs_tile_rect(uint tile) {
+    ivec2 origin = HS_TILE * ivec2(int(tile % uint(hs_tiles_x)), int(tile / uint(hs_tiles_x)));
+    return ivec4(origin, min(origin + HS_TILE, ivec2(hs_resolution)));
+}
+// Walks every segment of tile `tile` into hs_emit (the fragments inside `rect`, or the whole tile),
+// the work group's invocations taking turns.
+void hs_walk_current(ivec4 clip);
+void hs_begin_segment(uint index);
+bool hs_segment_box(ivec4 e, out ivec4 box);
+void hs_walk_tile_rect(uint tile, ivec4 rect) {
+    for (uint j = hs_tile_offsets[tile] + gl_LocalInvocationIndex; j < hs_tile_offsets[tile + 1u]; j += uint(HS_TILE * HS_TILE)) {
+        hs_begin_segment(hs_binned[j]);
+        hs_walk_current(rect);
+    }
+    for (uint j = gl_LocalInvocationIndex; j < hs_long_count; j += uint(HS_TILE * HS_TILE)) {
+        uint segment = hs_binned[hs_long_first + j];
+        ivec4 box;
+        if (!hs_segment_box(hs_segments[segment].ends, box) || box.z < rect.x || box.x >= rect.z || box.w < rect.y || box.y >= rect.w) continue;
+        hs_begin_segment(segment);
+        hs_walk_current(rect);
+    }
+}
+void hs_walk_tile(uint tile) { hs_walk_tile_rect(tile, hs_tile_rect(tile)); }
+
+// Float bits in an order that uint comparison keeps, for atomicMin and atomicMax on depths.
+uint hs_ordered(float f) {
+    uint u = floatBitsToUint(f);
+    return (u & 0x80000000u) != 0u ? ~u : u | 0x80000000u;
+}
+float hs_from_ordered(uint u) { return uintBitsToFloat((u & 0x80000000u) != 0u ? u & 0x7fffffffu : ~u); }
+
+int64_t hs_floor_div(int64_t a, int64_t b) { // b > 0
+    int64_t q = a / b;
+    return (q * b != a && a < 0) ? q - 1 : q;
+}
+int64_t hs_ceil_div(int64_t a, int64_t b) { return -hs_floor_div(-a, b); }
+int64_t hs_abs64(int64_t a) { return a < 0 ? -a : a; }
+int64_t hs_min64(int64_t a, int64_t b) { return a < b ? a : b; }
+int64_t hs_max64(int64_t a, int64_t b) { return a > b ? a : b; }
+
+// Is p, moved by -(e, e^2), inside the open diamond of texel (c, r)? (detail::inside_diamond)
+bool hs_inside_diamond(i64vec2 p, int64_t c, int64_t r) {
+    int64_t u = p.x - (c * HS_S + HS_H), v = p.y - (r * HS_S + HS_H);
+    int64_t l1 = hs_abs64(u) + hs_abs64(v);
+    return l1 < HS_H || (l1 == HS_H && u > 0);
+}
+
+// Texels [x0, x1) x [y0, y1) within the map's side that a segment's box, widened by one texel (the
+// CPU's reach for thin lines), may touch; false when it misses the map (segment_bins::meets_map).
+bool hs_segment_box(ivec4 e, out ivec4 box) {
+    int64_t lo_x = (int64_t(min(e.x, e.z)) - HS_S) >> HS_SUBPIXEL_BITS, hi_x = (int64_t(max(e.x, e.z)) + HS_S) >> HS_SUBPIXEL_BITS;
+    int64_t lo_y = (int64_t(min(e.y, e.w)) - HS_S) >> HS_SUBPIXEL_BITS, hi_y = (int64_t(max(e.y, e.w)) + HS_S) >> HS_SUBPIXEL_BITS;
+    if (hi_x < 0 || hi_y < 0 || lo_x >= hs_resolution || lo_y >= hs_resolution) return false;
+    box = ivec4(int(hs_max64(lo_x, int64_t(0))), int(hs_max64(lo_y, int64_t(0))), int(hs_min64(hi_x, int64_t(hs_resolution - 1))),
+                int(hs_min64(hi_y, int64_t(hs_resolution - 1))));
+    return true;
+}
+
+void hs_emit(int x, int y); // defined by each pass
+
+// Every fragment of a -> b inside the texel rectangle clip = (x0, y0, x1, y1), half-open, by the
+// diamond-exit rule (rasterize_line: set_up_line, the walk, then start_fragment).
+void hs_walk(i64vec2 a, i64vec2 b, ivec4 clip) {
+    if (a == b) return;
+    int64_t dx = b.x - a.x, dy = b.y - a.y;
+    bool x_major = hs_abs64(dx) >= hs_abs64(dy);
+    int64_t major_a = x_major ? a.x : a.y, major_b = x_major ? b.x : b.y;
+    int64_t d_major = x_major ? dx : dy, d_minor = x_major ? dy : dx;
+    int64_t minor_a = x_major ? a.y : a.x;
+    int64_t lo_end = d_major > 0 ? major_a : major_b, hi_end = d_major > 0 ? major_b : major_a;
+    int64_t first = hs_ceil_div(lo_end - HS_H, HS_S), last = hs_ceil_div(hi_end - HS_H, HS_S) - 1;
+    int64_t m_begin = hs_max64(first, int64_t(x_major ? clip.x : clip.y)), m_end = hs_min64(last, int64_t(x_major ? clip.z : clip.w) - 1);
+    int64_t denom = (d_major > 0 ? d_major : -d_major) * HS_S;
+    int64_t sign = d_major > 0 ? 1 : -1;
+    bool lower_on_tie = !x_major || dy == 0 || ((dx > 0) != (dy > 0));
+    if (m_begin <= m_end) {
+        int64_t num0 = sign * (minor_a * d_major + (m_begin * HS_S + HS_H - major_a) * d_minor);
+        int64_t n = hs_floor_div(num0, denom);
+        int64_t rem = num0 - n * denom;
+        int64_t step = sign * d_minor * HS_S;
+        int64_t step_q = step == denom ? 1 : (step < 0 ? -1 : 0);
+        int64_t step_r = step - step_q * denom;
+        for (int64_t m = m_begin; m <= m_end; ++m) {
+            int64_t minor = (lower_on_tie && rem == 0) ? n - 1 : n;
+            int64_t x = x_major ? m : minor, y = x_major ? minor : m;
+            if (x >= clip.x && x < clip.z && y >= clip.y && y < clip.w && !hs_inside_diamond(b, x, y)) hs_emit(int(x), int(y));
+            n += step_q;
+            rem += step_r;
+            if (rem >= denom) {
+                rem -= denom;
+                ++n;
+            }
+        }
+    }
+    int64_t ax = hs_floor_div(a.x - 1, HS_S), ay = hs_floor_div(a.y - 1, HS_S);
+    int64_t a_major = x_major ? ax : ay;
+    if (hs_inside_diamond(a, ax, ay) && (a_major < first || a_major > last) && !hs_inside_diamond(b, ax, ay) && ax >= clip.x && ax < clip.z &&
+        ay >= clip.y && ay < clip.w)
+        hs_emit(int(ax), int(ay));
+}
+
+// The segment being walked, and its fragments' depth and optical depth (detail::segment_shader).
+hs_segment hs_current = hs_segment(ivec4(0), vec4(0.0), vec4(0.0));
+double hs_inv_length2 = 0.0lf;
+
+bool hs_constant_alpha = false;
+float hs_constant_b = 0.0;
+void hs_walk_current(ivec4 clip) {
+    hs_walk(i64vec2(hs_current.ends.xy), i64vec2(hs_current.ends.zw), clip);
+}
+
+// Window parameter of texel centre (x, y) along the segment, clamped to [0, 1].
+float hs_parameter(int x, int y) {
+    int64_t dx = int64_t(hs_current.ends.z) - hs_current.ends.x, dy = int64_t(hs_current.ends.w) - hs_current.ends.y;
+    int64_t px = int64_t(x) * HS_S + HS_H - hs_current.ends.x, py = int64_t(y) * HS_S + HS_H - hs_current.ends.y;
+    return float(clamp(double(px * dx + py * dy) * hs_inv_length2, 0.0lf, 1.0lf));
+}
+// a + (b - a) s, rounded as the CPU rounds it.
+float hs_lerp_exact(float a, float b, float s) {
+    precise float d = (b - a) * s;
+    precise float r = a + d;
+    return r;
+}
+// A float quotient, correctly rounded (through double, which rounds a float quotient exactly once
+// more to the same float) whatever the precision of the GPU's float division.
+float hs_divide(float a, float b) { return float(double(a) / double(b)); }
+
+float hs_attribute_parameter(float t) {
+    if (hs_current.depth_w.z == hs_current.depth_w.w) return t;
+    precise float wa = (1.0 - t) * hs_current.depth_w.z;
+    precise float wb = t * hs_current.depth_w.w;
+    precise float sum = wa + wb;
+    return hs_divide(wb, sum);
+}
+float hs_fragment_depth_at(float s) { return hs_lerp_exact(hs_current.depth_w.x, hs_current.depth_w.y, s); }
+
+uniform bool hs_use_fixed_alpha;
+uniform float hs_fixed_alpha;
+uniform float hs_footprint;       // light_space::texel_size(0.5)
+uniform bool hs_footprint_varies; // a perspective light with depth weighting
+uniform vec4 hs_footprint_terms;  // 2 half_extent, near, far - near, resolution: texel_size(depth)
+
+float hs_fragment_alpha_at(float s, float depth) {
+    float alpha;
+    if (hs_use_fixed_alpha) {
+        alpha = hs_fixed_alpha;
+    } else {
+        float thickness = hs_lerp_exact(hs_current.attributes.x, hs_current.attributes.y, s);
+        float opacity = hs_lerp_exact(hs_current.attributes.z, hs_current.attributes.w, s);
+        float footprint = hs_footprint;
+        if (hs_footprint_varies) {
+            precise float distance = hs_footprint_terms.y + depth * hs_footprint_terms.z;
+            precise float width = hs_footprint_terms.x * distance;
+            footprint = hs_divide(width, hs_footprint_terms.w);
+        }
+        precise float a = opacity * min(1.0, hs_divide(thickness, footprint));
+        alpha = a;
+    }
+    return alpha > 0.0 ? min(alpha, HS_ALPHA_MAX) : 0.0;
+}
+
+// b = -ln(1 - alpha) for alpha in [0, 1), operation for operation as hairshadow::optical_depth_of
+// computes it (precise: no fused multiply-adds; quotients correctly rounded), so the same bits.
+float hs_optical_depth_of(float alpha) {
+    if (alpha < 0.5) {
+        float s = hs_divide(alpha, 2.0 - alpha);
+        precise float s2 = s * s;
+        precise float p = 1.0 / 15.0;
+        const float c[7] = float[7](1.0 / 13.0, 1.0 / 11.0, 1.0 / 9.0, 1.0 / 7.0, 1.0 / 5.0, 1.0 / 3.0, 1.0);
+        for (int i = 0; i < 7; ++i) p = c[i] + s2 * p;
+        precise float b = (2.0 * s) * p;
+        return b;
+    }
+    float u = 1.0 - alpha;
+    uint bits = floatBitsToUint(u);
+    int e = int((bits >> 23) & 0xffu) - 127;
+    float m = uintBitsToFloat((bits & 0x7fffffu) | 0x3f800000u);
+    if (m > 1.41421356) {
+        m *= 0.5;
+        ++e;
+    }
+    float s = hs_divide(m - 1.0, m + 1.0);
+    precise float s2 = s * s;
+    precise float p = 1.0 / 11.0;
+    const float c[5] = float[5](1.0 / 9.0, 1.0 / 7.0, 1.0 / 5.0, 1.0 / 3.0, 1.0);
+    for (int i = 0; i < 5; ++i) p = c[i] + s2 * p;
+    precise float ln_u = float(e) * 0.693147182 + (2.0 * s) * p;
+    return -ln_u;
+}
+
+// Starts segment `index`: a segment of one alpha (a fixed alpha, or constant thickness and opacity
+// with a footprint that does not change with depth) works out its b once, as the CPU does.
+void hs_begin_segment(uint index) {
+    hs_current = hs_segments[index];
+    int64_t dx = int64_t(hs_current.ends.z) - hs_current.ends.x, dy = int64_t(hs_current.ends.w) - hs_current.ends.y;
+    hs_inv_length2 = 1.0lf / double(dx * dx + dy * dy);
+    hs_constant_alpha = hs_use_fixed_alpha || (!hs_footprint_varies && hs_current.attributes.x == hs_current.attributes.y &&
+                                                hs_current.attributes.z == hs_current.attributes.w);
+#ifndef HS_DEPTH_ONLY
+    if (hs_constant_alpha) hs_constant_b = hs_optical_depth_of(hs_fragment_alpha_at(0.0, hs_current.depth_w.x));
+#endif
+}
+
+// The linear depth of the current segment's fragment at texel (x, y).
+float hs_fragment_depth_of(int x, int y) { return hs_fragment_depth_at(hs_attribute_parameter(hs_parameter(x, y))); }
+// Its depth and optical depth.
+void hs_shade(int x, int y, out float depth, out float b) {
+    float s = hs_attribute_parameter(hs_parameter(x, y));
+    depth = hs_fragment_depth_at(s);
+    b = hs_constant_alpha ? hs_constant_b : hs_optical_depth_of(hs_fragment_alpha_at(s, depth));
+}
+)hs_glsl";
+
+/// shaders/compute/fibre_count.glsl
+inline constexpr std::string_view compute_fibre_count = R"hs_glsl(// Compute build of the measured fibre density (one work group per tile): each texel's fragments'
+// optical depth, summed as the layers pass sums it, and their count, into the RG32F texture where the
+// raster pass blends them.
+layout(local_size_x = 16, local_size_y = 16) in;
+layout(binding = 0, rg32f) writeonly uniform image2D hs_density_image;
+
+shared uint hs_count[256];
+ivec2 hs_origin;
+
+void hs_emit(int x, int y) {
+    uint texel = uint((y - hs_origin.y) * HS_TILE + (x - hs_origin.x));
+    float depth, b;
+    hs_shade(x, y, depth, b);
+    hs_add_sum(texel, b);
+    atomicAdd(hs_count[texel], 1u);
+}
+
+void main() {
+    uint tile = gl_WorkGroupID.y * uint(hs_tiles_x) + gl_WorkGroupID.x;
+    hs_origin = hs_tile_rect(tile).xy;
+    uint me = gl_LocalInvocationIndex;
+    hs_count[me] = 0u;
+    hs_clear_sums();
+    barrier();
+    hs_walk_tile(tile);
+    barrier();
+    ivec2 texel = hs_origin + ivec2(gl_LocalInvocationID.xy);
+    if (texel.x < hs_resolution && texel.y < hs_resolution) imageStore(hs_density_image, texel, vec4(hs_stored(hs_sum(me)), float(hs_count[me]), 0.0, 0.0));
+}
+)hs_glsl";
+
+/// shaders/compute/layers.glsl
+inline constexpr std::string_view compute_layers = R"hs_glsl(// Compute build of interpolated methods (one work group per tile): every fragment's optical depth
+// into the slot of its layer, HS_LAYER_GROUP layers per walk of the tile's segments; then each texel's
+// layers (HS_CUMULATIVE: summed front to back, as the CPU's interpolation::build does) into the
+// layers texture, four to an array layer, exactly where the raster passes blend them.
+layout(local_size_x = 16, local_size_y = 16) in;
+layout(binding = 0, HS_LAYERS_FORMAT) writeonly uniform image2DArray hs_layers_image;
+
+shared vec2 hs_texel_range[256];
+ivec2 hs_origin;
+int hs_group_first;
+
+void hs_emit(int x, int y) {
+    uint texel = uint((y - hs_origin.y) * HS_TILE + (x - hs_origin.x));
+    float depth, b;
+    hs_shade(x, y, depth, b);
+    vec2 range = hs_texel_range[texel];
+    int k = hs_assign_from(ivec2(x, y), vec4(range.x, 0.0, 0.0, range.y), depth) - hs_group_first;
+    if (k >= 0 && k < HS_LAYER_GROUP) hs_add_sum(texel * uint(HS_SUM_SLOTS) + uint(k), b);
+}
+
+void main() {
+    uint tile = gl_WorkGroupID.y * uint(hs_tiles_x) + gl_WorkGroupID.x;
+    hs_origin = hs_tile_rect(tile).xy;
+    uint me = gl_LocalInvocationIndex;
+    ivec2 texel = hs_origin + ivec2(gl_LocalInvocationID.xy);
+    bool inside = texel.x < hs_resolution && texel.y < hs_resolution;
+    vec4 range = inside ? texelFetch(hs_range_map, texel, 0) : vec4(0.0);
+    hs_texel_range[me] = range.xw;
+    uint64_t running = 0UL;
+    for (hs_group_first = 0; hs_group_first < HS_LAYERS; hs_group_first += HS_LAYER_GROUP) {
+        hs_clear_sums();
+        barrier();
+        hs_walk_tile(tile);
+        barrier();
+        if (inside) {
+            for (int array_layer = hs_group_first / 4; array_layer < min(hs_group_first + HS_LAYER_GROUP, HS_LAYERS + 3) / 4; ++array_layer) {
+                vec4 v = vec4(0.0);
+                for (int c = 0; c < 4; ++c) {
+                    int layer = 4 * array_layer + c;
+                    if (layer >= HS_LAYERS) break;
+                    uint64_t sum = hs_sum(me * uint(HS_SUM_SLOTS) + uint(layer - hs_group_first));
+#ifdef HS_CUMULATIVE
+                    running = hs_combine(running, sum);
+                    v[c] = hs_stored(running);
+#else
+                    v[c] = hs_stored(sum);
+#endif
+                }
+                imageStore(hs_layers_image, ivec3(texel, array_layer), v);
+            }
+        }
+        barrier();
+    }
+}
+)hs_glsl";
+
+/// shaders/compute/occupancy.glsl
+inline constexpr std::string_view compute_occupancy = R"hs_glsl(// Compute build of occupancy maps (one work group per tile): each fragment's slice bit OR-ed into the
+// texel's words, and its optical depth summed into its slab; then the bits (128 to an RGBA32UI
+// texture) and the slabs (4 to an RGBA texture) written where the raster passes put them.
+layout(local_size_x = 16, local_size_y = 16) in;
+layout(binding = 0, rgba32ui) writeonly uniform uimage2D hs_bits_images[HS_BIT_TARGETS];
+layout(binding = HS_BIT_TARGETS, HS_SLABS_FORMAT) writeonly uniform image2D hs_slab_images[HS_SLAB_TARGETS];
+
+const int HS_WORDS = HS_LAYERS / 32;
+shared uint hs_bits[256 * HS_WORDS];
+shared vec2 hs_texel_range[256];
+ivec2 hs_origin;
+
+void hs_emit(int x, int y) {
+    uint texel = uint((y - hs_origin.y) * HS_TILE + (x - hs_origin.x));
+    float depth, b;
+    hs_shade(x, y, depth, b);
+    vec2 range = hs_texel_range[texel];
+    int k = hs_assign_from(ivec2(x, y), vec4(range.x, 0.0, 0.0, range.y), depth);
+    if (k < 0) return;
+    atomicOr(hs_bits[texel * uint(HS_WORDS) + uint(k / 32)], 1u << uint(k % 32));
+    hs_add_sum(texel * uint(HS_SUM_SLOTS) + uint(k / (HS_LAYERS / HS_SLABS)), b);
+}
+
+void main() {
+    uint tile = gl_WorkGroupID.y * uint(hs_tiles_x) + gl_WorkGroupID.x;
+    hs_origin = hs_tile_rect(tile).xy;
+    uint me = gl_LocalInvocationIndex;
+    ivec2 texel = hs_origin + ivec2(gl_LocalInvocationID.xy);
+    bool inside = texel.x < hs_resolution && texel.y < hs_resolution;
+    vec4 range = inside ? texelFetch(hs_range_map, texel, 0) : vec4(0.0);
+    hs_texel_range[me] = range.xw;
+    for (int w = 0; w < HS_WORDS; ++w) hs_bits[me * uint(HS_WORDS) + uint(w)] = 0u;
+    hs_clear_sums();
+    barrier();
+    hs_walk_tile(tile);
+    barrier();
+    if (!inside) return;
+    for (int t = 0; t < HS_BIT_TARGETS; ++t) {
+        uvec4 v = uvec4(0u);
+        for (int c = 0; c < 4 && 4 * t + c < HS_WORDS; ++c) v[c] = hs_bits[me * uint(HS_WORDS) + uint(4 * t + c)];
+        imageStore(hs_bits_images[t], texel, v);
+    }
+    for (int t = 0; t < HS_SLAB_TARGETS; ++t) {
+        vec4 v = vec4(0.0);
+        for (int c = 0; c < 4 && 4 * t + c < HS_SLABS; ++c) v[c] = hs_stored(hs_sum(me * uint(HS_SUM_SLOTS) + uint(4 * t + c)));
+        imageStore(hs_slab_images[t], texel, v);
+    }
+}
+)hs_glsl";
+
+/// shaders/compute/prepare.glsl
+inline constexpr std::string_view compute_prepare = R"hs_glsl(// Compute build, step 1 (one invocation per segment): reads the segment's two points from the mesh's
+// buffers, clips it to the light's depth range and the guard band, projects and snaps it exactly as
+// hairshadow::detail::prepare_segment does (the same operations in the same order, no fused
+// multiply-adds, quotients correctly rounded), counts it in every tile its box meets, and widens the
+// whole map's extent by its ends, as segment_bins does. A long segment (its box over more than
+// HS_SHORT_TILES tiles) goes to the long list instead of the tiles.
+layout(local_size_x = 256) in;
+void hs_emit(int x, int y) {} // this pass walks no lines
+
+// The mesh, as gl::hair_mesh::sources() describes it: buffers bound whole, offsets and strides in floats.
+layout(std430, binding = 4) readonly buffer hs_position_buffer { float hs_position_data[]; };
+layout(std430, binding = 5) readonly buffer hs_thickness_buffer { float hs_thickness_data[]; };
+layout(std430, binding = 6) readonly buffer hs_opacity_buffer { float hs_opacity_data[]; };
+layout(std430, binding = 7) readonly buffer hs_index_buffer { uint hs_index_data[]; };
+uniform uint hs_segment_count;
+uniform uint hs_index_first;         // the first segment's first index, in uints
+uniform uvec2 hs_position_layout;    // first float, floats from one point to the next
+uniform uvec2 hs_thickness_layout;
+uniform uvec2 hs_opacity_layout;
+uniform bool hs_thickness_constant, hs_opacity_constant;
+uniform float hs_thickness_value, hs_opacity_value;
+
+uniform mat4 hs_view_projection;
+uniform mat4 hs_view;
+uniform float hs_near, hs_far;
+
+const float HS_GUARD_BAND = 1048576.0; // detail::guard_band, 2^20 texels
+
+struct hs_light_point {
+    vec2 window;
+    float depth;
+    float w;
+};
+
+// Row i of m (p, 1), each product rounded before the sums, in the order light_space::row sums them.
+float hs_row(mat4 m, int i, vec3 p) {
+    precise float x = m[0][i] * p.x;
+    precise float y = m[1][i] * p.y;
+    precise float z = m[2][i] * p.z;
+    precise float r = (x + y) + (z + m[3][i]);
+    return r;
+}
+float hs_distance_of(vec3 p) { return -hs_row(hs_view, 2, p); }
+hs_light_point hs_project(vec3 p, float distance) {
+    float x = hs_row(hs_view_projection, 0, p), y = hs_row(hs_view_projection, 1, p), w = hs_row(hs_view_projection, 3, p);
+    precise float half_res = 0.5 * float(hs_resolution);
+    precise float wx = (hs_divide(x, w) + 1.0) * half_res;
+    precise float wy = (hs_divide(y, w) + 1.0) * half_res;
+    precise float from_near = distance - hs_near;
+    precise float span = hs_far - hs_near;
+    return hs_light_point(vec2(wx, wy), hs_divide(from_near, span), w);
+}
+
+vec3 hs_point(uint i) {
+    uint at = hs_position_layout.x + i * hs_position_layout.y;
+    return vec3(hs_position_data[at], hs_position_data[at + 1u], hs_position_data[at + 2u]);
+}
+float hs_thickness(uint i) { return hs_thickness_constant ? hs_thickness_value : hs_thickness_data[hs_thickness_layout.x + i * hs_thickness_layout.y]; }
+float hs_opacity(uint i) { return hs_opacity_constant ? hs_opacity_value : hs_opacity_data[hs_opacity_layout.x + i * hs_opacity_layout.y]; }
+
+// Window coordinate to sub-pixel fixed point, half away from zero (detail::snap).
+int hs_snap(float window) {
+    precise double x = double(window) * double(HS_S);
+    precise double r = x + (x < 0.0lf ? -0.5lf : 0.5lf);
+    return int(r);
+}
+
+// Clipping to f >= 0 (prepare_segment's clip): narrows [s0, s1]; false when nothing is left.
+bool hs_clip(float f0, float f1, inout float s0, inout float s1) {
+    if (!(f0 >= 0.0 || f1 >= 0.0)) return false;
+    precise float d = f0 - f1;
+    if (f0 < 0.0) s0 = max(s0, hs_divide(f0, d));
+    if (f1 < 0.0) s1 = min(s1, hs_divide(f0, d));
+    return s0 <= s1;
+}
+
+bool hs_in_band(hs_light_point p) { return abs(p.window.x) <= HS_GUARD_BAND && abs(p.window.y) <= HS_GUARD_BAND; }
+
+// Window parameter s to the attributes' parameter, perspective-correct (prepare_segment's perspective).
+float hs_perspective(double s, double ia, double ib) {
+    precise double sb = s * ib;
+    precise double den = (1.0lf - s) * ia + s * ib;
+    return float(sb / den);
+}
+// A segment's end where it leaves the guard band, at window parameter s (attribute parameter u).
+hs_light_point hs_band_end(hs_light_point a0, hs_light_point b0, double s, float u, double ia, double ib) {
+    precise double x = double(a0.window.x) + s * (double(b0.window.x) - double(a0.window.x));
+    precise double y = double(a0.window.y) + s * (double(b0.window.y) - double(a0.window.y));
+    precise double den = (1.0lf - s) * ia + s * ib;
+    return hs_light_point(vec2(float(x), float(y)), hs_lerp_exact(a0.depth, b0.depth, u), float(1.0lf / den));
+}
+
+// The segment's prepared form; false when nothing of it is left to draw.
+bool hs_prepare(vec3 p0, vec3 p1, inout vec4 at, out hs_segment out_segment) {
+    out_segment = hs_segment(ivec4(0), vec4(0.0), vec4(0.0));
+    float d0 = hs_distance_of(p0), d1 = hs_distance_of(p1);
+    float s0 = 0.0, s1 = 1.0;
+    precise float n0 = d0 - hs_near, n1 = d1 - hs_near, f0 = hs_far - d0, f1 = hs_far - d1;
+    if (!hs_clip(n0, n1, s0, s1) || !hs_clip(f0, f1, s0, s1)) return false;
+    hs_light_point a = hs_project(p0, d0), b = hs_project(p1, d1);
+    if (s0 > 0.0 || s1 < 1.0) {
+        precise vec3 delta = p1 - p0;
+        precise vec3 q0 = p0 + delta * s0;
+        precise vec3 q1 = p0 + delta * s1;
+        at = vec4(hs_lerp_exact(at.x, at.y, s0), hs_lerp_exact(at.x, at.y, s1), hs_lerp_exact(at.z, at.w, s0), hs_lerp_exact(at.z, at.w, s1));
+        a = hs_project(q0, hs_distance_of(q0));
+        b = hs_project(q1, hs_distance_of(q1));
+    }
+    if (!(hs_in_band(a) && hs_in_band(b))) {
+        double lo_s = 0.0lf, hi_s = 1.0lf;
+        for (int axis = 0; axis < 2; ++axis) {
+            double from = double(a.window[axis]), delta = double(b.window[axis]) - from;
+            for (int side = 0; side < 2; ++side) {
+                bool upper = side == 1;
+                double limit = upper ? double(HS_GUARD_BAND) : -double(HS_GUARD_BAND);
+                if (delta == 0.0lf) {
+                    if (upper ? from > limit : from < limit) return false;
+                    continue;
+                }
+                double s = (limit - from) / delta;
+                if ((delta > 0.0lf) == upper) hi_s = min(hi_s, s);
+                else lo_s = max(lo_s, s);
+            }
+        }
+        if (!(lo_s < hi_s)) return false;
+        double ia = 1.0lf / double(a.w), ib = 1.0lf / double(b.w);
+        float u_lo = hs_perspective(lo_s, ia, ib), u_hi = hs_perspective(hi_s, ia, ib);
+        at = vec4(hs_lerp_exact(at.x, at.y, u_lo), hs_lerp_exact(at.x, at.y, u_hi), hs_lerp_exact(at.z, at.w, u_lo), hs_lerp_exact(at.z, at.w, u_hi));
+        hs_light_point a0 = a, b0 = b;
+        a = hs_band_end(a0, b0, lo_s, u_lo, ia, ib);
+        b = hs_band_end(a0, b0, hi_s, u_hi, ia, ib);
+    }
+    if (!(hs_in_band(a) && hs_in_band(b) && abs(a.depth) <= 2.0 && abs(b.depth) <= 2.0 && a.w > 0.0 && b.w > 0.0)) return false;
+    out_segment = hs_segment(ivec4(hs_snap(a.window.x), hs_snap(a.window.y), hs_snap(b.window.x), hs_snap(b.window.y)),
+                             vec4(a.depth, b.depth, hs_divide(1.0, a.w), hs_divide(1.0, b.w)), at);
+    return out_segment.ends.xy != out_segment.ends.zw;
+}
+
+void main() {
+    uint i = hs_segment_index();
+    if (i >= hs_segment_count) return;
+    uint i0 = hs_index_data[hs_index_first + 2u * i], i1 = hs_index_data[hs_index_first + 2u * i + 1u];
+    vec4 at = vec4(hs_thickness(i0), hs_thickness(i1), hs_opacity(i0), hs_opacity(i1));
+    hs_segment s;
+    ivec4 box;
+    bool drawn = hs_prepare(hs_point(i0), hs_point(i1), at, s) && hs_segment_box(s.ends, box);
+    if (!drawn) s.ends = ivec4(0); // nothing to walk, and no tile
+    hs_segments[i] = s;
+    if (!drawn) return;
+    atomicMin(hs_nearest_bits, hs_ordered(min(s.depth_w.x, s.depth_w.y)));
+    atomicMax(hs_furthest_bits, hs_ordered(max(s.depth_w.x, s.depth_w.y)));
+    ivec4 tiles = box / HS_TILE;
+    if ((tiles.z - tiles.x + 1) * (tiles.w - tiles.y + 1) > HS_SHORT_TILES) {
+        hs_binned[hs_long_first + atomicAdd(hs_long_count, 1u)] = i;
+        return;
+    }
+    for (int ty = tiles.y; ty <= tiles.w; ++ty)
+        for (int tx = tiles.x; tx <= tiles.z; ++tx) atomicAdd(hs_tile_counts[ty * hs_tiles_x + tx], 1u);
+}
+)hs_glsl";
+
+/// shaders/compute/range.glsl
+inline constexpr std::string_view compute_range = R"hs_glsl(// Compute build, step 4 (one work group per tile): each texel's nearest and furthest fragment, by
+// atomic minimum and maximum in shared memory, written as the light pass's range map (nearest in red,
+// furthest in alpha; red > alpha where no fragment fell).
+layout(local_size_x = 16, local_size_y = 16) in;
+layout(rgba32f) writeonly uniform image2D hs_range_image;
+
+shared uint hs_nearest[256], hs_furthest[256];
+ivec2 hs_origin;
+
+void hs_emit(int x, int y) {
+    uint k = uint((y - hs_origin.y) * HS_TILE + (x - hs_origin.x));
+    uint d = hs_ordered(hs_fragment_depth_of(x, y));
+    atomicMin(hs_nearest[k], d);
+    atomicMax(hs_furthest[k], d);
+}
+
+void main() {
+    uint tile = gl_WorkGroupID.y * uint(hs_tiles_x) + gl_WorkGroupID.x;
+    hs_origin = hs_tile_rect(tile).xy;
+    uint k = gl_LocalInvocationIndex;
+    hs_nearest[k] = 0xffffffffu;
+    hs_furthest[k] = 0u;
+    barrier();
+    hs_walk_tile(tile);
+    barrier();
+    ivec2 texel = hs_origin + ivec2(gl_LocalInvocationID.xy);
+    if (texel.x >= hs_resolution || texel.y >= hs_resolution) return;
+    bool empty = hs_nearest[k] == 0xffffffffu;
+    imageStore(hs_range_image, texel, empty ? vec4(3.0e38, 0.0, 0.0, -3.0e38) : vec4(hs_from_ordered(hs_nearest[k]), 0.0, 0.0, hs_from_ordered(hs_furthest[k])));
+}
+)hs_glsl";
+
+/// shaders/compute/scan.glsl
+inline constexpr std::string_view compute_scan = R"hs_glsl(// Compute build, step 2 (one work group): the tiles' segment counts to offsets (an exclusive prefix
+// sum), the counts back to zero as the scatter's cursors, the number of segment-tile pairs, and the
+// whole map's extent into the range map's extra row (nearest, 0, 0, furthest; zero when no segment
+// meets the map), where placement/common's hs_map_extent reads it.
+layout(local_size_x = 256) in;
+void hs_emit(int x, int y) {} // this pass walks no lines
+layout(rgba32f) writeonly uniform image2D hs_range_image;
+uniform uint hs_tile_total;
+
+shared uint hs_partial[256];
+
+void main() {
+    uint t = gl_LocalInvocationIndex;
+    uint chunk = (hs_tile_total + 255u) / 256u;
+    uint begin = min(t * chunk, hs_tile_total), end = min(begin + chunk, hs_tile_total);
+    uint sum = 0u;
+    for (uint i = begin; i < end; ++i) sum += hs_tile_counts[i];
+    hs_partial[t] = sum;
+    barrier();
+    if (t == 0u) {
+        uint running = 0u;
+        for (uint i = 0u; i < 256u; ++i) {
+            uint n = hs_partial[i];
+            hs_partial[i] = running;
+            running += n;
+        }
+        hs_tile_offsets[hs_tile_total] = running;
+        hs_pairs = running;
+        bool empty = hs_nearest_bits == 0xffffffffu;
+        vec4 extent = empty ? vec4(0.0) : vec4(hs_from_ordered(hs_nearest_bits), 0.0, 0.0, hs_from_ordered(hs_furthest_bits));
+        imageStore(hs_range_image, ivec2(0, hs_resolution), extent);
+    }
+    barrier();
+    uint offset = hs_partial[t];
+    for (uint i = begin; i < end; ++i) {
+        hs_tile_offsets[i] = offset;
+        offset += hs_tile_counts[i];
+        hs_tile_counts[i] = 0u;
+    }
+}
+)hs_glsl";
+
+/// shaders/compute/scatter.glsl
+inline constexpr std::string_view compute_scatter = R"hs_glsl(// Compute build, step 3 (one invocation per segment): each drawn short segment's index into the list
+// of every tile its box meets. The order within a tile does not matter: every later sum is exact.
+layout(local_size_x = 256) in;
+void hs_emit(int x, int y) {} // this pass walks no lines
+uniform uint hs_segment_count;
+
+void main() {
+    uint i = hs_segment_index();
+    if (i >= hs_segment_count) return;
+    ivec4 ends = hs_segments[i].ends, box;
+    if (ends.xy == ends.zw || !hs_segment_box(ends, box)) return;
+    ivec4 tiles = box / HS_TILE;
+    if ((tiles.z - tiles.x + 1) * (tiles.w - tiles.y + 1) > HS_SHORT_TILES) return; // in the long list
+    for (int ty = tiles.y; ty <= tiles.w; ++ty)
+        for (int tx = tiles.x; tx <= tiles.z; ++tx) {
+            uint tile = uint(ty * hs_tiles_x + tx);
+            hs_binned[hs_tile_offsets[tile] + atomicAdd(hs_tile_counts[tile], 1u)] = i;
+        }
+}
+)hs_glsl";
+
+/// shaders/compute/tile_sums.glsl
+inline constexpr std::string_view compute_tile_sums = R"hs_glsl(// Sums that do not depend on the order of their terms, for the compute build's accumulation passes
+// (one work group per tile): float optical depths in 64-bit fixed point (2^-40), kept as two 32-bit
+// words with the carry passed by hand, or emulated 8-bit steps (HS_EIGHT_BIT) summed as integers and
+// saturated once, which equals saturating after every add because every step is non-negative.
+// HS_SUM_SLOTS slots per texel of the tile (of HS_SUM_TEXELS texels, 256 unless set). HS_FIXED_SUMS
+// keeps 64-bit integer slots (hs_add_fixed) beside 8-bit steps.
+#ifndef HS_SUM_TEXELS
+#define HS_SUM_TEXELS 256
+#endif
+#if !defined(HS_EIGHT_BIT) || defined(HS_FIXED_SUMS)
+#define HS_WIDE_SUMS
+#endif
+shared uint hs_sum_low[HS_SUM_TEXELS * HS_SUM_SLOTS];
+#ifdef HS_WIDE_SUMS
+shared uint hs_sum_high[HS_SUM_TEXELS * HS_SUM_SLOTS];
+#endif
+
+void hs_clear_sums() {
+    for (uint i = gl_LocalInvocationIndex; i < uint(HS_SUM_TEXELS * HS_SUM_SLOTS); i += 256u) {
+        hs_sum_low[i] = 0u;
+#ifdef HS_WIDE_SUMS
+        hs_sum_high[i] = 0u;
+#endif
+    }
+}
+
+#ifdef HS_EIGHT_BIT
+// The 8-bit step of optical depth b: its output b / kappa in unorm8, rounded half away from zero.
+uint hs_eight_bit_step(float b) {
+    precise float x = clamp(hs_divide(b, HS_KAPPA), 0.0, 1.0) * 255.0;
+    return uint(x) + (fract(x) >= 0.5 ? 1u : 0u);
+}
+#endif
+
+#ifdef HS_WIDE_SUMS
+// Adds a 64-bit integer (two's complement, so negative terms too) to a slot.
+void hs_add_fixed(uint slot, int64_t value) {
+    uint64_t q = uint64_t(value);
+    uint low = uint(q & 0xffffffffUL), high = uint(q >> 32);
+    uint before = atomicAdd(hs_sum_low[slot], low);
+    if (before + low < before) ++high; // the low word carried
+    if (high != 0u) atomicAdd(hs_sum_high[slot], high);
+}
+#endif
+
+void hs_add_sum(uint slot, float b) {
+#ifdef HS_EIGHT_BIT
+    atomicAdd(hs_sum_low[slot], hs_eight_bit_step(b));
+#else
+    hs_add_fixed(slot, int64_t(b * 1099511627776.0)); // b 2^40: exact for b >= 2^-16
+#endif
+}
+
+// A slot's sum: 2^40 times the optical depth, or the 8-bit steps (unsaturated).
+uint64_t hs_sum(uint slot) {
+#ifndef HS_WIDE_SUMS
+    return uint64_t(hs_sum_low[slot]);
+#else
+    return (uint64_t(hs_sum_high[slot]) << 32) | uint64_t(hs_sum_low[slot]);
+#endif
+}
+// a + b as the accumulation combines them (the 8-bit sum saturates).
+uint64_t hs_combine(uint64_t a, uint64_t b) {
+#ifdef HS_EIGHT_BIT
+    return a + b < 255UL ? a + b : 255UL;
+#else
+    return a + b;
+#endif
+}
+// The value a texture stores for a sum: the optical depth, or the 8-bit level over 255.
+float hs_stored(uint64_t sum) {
+#ifdef HS_EIGHT_BIT
+    return float(sum < 255UL ? sum : 255UL) / 255.0;
+#else
+    return float(double(sum) / 1099511627776.0lf);
+#endif
+}
+)hs_glsl";
+
 /// shaders/lookup/interpolation.glsl
 inline constexpr std::string_view lookup_interpolation = R"hs_glsl(// float hs_transmittance(vec3 world_pos) for interpolated methods (opacity shadow maps, deep opacity
 // maps, density clustering, range opacity maps): any user shader can call it.
@@ -1143,9 +2001,19 @@ struct entry {
 };
 
 /// Every snippet, sorted by name.
-inline constexpr std::array<entry, 50> all{{
+inline constexpr std::array<entry, 60> all{{
     {"accumulation/emulated_8bit", accumulation_emulated_8bit},
     {"accumulation/float", accumulation_float},
+    {"compute/clusters", compute_clusters},
+    {"compute/common", compute_common},
+    {"compute/fibre_count", compute_fibre_count},
+    {"compute/layers", compute_layers},
+    {"compute/occupancy", compute_occupancy},
+    {"compute/prepare", compute_prepare},
+    {"compute/range", compute_range},
+    {"compute/scan", compute_scan},
+    {"compute/scatter", compute_scatter},
+    {"compute/tile_sums", compute_tile_sums},
     {"lookup/interpolation", lookup_interpolation},
     {"lookup/layers", lookup_layers},
     {"lookup/light", lookup_light},

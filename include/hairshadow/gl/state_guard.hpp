@@ -32,7 +32,7 @@ inline void clear_errors() noexcept {
 /// Saves, when made, the GL state the library's passes and read-backs may change, and restores it
 /// when destroyed (also when a pass throws):
 /// - bindings: program, draw and read framebuffers, vertex array, array buffer, the shader storage
-///   buffer (generic, and indexed binding 1), pixel pack buffer, image unit 0, the active texture
+///   buffer (generic, and indexed bindings 0 to 7), pixel pack buffer, image units 0 to 3, the active texture
 ///   unit, and the 2D and 2D-array textures and sampler objects of units [0, saved_units);
 /// - fixed-function state: every viewport, scissor tests, colour masks, blending (enables, equations,
 ///   functions) of every draw buffer, depth and stencil tests, culling, logic op, rasteriser discard,
@@ -46,6 +46,8 @@ public:
     /// Texture units [0, saved_units) hold what the library's passes bind (up to 3) and what point
     /// queries bind for a look-up (up to 1 + 2 + 2 for 256 slices and 8 slabs).
     static constexpr int saved_units = 8;
+    /// Indexed shader storage bindings and image units the passes use (the compute build's), restored.
+    static constexpr GLuint saved_storage_bindings = 8, saved_images = 4;
 
     /// Throws feature_error in a context older than GL 4.3, whose loader may lack the functions used here.
     explicit state_guard(const char* label) {
@@ -58,16 +60,22 @@ public:
         glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao_);
         glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &array_buffer_);
         glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &storage_buffer_);
-        glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, 1, &storage_binding_);
-        glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, 1, &storage_start_);
-        glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, 1, &storage_size_);
+        for (GLuint i = 0; i < saved_storage_bindings; ++i) {
+            auto& b = storage_[i];
+            glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, i, &b.name);
+            glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, i, &b.start);
+            glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, i, &b.size);
+        }
         glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer_);
-        glGetIntegeri_v(GL_IMAGE_BINDING_NAME, 0, &image_.name);
-        glGetIntegeri_v(GL_IMAGE_BINDING_LEVEL, 0, &image_.level);
-        glGetBooleani_v(GL_IMAGE_BINDING_LAYERED, 0, &image_.layered);
-        glGetIntegeri_v(GL_IMAGE_BINDING_LAYER, 0, &image_.layer);
-        glGetIntegeri_v(GL_IMAGE_BINDING_ACCESS, 0, &image_.access);
-        glGetIntegeri_v(GL_IMAGE_BINDING_FORMAT, 0, &image_.format);
+        for (GLuint i = 0; i < saved_images; ++i) {
+            auto& image = images_[i];
+            glGetIntegeri_v(GL_IMAGE_BINDING_NAME, i, &image.name);
+            glGetIntegeri_v(GL_IMAGE_BINDING_LEVEL, i, &image.level);
+            glGetBooleani_v(GL_IMAGE_BINDING_LAYERED, i, &image.layered);
+            glGetIntegeri_v(GL_IMAGE_BINDING_LAYER, i, &image.layer);
+            glGetIntegeri_v(GL_IMAGE_BINDING_ACCESS, i, &image.access);
+            glGetIntegeri_v(GL_IMAGE_BINDING_FORMAT, i, &image.format);
+        }
         glGetIntegerv(GL_ACTIVE_TEXTURE, &active_texture_);
         for (int u = 0; u < saved_units; ++u) {
             glActiveTexture(GLenum(GL_TEXTURE0 + u));
@@ -122,14 +130,20 @@ public:
         glBindFramebuffer(GL_READ_FRAMEBUFFER, live(read_fbo_, glIsFramebuffer));
         glBindVertexArray(live(vao_, glIsVertexArray));
         glBindBuffer(GL_ARRAY_BUFFER, live(array_buffer_, glIsBuffer));
-        const GLuint storage = live(storage_binding_, glIsBuffer);
-        if (storage && storage_size_ > 0) glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, storage, GLintptr(storage_start_), GLsizeiptr(storage_size_));
-        else glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, storage);
+        for (GLuint i = 0; i < saved_storage_bindings; ++i) {
+            const auto& b = storage_[i];
+            const GLuint storage = live(b.name, glIsBuffer);
+            if (storage && b.size > 0) glBindBufferRange(GL_SHADER_STORAGE_BUFFER, i, storage, GLintptr(b.start), GLsizeiptr(b.size));
+            else glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, storage);
+        }
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, live(storage_buffer_, glIsBuffer)); // after the indexed binding, which sets it too
         glBindBuffer(GL_PIXEL_PACK_BUFFER, live(pack_buffer_, glIsBuffer));
-        const GLuint image = live(image_.name, glIsTexture);
-        glBindImageTexture(0, image, image ? image_.level : 0, image ? image_.layered : GL_FALSE, image ? image_.layer : 0,
-                           image ? GLenum(image_.access) : GL_READ_ONLY, image ? GLenum(image_.format) : GL_R8);
+        for (GLuint i = 0; i < saved_images; ++i) {
+            const auto& b = images_[i];
+            const GLuint image = live(b.name, glIsTexture);
+            glBindImageTexture(i, image, image ? b.level : 0, image ? b.layered : GL_FALSE, image ? b.layer : 0,
+                               image ? GLenum(b.access) : GL_READ_ONLY, image ? GLenum(b.format) : GL_R8);
+        }
         for (int u = 0; u < saved_units; ++u) {
             const auto& unit = units_[std::size_t(u)];
             glActiveTexture(GLenum(GL_TEXTURE0 + u));
@@ -226,9 +240,14 @@ private:
         GLboolean layered = GL_FALSE;
     };
 
-    GLint program_ = 0, draw_fbo_ = 0, read_fbo_ = 0, vao_ = 0, array_buffer_ = 0, storage_buffer_ = 0, storage_binding_ = 0, pack_buffer_ = 0;
-    GLint64 storage_start_ = 0, storage_size_ = 0;
-    image_binding image_;
+    struct storage_binding {
+        GLint name = 0;
+        GLint64 start = 0, size = 0;
+    };
+
+    GLint program_ = 0, draw_fbo_ = 0, read_fbo_ = 0, vao_ = 0, array_buffer_ = 0, storage_buffer_ = 0, pack_buffer_ = 0;
+    std::array<storage_binding, saved_storage_bindings> storage_{};
+    std::array<image_binding, saved_images> images_{};
     GLint active_texture_ = GL_TEXTURE0;
     std::array<unit_bindings, saved_units> units_{};
     int viewports_ = 0, draw_buffers_ = 0;

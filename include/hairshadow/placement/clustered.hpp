@@ -1,9 +1,10 @@
 #pragma once
 /// @file
 /// Density clustering's per-texel bins (Mertens et al. 2004, sections 3.2-3.3). Fragment depths are
-/// clustered by k-means with weights b = -ln(1 - alpha): K centres start uniform between the texel's
-/// nearest and furthest fragment and take one iteration (the weighted means); a second pass gives each
-/// cluster's weighted standard deviation around its mean. Cluster j's histogram bin spans
+/// clustered by k-means with weights b = -ln(1 - alpha), summed in fixed point so that no order of the
+/// fragments changes a bit: K centres start uniform between the texel's nearest and furthest fragment
+/// and take one iteration (the weighted means); a second pass gives each cluster's weighted standard
+/// deviation around its mean. Cluster j's histogram bin spans
 /// mu_j +- sqrt(3) sigma_j (a uniform distribution's width from its variance); overlapping bins meet at
 /// the midpoint of the overlap; a fragment outside every bin goes to the nearest cluster.
 
@@ -11,6 +12,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstddef>
 #include <numbers>
 #include <span>
@@ -57,29 +59,35 @@ public:
         // Initial centres: the middles of K equal parts of [nearest, furthest].
         std::array<float, K> centre;
         for (int j = 0; j < K; ++j) centre[std::size_t(j)] = lo + (hi - lo) * (float(j) + 0.5f) / float(K);
-        // One k-means iteration: weighted means of the fragments nearest each centre.
-        std::array<double, K> weight{}, sum{};
+        // One k-means iteration: weighted means of the fragments nearest each centre. The sums are
+        // exact integers (fixed_sum), so no order of the fragments changes them, and the GPU's compute
+        // build, summing in whatever order its threads run, gets the same means bit for bit.
+        std::array<std::int64_t, K> weight{}, sum{};
         for (const auto& f : fragments) {
             const auto j = std::size_t(nearest(centre, f.depth, [](int) { return true; }));
             const double b = fragment_optical_depth(f);
-            weight[j] += b;
-            sum[j] += b * f.depth;
+            weight[j] += fixed_sum(b);
+            sum[j] += fixed_sum(b * double(f.depth)); // exact in double: two floats' product
         }
         for (std::size_t j = 0; j < std::size_t(K); ++j) {
-            s.mean[j] = weight[j] > 0.0 ? float(sum[j] / weight[j]) : centre[j];
-            s.sigma[j] = weight[j] > 0.0 ? 0.0f : -1.0f;
+            s.mean[j] = weight[j] > 0 ? float(double(sum[j]) / double(weight[j])) : centre[j];
+            s.sigma[j] = weight[j] > 0 ? 0.0f : -1.0f;
         }
         // Second pass: weighted variance of each cluster's fragments around its mean.
-        std::array<double, K> var_weight{}, var_sum{};
+        std::array<std::int64_t, K> var_weight{}, var_sum{};
         for (const auto& f : fragments) {
             const auto j = std::size_t(nearest(s.mean, f.depth, [&](int i) { return s.sigma[std::size_t(i)] >= 0.0f; }));
             const double b = fragment_optical_depth(f), d = double(f.depth) - s.mean[j];
-            var_weight[j] += b;
-            var_sum[j] += b * d * d;
+            var_weight[j] += fixed_sum(b);
+            var_sum[j] += fixed_sum(b * d * d);
         }
         for (std::size_t j = 0; j < std::size_t(K); ++j)
-            if (s.sigma[j] >= 0.0f && var_weight[j] > 0.0) s.sigma[j] = float(std::sqrt(var_sum[j] / var_weight[j]));
+            if (s.sigma[j] >= 0.0f && var_weight[j] > 0) s.sigma[j] = float(std::sqrt(double(var_sum[j]) / double(var_weight[j])));
     }
+
+    /// A k-means term in fixed point, 2^-36 (truncated toward zero): sums of up to 2^24 terms of
+    /// optical depth below 7 (alpha <= HAIRSHADOW_ALPHA_MAX) times a depth within [-2, 2] stay exact.
+    static std::int64_t fixed_sum(double x) noexcept { return std::int64_t(x * 68719476736.0); }
 
     /// The bins of a texel in depth order; adjacent overlapping bins meet at the overlap's midpoint.
     std::array<bin, K> bins(const texel_state& s) const noexcept {

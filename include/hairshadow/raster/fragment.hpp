@@ -2,6 +2,9 @@
 /// @file
 /// Light-space fragments and the per-texel buffer that holds them.
 
+#include <hairshadow/config.hpp>
+
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -19,8 +22,37 @@ struct fragment {
 };
 
 /// A fragment's optical depth b = -ln(1 - alpha): what it adds to the optical depth behind it. Every
-/// method sums it from this one function, so a fragment's b is the same in every build path.
-inline float optical_depth_of(float alpha) noexcept { return -std::log1p(-alpha); }
+/// method sums it from this one function, so a fragment's b is the same in every build path, the
+/// GPU's compute build included: it uses only float operations that IEEE rounds exactly (no fused
+/// multiply-adds, see rounded()), mirrored in shaders/compute/common.glsl, so both give the same bits.
+/// Within 3e-7 relative of -log1p(-alpha) for alpha in [0, 1); other values (which no rasteriser
+/// makes) go to std::log1p.
+inline float optical_depth_of(float alpha) noexcept {
+    using detail::rounded;
+    if (alpha >= 0.0f && alpha < 0.5f) {
+        // -ln(1 - a) = 2 atanh(s), s = a / (2 - a) <= 1/3: 2 s (1 + s^2/3 + s^4/5 + ... + s^14/15),
+        // whose first term left out is below 2e-8 of the sum. 1 - a itself would lose a's low bits.
+        const float s = alpha / (2.0f - alpha), s2 = rounded(s * s);
+        float p = 1.0f / 15.0f;
+        for (const float c : {1.0f / 13.0f, 1.0f / 11.0f, 1.0f / 9.0f, 1.0f / 7.0f, 1.0f / 5.0f, 1.0f / 3.0f, 1.0f}) p = c + rounded(s2 * p);
+        return rounded(2.0f * s) * p;
+    }
+    if (alpha >= 0.5f && alpha < 1.0f) {
+        // u = 1 - a, exact here, is m 2^e with m in [sqrt(1/2), sqrt(2)): ln u = e ln 2 + 2 atanh(s),
+        // s = (m - 1) / (m + 1), |s| <= 0.172, five terms of the series.
+        const float u = 1.0f - alpha;
+        const std::uint32_t bits = std::bit_cast<std::uint32_t>(u);
+        int e = int((bits >> 23) & 0xffu) - 127;
+        float m = std::bit_cast<float>((bits & 0x7fffffu) | 0x3f800000u);
+        if (m > 1.41421356f) m *= 0.5f, ++e;
+        const float s = (m - 1.0f) / (m + 1.0f), s2 = rounded(s * s);
+        float p = 1.0f / 11.0f;
+        for (const float c : {1.0f / 9.0f, 1.0f / 7.0f, 1.0f / 5.0f, 1.0f / 3.0f, 1.0f}) p = c + rounded(s2 * p);
+        const float ln_u = rounded(float(e) * 0.693147182f) + rounded(rounded(2.0f * s) * p);
+        return -ln_u;
+    }
+    return -std::log1p(-alpha);
+}
 
 /// A fragment whose optical depth is already known: what the tiled build keeps per fragment, having
 /// computed b once per segment wherever the segment's alpha is constant.

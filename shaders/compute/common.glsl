@@ -1,0 +1,255 @@
+// What every pass of the compute build shares (gl/compute_raster.hpp): the prepared segments and their
+// tiles, and the line rule of raster/line_rule.hpp in 64-bit integers, so that a tile's work group
+// makes exactly the fragments the CPU rasteriser makes. A pass defines hs_emit(x, y), which the walk
+// calls for every fragment of the current segment inside the tile. Needs GL_ARB_gpu_shader_int64 and
+// double precision (GL 4.0), the one extension and feature the compute path asks for.
+#extension GL_ARB_gpu_shader_int64 : require
+
+const int64_t HS_S = int64_t(1) << HS_SUBPIXEL_BITS; // sub-pixel steps per texel
+const int64_t HS_H = HS_S / 2;
+
+// A prepared segment (hairshadow::detail::prepared_segment and its segment_attributes): snapped ends,
+// linear depth and 1/w at both ends, thickness and opacity at both ends. Both ends equal: nothing to draw.
+struct hs_segment {
+    ivec4 ends;         // ax, ay, bx, by
+    vec4 depth_w;       // depth_a, depth_b, inv_w_a, inv_w_b
+    vec4 attributes;    // thickness_a, thickness_b, opacity_a, opacity_b
+};
+layout(std430, binding = 0) buffer hs_segment_buffer { hs_segment hs_segments[]; };
+layout(std430, binding = 1) buffer hs_tile_count_buffer { uint hs_tile_counts[]; };   // per tile; the scatter's cursors
+// The whole map's extent as ordered bits (hs_ordered), the number of segment-tile pairs and of long
+// segments, and each tile's first pair (tiles + 1 exclusive prefix sums).
+layout(std430, binding = 2) buffer hs_tile_offset_buffer {
+    uint hs_nearest_bits;
+    uint hs_furthest_bits;
+    uint hs_pairs;
+    uint hs_long_count;
+    uint hs_tile_offsets[];
+};
+// Segment indices: tile by tile in [0, hs_pairs), then from hs_long_first the long segments, whose
+// box covers more than HS_SHORT_TILES tiles. Binning only the short ones bounds the lists by the
+// segment count (HS_SHORT_TILES + 1 words a segment), so the buffer is sized before the build, with no
+// count read back; each tile's work group walks the few long ones that reach it as well.
+layout(std430, binding = 3) buffer hs_binned_buffer { uint hs_binned[]; };
+const int HS_SHORT_TILES = 4;
+uniform uint hs_long_first;
+
+uniform int hs_resolution;
+uniform int hs_tiles_x;
+const int HS_TILE = 16; // texels per side of a tile: one work group of 256 invocations each
+
+// The segment of a per-segment pass's invocation: groups of 256 in rows of up to 65535 groups.
+uint hs_segment_index() { return gl_WorkGroupID.y * gl_NumWorkGroups.x * 256u + gl_GlobalInvocationID.x; }
+
+// Tile `tile`'s texels, (x0, y0, x1, y1) half-open, clipped to the map.
+ivec4 hs_tile_rect(uint tile) {
+    ivec2 origin = HS_TILE * ivec2(int(tile % uint(hs_tiles_x)), int(tile / uint(hs_tiles_x)));
+    return ivec4(origin, min(origin + HS_TILE, ivec2(hs_resolution)));
+}
+// Walks every segment of tile `tile` into hs_emit (the fragments inside `rect`, or the whole tile),
+// the work group's invocations taking turns.
+void hs_walk_current(ivec4 clip);
+void hs_begin_segment(uint index);
+bool hs_segment_box(ivec4 e, out ivec4 box);
+void hs_walk_tile_rect(uint tile, ivec4 rect) {
+    for (uint j = hs_tile_offsets[tile] + gl_LocalInvocationIndex; j < hs_tile_offsets[tile + 1u]; j += uint(HS_TILE * HS_TILE)) {
+        hs_begin_segment(hs_binned[j]);
+        hs_walk_current(rect);
+    }
+    for (uint j = gl_LocalInvocationIndex; j < hs_long_count; j += uint(HS_TILE * HS_TILE)) {
+        uint segment = hs_binned[hs_long_first + j];
+        ivec4 box;
+        if (!hs_segment_box(hs_segments[segment].ends, box) || box.z < rect.x || box.x >= rect.z || box.w < rect.y || box.y >= rect.w) continue;
+        hs_begin_segment(segment);
+        hs_walk_current(rect);
+    }
+}
+void hs_walk_tile(uint tile) { hs_walk_tile_rect(tile, hs_tile_rect(tile)); }
+
+// Float bits in an order that uint comparison keeps, for atomicMin and atomicMax on depths.
+uint hs_ordered(float f) {
+    uint u = floatBitsToUint(f);
+    return (u & 0x80000000u) != 0u ? ~u : u | 0x80000000u;
+}
+float hs_from_ordered(uint u) { return uintBitsToFloat((u & 0x80000000u) != 0u ? u & 0x7fffffffu : ~u); }
+
+int64_t hs_floor_div(int64_t a, int64_t b) { // b > 0
+    int64_t q = a / b;
+    return (q * b != a && a < 0) ? q - 1 : q;
+}
+int64_t hs_ceil_div(int64_t a, int64_t b) { return -hs_floor_div(-a, b); }
+int64_t hs_abs64(int64_t a) { return a < 0 ? -a : a; }
+int64_t hs_min64(int64_t a, int64_t b) { return a < b ? a : b; }
+int64_t hs_max64(int64_t a, int64_t b) { return a > b ? a : b; }
+
+// Is p, moved by -(e, e^2), inside the open diamond of texel (c, r)? (detail::inside_diamond)
+bool hs_inside_diamond(i64vec2 p, int64_t c, int64_t r) {
+    int64_t u = p.x - (c * HS_S + HS_H), v = p.y - (r * HS_S + HS_H);
+    int64_t l1 = hs_abs64(u) + hs_abs64(v);
+    return l1 < HS_H || (l1 == HS_H && u > 0);
+}
+
+// Texels [x0, x1) x [y0, y1) within the map's side that a segment's box, widened by one texel (the
+// CPU's reach for thin lines), may touch; false when it misses the map (segment_bins::meets_map).
+bool hs_segment_box(ivec4 e, out ivec4 box) {
+    int64_t lo_x = (int64_t(min(e.x, e.z)) - HS_S) >> HS_SUBPIXEL_BITS, hi_x = (int64_t(max(e.x, e.z)) + HS_S) >> HS_SUBPIXEL_BITS;
+    int64_t lo_y = (int64_t(min(e.y, e.w)) - HS_S) >> HS_SUBPIXEL_BITS, hi_y = (int64_t(max(e.y, e.w)) + HS_S) >> HS_SUBPIXEL_BITS;
+    if (hi_x < 0 || hi_y < 0 || lo_x >= hs_resolution || lo_y >= hs_resolution) return false;
+    box = ivec4(int(hs_max64(lo_x, int64_t(0))), int(hs_max64(lo_y, int64_t(0))), int(hs_min64(hi_x, int64_t(hs_resolution - 1))),
+                int(hs_min64(hi_y, int64_t(hs_resolution - 1))));
+    return true;
+}
+
+void hs_emit(int x, int y); // defined by each pass
+
+// Every fragment of a -> b inside the texel rectangle clip = (x0, y0, x1, y1), half-open, by the
+// diamond-exit rule (rasterize_line: set_up_line, the walk, then start_fragment).
+void hs_walk(i64vec2 a, i64vec2 b, ivec4 clip) {
+    if (a == b) return;
+    int64_t dx = b.x - a.x, dy = b.y - a.y;
+    bool x_major = hs_abs64(dx) >= hs_abs64(dy);
+    int64_t major_a = x_major ? a.x : a.y, major_b = x_major ? b.x : b.y;
+    int64_t d_major = x_major ? dx : dy, d_minor = x_major ? dy : dx;
+    int64_t minor_a = x_major ? a.y : a.x;
+    int64_t lo_end = d_major > 0 ? major_a : major_b, hi_end = d_major > 0 ? major_b : major_a;
+    int64_t first = hs_ceil_div(lo_end - HS_H, HS_S), last = hs_ceil_div(hi_end - HS_H, HS_S) - 1;
+    int64_t m_begin = hs_max64(first, int64_t(x_major ? clip.x : clip.y)), m_end = hs_min64(last, int64_t(x_major ? clip.z : clip.w) - 1);
+    int64_t denom = (d_major > 0 ? d_major : -d_major) * HS_S;
+    int64_t sign = d_major > 0 ? 1 : -1;
+    bool lower_on_tie = !x_major || dy == 0 || ((dx > 0) != (dy > 0));
+    if (m_begin <= m_end) {
+        int64_t num0 = sign * (minor_a * d_major + (m_begin * HS_S + HS_H - major_a) * d_minor);
+        int64_t n = hs_floor_div(num0, denom);
+        int64_t rem = num0 - n * denom;
+        int64_t step = sign * d_minor * HS_S;
+        int64_t step_q = step == denom ? 1 : (step < 0 ? -1 : 0);
+        int64_t step_r = step - step_q * denom;
+        for (int64_t m = m_begin; m <= m_end; ++m) {
+            int64_t minor = (lower_on_tie && rem == 0) ? n - 1 : n;
+            int64_t x = x_major ? m : minor, y = x_major ? minor : m;
+            if (x >= clip.x && x < clip.z && y >= clip.y && y < clip.w && !hs_inside_diamond(b, x, y)) hs_emit(int(x), int(y));
+            n += step_q;
+            rem += step_r;
+            if (rem >= denom) {
+                rem -= denom;
+                ++n;
+            }
+        }
+    }
+    int64_t ax = hs_floor_div(a.x - 1, HS_S), ay = hs_floor_div(a.y - 1, HS_S);
+    int64_t a_major = x_major ? ax : ay;
+    if (hs_inside_diamond(a, ax, ay) && (a_major < first || a_major > last) && !hs_inside_diamond(b, ax, ay) && ax >= clip.x && ax < clip.z &&
+        ay >= clip.y && ay < clip.w)
+        hs_emit(int(ax), int(ay));
+}
+
+// The segment being walked, and its fragments' depth and optical depth (detail::segment_shader).
+hs_segment hs_current = hs_segment(ivec4(0), vec4(0.0), vec4(0.0));
+double hs_inv_length2 = 0.0lf;
+
+bool hs_constant_alpha = false;
+float hs_constant_b = 0.0;
+void hs_walk_current(ivec4 clip) {
+    hs_walk(i64vec2(hs_current.ends.xy), i64vec2(hs_current.ends.zw), clip);
+}
+
+// Window parameter of texel centre (x, y) along the segment, clamped to [0, 1].
+float hs_parameter(int x, int y) {
+    int64_t dx = int64_t(hs_current.ends.z) - hs_current.ends.x, dy = int64_t(hs_current.ends.w) - hs_current.ends.y;
+    int64_t px = int64_t(x) * HS_S + HS_H - hs_current.ends.x, py = int64_t(y) * HS_S + HS_H - hs_current.ends.y;
+    return float(clamp(double(px * dx + py * dy) * hs_inv_length2, 0.0lf, 1.0lf));
+}
+// a + (b - a) s, rounded as the CPU rounds it.
+float hs_lerp_exact(float a, float b, float s) {
+    precise float d = (b - a) * s;
+    precise float r = a + d;
+    return r;
+}
+// A float quotient, correctly rounded (through double, which rounds a float quotient exactly once
+// more to the same float) whatever the precision of the GPU's float division.
+float hs_divide(float a, float b) { return float(double(a) / double(b)); }
+
+float hs_attribute_parameter(float t) {
+    if (hs_current.depth_w.z == hs_current.depth_w.w) return t;
+    precise float wa = (1.0 - t) * hs_current.depth_w.z;
+    precise float wb = t * hs_current.depth_w.w;
+    precise float sum = wa + wb;
+    return hs_divide(wb, sum);
+}
+float hs_fragment_depth_at(float s) { return hs_lerp_exact(hs_current.depth_w.x, hs_current.depth_w.y, s); }
+
+uniform bool hs_use_fixed_alpha;
+uniform float hs_fixed_alpha;
+uniform float hs_footprint;       // light_space::texel_size(0.5)
+uniform bool hs_footprint_varies; // a perspective light with depth weighting
+uniform vec4 hs_footprint_terms;  // 2 half_extent, near, far - near, resolution: texel_size(depth)
+
+float hs_fragment_alpha_at(float s, float depth) {
+    float alpha;
+    if (hs_use_fixed_alpha) {
+        alpha = hs_fixed_alpha;
+    } else {
+        float thickness = hs_lerp_exact(hs_current.attributes.x, hs_current.attributes.y, s);
+        float opacity = hs_lerp_exact(hs_current.attributes.z, hs_current.attributes.w, s);
+        float footprint = hs_footprint;
+        if (hs_footprint_varies) {
+            precise float distance = hs_footprint_terms.y + depth * hs_footprint_terms.z;
+            precise float width = hs_footprint_terms.x * distance;
+            footprint = hs_divide(width, hs_footprint_terms.w);
+        }
+        precise float a = opacity * min(1.0, hs_divide(thickness, footprint));
+        alpha = a;
+    }
+    return alpha > 0.0 ? min(alpha, HS_ALPHA_MAX) : 0.0;
+}
+
+// b = -ln(1 - alpha) for alpha in [0, 1), operation for operation as hairshadow::optical_depth_of
+// computes it (precise: no fused multiply-adds; quotients correctly rounded), so the same bits.
+float hs_optical_depth_of(float alpha) {
+    if (alpha < 0.5) {
+        float s = hs_divide(alpha, 2.0 - alpha);
+        precise float s2 = s * s;
+        precise float p = 1.0 / 15.0;
+        const float c[7] = float[7](1.0 / 13.0, 1.0 / 11.0, 1.0 / 9.0, 1.0 / 7.0, 1.0 / 5.0, 1.0 / 3.0, 1.0);
+        for (int i = 0; i < 7; ++i) p = c[i] + s2 * p;
+        precise float b = (2.0 * s) * p;
+        return b;
+    }
+    float u = 1.0 - alpha;
+    uint bits = floatBitsToUint(u);
+    int e = int((bits >> 23) & 0xffu) - 127;
+    float m = uintBitsToFloat((bits & 0x7fffffu) | 0x3f800000u);
+    if (m > 1.41421356) {
+        m *= 0.5;
+        ++e;
+    }
+    float s = hs_divide(m - 1.0, m + 1.0);
+    precise float s2 = s * s;
+    precise float p = 1.0 / 11.0;
+    const float c[5] = float[5](1.0 / 9.0, 1.0 / 7.0, 1.0 / 5.0, 1.0 / 3.0, 1.0);
+    for (int i = 0; i < 5; ++i) p = c[i] + s2 * p;
+    precise float ln_u = float(e) * 0.693147182 + (2.0 * s) * p;
+    return -ln_u;
+}
+
+// Starts segment `index`: a segment of one alpha (a fixed alpha, or constant thickness and opacity
+// with a footprint that does not change with depth) works out its b once, as the CPU does.
+void hs_begin_segment(uint index) {
+    hs_current = hs_segments[index];
+    int64_t dx = int64_t(hs_current.ends.z) - hs_current.ends.x, dy = int64_t(hs_current.ends.w) - hs_current.ends.y;
+    hs_inv_length2 = 1.0lf / double(dx * dx + dy * dy);
+    hs_constant_alpha = hs_use_fixed_alpha || (!hs_footprint_varies && hs_current.attributes.x == hs_current.attributes.y &&
+                                                hs_current.attributes.z == hs_current.attributes.w);
+#ifndef HS_DEPTH_ONLY
+    if (hs_constant_alpha) hs_constant_b = hs_optical_depth_of(hs_fragment_alpha_at(0.0, hs_current.depth_w.x));
+#endif
+}
+
+// The linear depth of the current segment's fragment at texel (x, y).
+float hs_fragment_depth_of(int x, int y) { return hs_fragment_depth_at(hs_attribute_parameter(hs_parameter(x, y))); }
+// Its depth and optical depth.
+void hs_shade(int x, int y, out float depth, out float b) {
+    float s = hs_attribute_parameter(hs_parameter(x, y));
+    depth = hs_fragment_depth_at(s);
+    b = hs_constant_alpha ? hs_constant_b : hs_optical_depth_of(hs_fragment_alpha_at(s, depth));
+}

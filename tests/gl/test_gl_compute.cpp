@@ -1,0 +1,188 @@
+// The compute build path (gl::build_path::compute) against the CPU maps built from the same model and
+// light: every published method and hybrid, on Sintel and procedural models, directional and point
+// lights, long segments across many tiles, hair partly outside the map, and an empty map. States are
+// compared bit for bit; sums within 1e-5 relative (8-bit levels exactly).
+#include "gl_test_context.hpp"
+
+#include <hairshadow/gl.hpp>
+#include <hairshadow/gl/registry.hpp>
+#include <hairshadow/io/load.hpp>
+#include <hairshadow/methods/registry.hpp>
+
+#include "../test_support.hpp"
+#include "compute_comparison.hpp"
+
+
+using namespace hairshadow;
+
+namespace {
+
+/// Every published method and hybrid, float and 8-bit: each kind of placement, accumulation and
+/// reconstruction the registry composes.
+const std::vector<std::string> every_method = {"osm:16",  "osm:8:gamma", "osm:4:8bit", "dom:3",    "dom:4:8bit", "dc:4",      "dc:8:8bit",
+                                               "occ:128:4", "occ:32:1:8bit", "occ:256:8", "docc:128:4", "rosm:16", "adsm", "adsm:auto"};
+
+/// Builds every method on the CPU and on the compute path from one shared light pass, and compares.
+/// Returns the texels with a fragment.
+long check_every_method(const hair_model& model, const light_space& light, const raster_options& options = {}) {
+    const gl::hair_mesh mesh(model);
+    gl::light_pass pass(gl::build_path::compute);
+    pass.run(mesh, light, options);
+    const auto range = gl::detail::read_range(*pass.textures());
+    detail::segment_bins bins;
+    bins.prepare(model, light, options);
+    const auto extent = gl::detail::read_extent(*pass.textures());
+    CHECK(extent.nearest == bins.extent().nearest); // the whole map's extent, from the segments as on the CPU
+    CHECK(extent.furthest == bins.extent().furthest);
+    long occupied = -1;
+    for (const auto& text : every_method) {
+        const auto spec = parse_method_spec(text);
+        detail::visit_method(spec, [&]<class Method>() {
+            Method cpu = detail::method_of<Method>(spec);
+            cpu.build(model, light, options);
+            auto on_gl = gl::detail::maps_of_spec<Method>(spec);
+            on_gl.build(pass);
+            const auto c = test::compare_maps(cpu, on_gl, range, light.resolution());
+            CAPTURE(text, c.occupied, c.state_off, c.data_off, c.worst);
+            CHECK(c.state_off == 0);
+            CHECK(c.data_off == 0);
+            CHECK(c.worst < 1e-5);
+            occupied = c.occupied;
+        });
+    }
+    return occupied;
+}
+
+} // namespace
+
+TEST_CASE("compute-built maps equal the CPU maps built from the model, for every method", "[gl][compute]") {
+    test::gl_context();
+    REQUIRE(gl::compute_path_missing().empty()); // llvmpipe has compute shaders and 64-bit integers
+    SECTION("Sintel, directional light, 256x256") {
+        const auto model = load_model(test::sintel_hair());
+        CHECK(check_every_method(model, light_space::fit(light_spec::directional({0.2f, -1.0f, 0.1f}), model.bounds(), 256)) > 10000);
+    }
+    SECTION("Sintel, point light, 256x256") {
+        const auto model = load_model(test::sintel_hair());
+        const auto b = model.bounds();
+        const glm::vec3 light = b.center() + glm::vec3(0.3f, 2.5f, 0.5f) * glm::length(b.max - b.min);
+        CHECK(check_every_method(model, light_space::fit(light_spec::point(light), b, 256)) > 5000);
+    }
+    SECTION("curly hair, directional light, 128x128") {
+        const auto model = load_model("procedural:curly:strands=300:segments=24");
+        CHECK(check_every_method(model, light_space::fit(light_spec::directional({-0.4f, -1.0f, 0.3f}), model.bounds(), 128)) > 2000);
+    }
+    SECTION("clumped hair, point light, a fixed alpha, 96x96") {
+        const auto model = load_model("procedural:clumped:strands=200:segments=16");
+        const auto b = model.bounds();
+        raster_options options;
+        options.fixed_alpha = 0.3f;
+        CHECK(check_every_method(model, light_space::fit(light_spec::point(b.center() + glm::vec3(0, 3, 1) * glm::length(b.max - b.min)), b, 96),
+                                 options) > 1000);
+    }
+    SECTION("long segments across many tiles, and per-point thickness and opacity") {
+        hair_model model; // three points a strand: segments across most of the map, through a dozen tiles each
+        for (int s = 0; s < 30; ++s) {
+            const std::vector<glm::vec3> points = {
+                {0.03f * float(s), 0.0f, 0.0f}, {1.0f - 0.02f * float(s), 1.0f, 0.2f}, {0.1f * float(s % 7), 0.1f, 0.4f + 0.01f * float(s)}};
+            model.add_strand(points);
+        }
+        model.default_thickness = 0.002f;
+        for (std::size_t i = 0; i < model.point_count(); ++i) {
+            model.thickness.push_back(0.002f + 0.001f * float(i % 5));
+            model.transparency.push_back(0.1f * float(i % 7));
+        }
+        const auto light = light_space::fit(light_spec::directional({0.1f, 0.2f, -1.0f}), model.bounds(), 200);
+        const gl::hair_mesh mesh(model);
+        gl::light_pass pass(gl::build_path::compute);
+        pass.run(mesh, light);
+        CHECK(pass.compute()->pairs().second >= 40); // segments over more than 4 tiles: the tiles' work groups find them in the long list
+        CHECK(check_every_method(model, light) > 500);
+    }
+    SECTION("hair partly outside the map") {
+        const auto model = load_model("procedural:straight:strands=400:segments=12");
+        auto part = model.bounds();
+        part.max = part.min + (part.max - part.min) * 0.5f; // the map covers a corner of the hair
+        CHECK(check_every_method(model, light_space::fit(light_spec::directional({0.1f, -1.0f, 0.2f}), part, 64)) > 100);
+    }
+}
+
+TEST_CASE("the compute path builds an empty map where no hair reaches it", "[gl][compute]") {
+    test::gl_context();
+    const auto model = load_model("procedural:straight:strands=50:segments=8");
+    auto away = model.bounds();
+    const glm::vec3 shift(0, 0, 10.0f * glm::length(away.max - away.min));
+    away.min += shift, away.max += shift;
+    const auto light = light_space::fit(light_spec::directional({0, 0, -1}), away, 32);
+    const gl::hair_mesh mesh(model);
+    gl::light_pass pass(gl::build_path::compute);
+    pass.run(mesh, light);
+    const auto extent = gl::detail::read_extent(*pass.textures());
+    CHECK(extent.nearest == 0.0f);
+    CHECK(extent.furthest == 0.0f);
+    CHECK(pass.compute()->pairs() == std::pair<std::size_t, std::size_t>(0, 0));
+    gl::maps<occupancy_maps<128, 4>> occ;
+    occ.build(pass);
+    using texel = occupancy_maps<128, 4>::texel_maps;
+    for (const auto& t : occ.read_back()) CHECK(t == texel{});
+    CHECK(check_every_method(model, light) == 0);
+}
+
+TEST_CASE("the GLSL look-up of compute-built maps gives the CPU query", "[gl][compute][lookup]") {
+    test::gl_context();
+    const auto model = load_model(test::sintel_hair());
+    const auto light = light_space::fit(light_spec::directional({0.2f, -1.0f, 0.1f}), model.bounds(), 256);
+    const auto fragments = rasterize(model, light);
+    const auto queries = test::texel_centre_queries(fragments, light, 3);
+    REQUIRE(queries.size() >= 2000);
+    const gl::hair_mesh mesh(model);
+    gl::light_pass pass(gl::build_path::compute);
+    pass.run(mesh, light);
+    for (const auto& text : every_method) {
+        const auto spec = parse_method_spec(text);
+        auto on_gl = gl::make_gl_shadow_map(spec);
+        on_gl->build(pass);
+        auto cpu = make_shadow_map(spec);
+        cpu->build(model, light, {});
+        const auto on_gpu = on_gl->transmittance(queries);
+        std::vector<float> on_cpu(queries.size());
+        cpu->transmittance(queries, on_cpu);
+        float worst = 0.0f;
+        for (std::size_t i = 0; i < queries.size(); ++i) worst = std::max(worst, std::abs(on_gpu[i] - on_cpu[i]));
+        CAPTURE(text, worst);
+        CHECK(worst < 1e-4f);
+    }
+}
+
+TEST_CASE("two compute builds give identical maps, and the default path is compute", "[gl][compute][determinism]") {
+    test::gl_context();
+    const auto model = load_model("procedural:curly:strands=300:segments=24");
+    const auto light = light_space::fit(light_spec::directional({-0.4f, -1.0f, 0.3f}), model.bounds(), 128);
+    const gl::hair_mesh mesh(model);
+    gl::maps<density_clustering<4>> first, second;
+    gl::maps<occupancy_maps<128, 4>> occ_first, occ_second;
+    CHECK(first.path() == gl::build_path::compute);
+    CHECK(gl::light_pass().path() == gl::build_path::compute);
+    first.build(mesh, light);
+    second.build(mesh, light);
+    occ_first.build(mesh, light);
+    occ_second.build(mesh, light);
+    CHECK(first.read_back() == second.read_back());
+    CHECK(occ_first.read_back() == occ_second.read_back());
+    // The raster path's maps differ: GL draws its own lines.
+    gl::maps<occupancy_maps<128, 4>> raster;
+    raster.set_build_path(gl::build_path::raster);
+    raster.build(mesh, light);
+    CHECK(raster.path() == gl::build_path::raster);
+    CHECK(raster.read_back() != occ_first.read_back());
+}
+
+TEST_CASE("the compute path refuses wide lines with a feature error", "[gl][compute][errors]") {
+    test::gl_context();
+    const auto model = test::grid_model(10, 4);
+    const gl::hair_mesh mesh(model);
+    raster_options options;
+    options.wide_line_width = 4.0f;
+    gl::light_pass pass(gl::build_path::compute);
+    CHECK_THROWS_AS(pass.run(mesh, light_space::fit(light_spec::directional({0, -1, 0}), model.bounds(), 32), options), gl::feature_error);
+}
