@@ -3,8 +3,9 @@
 // and light (states bit for bit, sums within 1e-5), then both GL build paths timed by GL timer
 // queries (medians of --repeat), beside the CPU's tiled build. Prints a Markdown table; exits 1 if any
 // compute-built map differs from the CPU's. This is the one script a GPU run needs:
-//   build/bench/hairshadow_gl_gpu_check [--context egl|osmesa] [--large] [--repeat N]
-// --large adds the 1.5M-segment curly model and 2048x2048.
+//   build/bench/hairshadow_gl_gpu_check [--context egl|osmesa] [--large] [--repeat N] [--model SOURCE]...
+// --large adds 2048x2048 (and, without --model, the 1.5M-segment curly model); --model replaces the
+// Sintel model (a file or a procedural spec; repeatable). scripts/gpu_check.sh runs it on a GPU machine.
 #include <glad/gl.h>
 
 #include <hairshadow/gl.hpp>
@@ -87,13 +88,15 @@ int main(int argc, char** argv) {
     std::string context = "egl";
     bool large = false;
     int repeat = 5;
+    std::vector<std::string> models;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--context" && i + 1 < argc) context = argv[++i];
+        else if (a == "--model" && i + 1 < argc) models.push_back(argv[++i]);
         else if (a == "--large") large = true;
         else if (a == "--repeat" && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
         else {
-            std::fprintf(stderr, "usage: hairshadow_gl_gpu_check [--context egl|osmesa] [--large] [--repeat N]\n");
+            std::fprintf(stderr, "usage: hairshadow_gl_gpu_check [--context egl|osmesa] [--large] [--repeat N] [--model SOURCE]...\n");
             return 2;
         }
     }
@@ -108,9 +111,13 @@ int main(int argc, char** argv) {
         std::printf("%s. Times: medians of %d full builds (light pass included) by GL timer queries; CPU: the tiled build, wall time, "
                     "%u threads.\n\n",
                     ctx->description().c_str(), repeat, execution{}.resolved());
-        std::vector<std::string> models = {std::string(HAIRSHADOW_SHARED_DIR) + "/data/sintel/sintel_hair.16points.tfx"};
+        const bool defaulted = models.empty();
+        if (defaulted) models.push_back(std::string(HAIRSHADOW_SHARED_DIR) + "/data/sintel/sintel_hair.16points.tfx");
         std::vector<int> resolutions = {512};
-        if (large) models.push_back("procedural:curly:strands=10000:segments=150"), resolutions.push_back(2048);
+        if (large) {
+            if (defaulted) models.push_back("procedural:curly:strands=10000:segments=150");
+            resolutions.push_back(2048);
+        }
         outcome all;
         for (const auto& name : models) {
             const auto model = load_model(name);
