@@ -5,9 +5,8 @@
 #include "gl_test_context.hpp"
 
 #include <hairshadow/gl.hpp>
-#include <hairshadow/gl/registry.hpp>
 #include <hairshadow/io/load.hpp>
-#include <hairshadow/methods/registry.hpp>
+#include <hairshadow/methods/spec.hpp>
 
 #include "../test_support.hpp"
 #include "compute_comparison.hpp"
@@ -17,10 +16,40 @@ using namespace hairshadow;
 
 namespace {
 
-/// Every published method and hybrid, float and 8-bit: each kind of placement, accumulation and
-/// reconstruction the registry composes.
-const std::vector<std::string> every_method = {"osm:16",  "osm:8:gamma", "osm:4:8bit", "dom:3",    "dom:4:8bit", "dc:4",      "dc:8:8bit",
-                                               "occ:128:4", "occ:32:1:8bit", "occ:256:8", "docc:128:4", "rosm:16", "adsm", "adsm:auto"};
+/// A method spec and its type.
+template <class Method>
+struct named {
+    using type = Method;
+    const char* spec;
+};
+
+/// The CPU method and the GL maps of a spec, with its parameters (a fibre density), as the registries
+/// make them; included from neither, whose run-time dispatch instantiates every size they support.
+template <class Method>
+Method cpu_method(const method_spec& spec) {
+    using R = typename Method::reconstruction_type;
+    if constexpr (std::is_constructible_v<R, fibre_density_parameters>) return Method(typename Method::placement_type(), R(spec.density));
+    else return Method();
+}
+template <class Method>
+gl::maps<Method> gl_maps(const method_spec& spec) {
+    if constexpr (std::is_constructible_v<gl::maps<Method>, const Method&>) return gl::maps<Method>(cpu_method<Method>(spec));
+    else return gl::maps<Method>();
+}
+
+/// Calls visit(spec, Method{}) for every published method and hybrid, float and 8-bit: each kind of
+/// placement, accumulation and reconstruction the registry composes.
+template <class Visit>
+void for_every_method(Visit&& visit) {
+    const auto each = [&](auto... m) { (visit(parse_method_spec(m.spec), typename decltype(m)::type()), ...); };
+    each(named<opacity_shadow_maps<16>>{"osm:16"}, named<opacity_shadow_maps<8, gamma_spacing>>{"osm:8:gamma"},
+         named<opacity_shadow_maps<4, uniform_spacing, emulated_8bit>>{"osm:4:8bit"}, named<deep_opacity_maps<3>>{"dom:3"},
+         named<deep_opacity_maps<4, emulated_8bit>>{"dom:4:8bit"}, named<density_clustering<4>>{"dc:4"},
+         named<density_clustering<8, emulated_8bit>>{"dc:8:8bit"}, named<occupancy_maps<128, 4>>{"occ:128:4"},
+         named<occupancy_maps<32, 1, emulated_8bit>>{"occ:32:1:8bit"}, named<occupancy_maps<256, 8>>{"occ:256:8"},
+         named<deep_occupancy_maps<128, 4>>{"docc:128:4"}, named<range_opacity_maps<16>>{"rosm:16"},
+         named<approximate_deep_shadow_maps>{"adsm"}, named<measured_density_shadow_maps>{"adsm:auto"});
+}
 
 /// Builds every method on the CPU and on the compute path from one shared light pass, and compares.
 /// Returns the texels with a fragment.
@@ -35,21 +64,18 @@ long check_every_method(const hair_model& model, const light_space& light, const
     CHECK(extent.nearest == bins.extent().nearest); // the whole map's extent, from the segments as on the CPU
     CHECK(extent.furthest == bins.extent().furthest);
     long occupied = -1;
-    for (const auto& text : every_method) {
-        const auto spec = parse_method_spec(text);
-        detail::visit_method(spec, [&]<class Method>() {
-            Method cpu = detail::method_of<Method>(spec);
-            cpu.build(model, light, options);
-            auto on_gl = gl::detail::maps_of_spec<Method>(spec);
-            on_gl.build(pass);
-            const auto c = test::compare_maps(cpu, on_gl, range, light.resolution());
-            CAPTURE(text, c.occupied, c.state_off, c.data_off, c.worst);
-            CHECK(c.state_off == 0);
-            CHECK(c.data_off == 0);
-            CHECK(c.worst < 1e-5);
-            occupied = c.occupied;
-        });
-    }
+    for_every_method([&]<class Method>(const method_spec& spec, Method) {
+        Method cpu = cpu_method<Method>(spec);
+        cpu.build(model, light, options);
+        auto on_gl = gl_maps<Method>(spec);
+        on_gl.build(pass);
+        const auto c = test::compare_maps(cpu, on_gl, range, light.resolution());
+        CAPTURE(spec.text, c.occupied, c.state_off, c.data_off, c.worst);
+        CHECK(c.state_off == 0);
+        CHECK(c.data_off == 0);
+        CHECK(c.worst < 1e-5);
+        occupied = c.occupied;
+    });
     return occupied;
 }
 
@@ -138,20 +164,19 @@ TEST_CASE("the GLSL look-up of compute-built maps gives the CPU query", "[gl][co
     const gl::hair_mesh mesh(model);
     gl::light_pass pass(gl::build_path::compute);
     pass.run(mesh, light);
-    for (const auto& text : every_method) {
-        const auto spec = parse_method_spec(text);
-        auto on_gl = gl::make_gl_shadow_map(spec);
-        on_gl->build(pass);
-        auto cpu = make_shadow_map(spec);
-        cpu->build(model, light, {});
-        const auto on_gpu = on_gl->transmittance(queries);
+    for_every_method([&]<class Method>(const method_spec& spec, Method) {
+        auto on_gl = gl_maps<Method>(spec);
+        on_gl.build(pass);
+        Method cpu = cpu_method<Method>(spec);
+        cpu.build(model, light);
+        const auto on_gpu = test::gl_lookup(on_gl.lookup_source(), [&](GLuint p) { on_gl.bind_lookup(p); }, queries);
         std::vector<float> on_cpu(queries.size());
-        cpu->transmittance(queries, on_cpu);
+        cpu.transmittance(queries, on_cpu);
         float worst = 0.0f;
         for (std::size_t i = 0; i < queries.size(); ++i) worst = std::max(worst, std::abs(on_gpu[i] - on_cpu[i]));
-        CAPTURE(text, worst);
+        CAPTURE(spec.text, worst);
         CHECK(worst < 1e-4f);
-    }
+    });
 }
 
 TEST_CASE("two compute builds give identical maps, and the default path is compute", "[gl][compute][determinism]") {
