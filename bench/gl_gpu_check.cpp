@@ -1,8 +1,8 @@
 // The compute build path on whatever GPU EGL finds (or llvmpipe through OSMesa), in one run: for each
 // model, resolution and method, the compute-built maps checked against the CPU maps of the same model
-// and light (states bit for bit, sums within 1e-5), then both GL build paths timed by GL timer
-// queries (medians of --repeat), beside the CPU's tiled build. Prints a Markdown table; exits 1 if any
-// compute-built map differs from the CPU's. This is the one script a GPU run needs:
+// and light (states bit for bit, sums within 1e-5), then both GL build paths timed by GL timer queries
+// and the wall clock (medians of --repeat), beside the CPU's tiled build. Prints a Markdown table;
+// exits 1 if any compute-built map differs from the CPU's. The one program a GPU run needs:
 //   build/bench/hairshadow_gl_gpu_check [--context egl|osmesa] [--large] [--repeat N] [--model SOURCE]...
 // --large adds 2048x2048 (and, without --model, the 1.5M-segment curly model); --model replaces the
 // Sintel model (a file or a procedural spec; repeatable). scripts/gpu_check.sh runs it on a GPU machine.
@@ -34,15 +34,22 @@ double median(std::vector<double> v) {
     return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
-/// GPU milliseconds of `work`, by a GL_TIME_ELAPSED query.
+/// Milliseconds of `work`: on the GPU, by a GL_TIME_ELAPSED query, and on the wall clock until
+/// glFinish returns (some drivers' timer queries leave compute dispatches out: llvmpipe under EGL reads 0).
+struct timing {
+    double gpu, wall;
+};
 template <class Work>
-double gpu_ms(GLuint query, Work&& work) {
+timing time_of(GLuint query, Work&& work) {
+    const auto start = std::chrono::steady_clock::now();
     glBeginQuery(GL_TIME_ELAPSED, query);
     work();
     glEndQuery(GL_TIME_ELAPSED);
+    glFinish();
+    const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     GLuint64 ns = 0;
     glGetQueryObjectui64v(query, GL_QUERY_RESULT, &ns);
-    return double(ns) * 1e-6;
+    return {double(ns) * 1e-6, wall};
 }
 
 struct outcome {
@@ -67,18 +74,22 @@ void check_and_time(const method_spec& spec, const hair_model& model, const gl::
     const auto c = test::compare_maps(cpu, checked, gl::detail::read_range(*pass.textures()), light.resolution());
     all.exact = all.exact && c.exact();
     // The times: each path's full build (its own light pass included), the first build apart.
-    double times[2] = {0, 0};
+    timing times[2] = {{0, 0}, {0, 0}};
     for (const auto path : {gl::build_path::compute, gl::build_path::raster}) {
         auto maps = gl::detail::maps_of_spec<Method>(spec);
         maps.set_build_path(path);
         maps.build(mesh, light);
         glFinish();
-        std::vector<double> t;
-        for (int i = 0; i < repeat; ++i) t.push_back(gpu_ms(query, [&] { maps.build(mesh, light); }));
-        times[path == gl::build_path::compute ? 0 : 1] = median(t);
+        std::vector<double> gpu, wall;
+        for (int i = 0; i < repeat; ++i) {
+            const auto t = time_of(query, [&] { maps.build(mesh, light); });
+            gpu.push_back(t.gpu), wall.push_back(t.wall);
+        }
+        times[path == gl::build_path::compute ? 0 : 1] = {median(gpu), median(wall)};
     }
-    std::printf("| %s | %.2f | %.2f | %.2fx | %.1f | %s (%ld texels, worst sum %.1e) |\n", spec.text.c_str(), times[0], times[1],
-                times[0] > 0 ? times[1] / times[0] : 0.0, median(cpu_times), c.exact() ? "exact" : "DIFFERS", c.occupied, c.worst);
+    std::printf("| %s | %.2f / %.2f | %.2f / %.2f | %.2fx | %.1f | %s (%ld texels, worst sum %.1e) |\n", spec.text.c_str(), times[0].gpu,
+                times[0].wall, times[1].gpu, times[1].wall, times[0].wall > 0 ? times[1].wall / times[0].wall : 0.0, median(cpu_times),
+                c.exact() ? "exact" : "DIFFERS", c.occupied, c.worst);
     std::fflush(stdout);
 }
 
@@ -108,7 +119,8 @@ int main(int argc, char** argv) {
         gl::require_compute_path("the GPU check");
         GLuint query = 0;
         glGenQueries(1, &query);
-        std::printf("%s. Times: medians of %d full builds (light pass included) by GL timer queries; CPU: the tiled build, wall time, "
+        std::printf("%s. Times: medians of %d full builds (light pass included), by GL timer queries and on the wall clock to glFinish; "
+                "CPU: the tiled build, wall time, "
                     "%u threads.\n\n",
                     ctx->description().c_str(), repeat, execution{}.resolved());
         const bool defaulted = models.empty();
@@ -124,7 +136,7 @@ int main(int argc, char** argv) {
             const gl::hair_mesh mesh(model);
             for (const int res : resolutions) {
                 const auto light = light_space::fit(light_spec::directional({0, -1, -1}), model.bounds(), res);
-                std::printf("**%s**, %zu segments, %dx%d\n\n| method | compute GPU (ms) | raster GPU (ms) | raster / compute | CPU tiled (ms) | compute maps against the CPU's |\n"
+                std::printf("**%s**, %zu segments, %dx%d\n\n| method | compute, timer / wall (ms) | raster, timer / wall (ms) | raster / compute (wall) | CPU tiled (ms) | compute maps against the CPU's |\n"
                             "|---|---|---|---|---|---|\n",
                             name.substr(name.find_last_of('/') + 1).c_str(), model.segment_count(), res, res);
                 for (const char* text : {"dom:3", "occ:128:4", "osm:16", "dc:4", "adsm:auto"}) {
