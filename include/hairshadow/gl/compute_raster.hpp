@@ -13,6 +13,7 @@
 #include <hairshadow/gl/hair_mesh.hpp>
 #include <hairshadow/gl/objects.hpp>
 #include <hairshadow/gl/shaders.generated.hpp>
+#include <hairshadow/gl/state_guard.hpp>
 
 #include <algorithm>
 #include <cstdint>
@@ -125,7 +126,7 @@ public:
         const GLuint zero = 0;
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, counts_.get());
         glClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-        const std::uint32_t totals[4] = {0xffffffffu, 0u, 0u, 0u}; // nearest, furthest (ordered bits), pairs
+        const std::uint32_t totals[4] = {0xffffffffu, 0u, 0u, 0u}; // nearest, furthest (ordered bits), pairs, long segments
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, offsets_.get());
         glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof totals, totals);
         bind_lists();
@@ -194,6 +195,7 @@ public:
     /// Segment-tile pairs of the last run, and its long segments: read back (a wait for the GPU),
     /// for tests and inspection.
     std::pair<std::size_t, std::size_t> pairs() const {
+        state_guard guard("hairshadow: compute pair counts"); // the caller's storage buffer binding stays
         std::uint32_t counts[2] = {0, 0};
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, offsets_.get());
         glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 8, sizeof counts, counts);
