@@ -84,7 +84,10 @@ void check_tiled_equals_buffer(const hair_model& model, const light_space& light
 TEMPLATE_TEST_CASE("the tiled build gives the fragment-buffer build's maps, bit for bit", "[tiled][determinism]", opacity_shadow_maps<16>,
                    (opacity_shadow_maps<16, gamma_spacing>), deep_opacity_maps<3>, density_clustering<4>, (occupancy_maps<128, 4>),
                    deep_opacity_maps_8bit<3>, (deep_occupancy_maps<128, 4>), range_opacity_maps<16>,
-                   (shadow_method<per_pixel_depth<4, layer_sizes::uniform, beyond_last_layer::ignore>, float_accumulation, interpolation>)) {
+                   (shadow_method<per_pixel_depth<4, layer_sizes::uniform, beyond_last_layer::ignore>, float_accumulation, interpolation>),
+                   (opacity_shadow_maps<64, uniform_spacing, emulated_8bit>), (occupancy_maps<32, 1, emulated_8bit>),
+                   (shadow_method<depth_range<24>, float_accumulation, interpolation>),
+                   (shadow_method<per_pixel_depth<4, layer_sizes::uniform, beyond_last_layer::extend>, float_accumulation, interpolation>)) {
     const std::string name = GENERATE("sintel", "curly");
     CAPTURE(name);
     const auto& model = test_model(name);
@@ -277,4 +280,16 @@ TEST_CASE("the thread pool runs nested and concurrent loops and passes exception
         in_use[slot].fetch_sub(1);
     });
     CHECK_FALSE(shared);
+}
+
+TEST_CASE("the compositions that reduce texel by texel build without grouping fragments", "[tiled]") {
+    // methods/streamed_tile.hpp: the interpolated methods stream (OSM, DOM, ROSM and their hybrids),
+    // DC, the occupancy maps and the fibre densities group; the bit-for-bit test above covers both.
+    STATIC_REQUIRE(detail::streams_tiles<planar_slices<16, uniform_spacing>, float_accumulation, interpolation>);
+    STATIC_REQUIRE(detail::streams_tiles<per_pixel_depth<3>, emulated_8bit, interpolation>);
+    STATIC_REQUIRE(detail::streams_tiles<depth_range<16>, float_accumulation, interpolation>);
+    STATIC_REQUIRE(detail::streams_tiles<per_pixel_depth<4, layer_sizes::uniform, beyond_last_layer::extend>, float_accumulation, interpolation>);
+    STATIC_REQUIRE_FALSE(detail::streams_tiles<depth_range<128>, float_accumulation, occupancy_bitcount<4>>);
+    STATIC_REQUIRE_FALSE(detail::streams_tiles<clustered<4>, float_accumulation, interpolation>);
+    STATIC_REQUIRE_FALSE(detail::streams_tiles<per_pixel_depth<1>, float_accumulation, fibre_density<fibre_density_source::fixed>>);
 }

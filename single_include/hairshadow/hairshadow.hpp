@@ -2339,6 +2339,7 @@ struct huge_page_allocator {
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 namespace hairshadow {
 
@@ -2383,6 +2384,21 @@ template <class Placement>
 auto texel_assigner(const Placement& placement, const typename Placement::texel_state& state) noexcept {
     if constexpr (requires { placement.assigner(state); }) return placement.assigner(state);
     else return [&placement, &state](float depth) noexcept { return placement.assign(state, depth); };
+}
+
+/// Widens a texel's depth range by one more fragment's depth (started at the first fragment's).
+inline void add_to_depth_range(depth_extent& range, float depth) noexcept {
+    range.nearest = std::min(range.nearest, depth);
+    range.furthest = std::max(range.furthest, depth);
+}
+
+/// The nearest and furthest depth of a texel's fragments, reduced in their order from the first:
+/// the order matters only for the sign of a zero, and add_to_depth_range keeps the same order.
+template <class Fragment>
+depth_extent depth_range_of(std::span<const Fragment> fragments) noexcept {
+    depth_extent range{fragments[0].depth, fragments[0].depth};
+    for (const auto& f : fragments) add_to_depth_range(range, f.depth);
+    return range;
 }
 
 /// Layer k's position for a depth between its boundaries lo and hi.
@@ -3478,18 +3494,21 @@ concept reconstruction_policy =
 
 } // namespace hairshadow
 // ---- end hairshadow/methods/concepts.hpp
-// ---- begin hairshadow/methods/tiled_build.hpp
+// ---- begin hairshadow/methods/streamed_tile.hpp
 /// @file
-/// The tiled build: every method's maps built tile by tile straight from the model, with no buffer of
-/// the whole map's fragments. Segments are projected and binned once (segment_bins); then each tile,
-/// in parallel, gathers its fragments into a per-thread store that stays in cache, and every texel of
-/// the tile is built from its own fragments, in segment order, exactly as from a fragment_buffer.
+/// The tiled build without grouping fragments by texel, for methods whose per-texel work is a running
+/// reduction: a placement whose texel state follows from the texel's nearest and furthest fragment
+/// (texel_state_from), and a reconstruction that accumulates one fragment at a time (accumulator,
+/// accumulate, finish). The tile's fragments are read twice in walk order, where they already lie:
+/// once for each texel's depth range, once to add each fragment into its texel's layer. Each texel
+/// still meets its own fragments in segment order, so the maps are the grouped build's, bit for bit;
+/// what it saves is the counting sort, whose scattered writes miss the cache on a dense tile.
 
 // ---- begin hairshadow/raster/tile_fragments.hpp
 /// @file
-/// One tile's fragments, grouped texel by texel: the working set of the tiled build. The tile's
-/// segments are walked once, by the line rule, into a per-thread store; then the fragments are
-/// grouped by texel, each texel's in segment order, the order a fragment_buffer keeps. The walk runs
+/// One tile's fragments: the working set of the tiled build. The tile's segments are walked once, by
+/// the line rule, into a per-thread store, in walk order; group() then groups the fragments by texel,
+/// each texel's in segment order, the order a fragment_buffer keeps. The walk runs
 /// in AVX-512 where the CPU has it (raster/tile_walk_avx512.hpp), else in scalar C++; both give the
 /// same fragments, bit for bit.
 
@@ -3509,7 +3528,7 @@ namespace detail {
 /// tile and from build to build.
 class tile_fragments {
 public:
-    /// Walks tile t's segments and groups their fragments by texel. `instructions` must be resolved.
+    /// Walks tile t's segments into the store, in walk order. `instructions` must be resolved.
     void gather(const segment_bins& bins, std::size_t t, instruction_set instructions) {
         rect_ = bins.tile_rect(t);
         width_ = rect_.x1 - rect_.x0;
@@ -3522,23 +3541,29 @@ public:
         (void)vector;
         walk_scalar(bins, t);
 #endif
-        group();
     }
 
     const texel_rect& rect() const noexcept { return rect_; }
-    /// Fragments of the tile's texel (x, y), in map coordinates.
+    /// Fragments of the tile's texel (x, y), in map coordinates, once grouped (group()).
     std::span<const optical_fragment> texel(int x, int y) const noexcept {
         const std::size_t k = std::size_t(y - rect_.y0) * std::size_t(width_) + std::size_t(x - rect_.x0);
         return {grouped_.data() + offsets_[k], std::size_t(offsets_[k + 1] - offsets_[k])};
     }
+    /// The last tile's fragments in walk order: segment after segment, as in the tile's list. Each
+    /// texel's fragments come in the order texel() gives them. walk_texels() are row-major indices
+    /// within the tile.
+    std::span<const std::uint32_t> walk_texels() const noexcept { return {where_.data(), n_}; }
+    std::span<const float> walk_depths() const noexcept { return {depth_.data(), n_}; }
+    std::span<const float> walk_optical_depths() const noexcept { return {optical_.data(), n_}; }
     /// Fragments of the last tile.
     std::size_t size() const noexcept { return n_; }
-    /// Fragments it holds without allocating.
-    std::size_t capacity() const noexcept { return std::min(where_.size(), grouped_.size()); }
-    /// Makes room for `fragments` fragments in tiles of `tile_texels` texels, so that tiles up to that
-    /// size allocate nothing.
-    void reserve(std::size_t fragments, std::size_t tile_texels) {
+    /// Fragments it walks without allocating.
+    std::size_t capacity() const noexcept { return where_.size(); }
+    /// Makes room for `fragments` fragments in tiles of `tile_texels` texels, walked (and grouped, when
+    /// `grouped`), so that tiles up to that size allocate nothing.
+    void reserve(std::size_t fragments, std::size_t tile_texels, bool grouped) {
         if (where_.size() < fragments) where_.resize(fragments), depth_.resize(fragments), optical_.resize(fragments);
+        if (!grouped) return;
         if (grouped_.size() < fragments) grouped_.resize(fragments);
         offsets_.reserve(tile_texels + 2);
     }
@@ -3610,7 +3635,9 @@ private:
         bins.for_each_segment(t, [&](const segment_shader& s) HAIRSHADOW_ALWAYS_INLINE { walk_segment(s, wide); });
     }
 
-    /// Count, prefix sums and a stable scatter: texel k's fragments end in [offsets_[k], offsets_[k + 1]).
+public:
+    /// Groups the last tile's fragments by texel, for texel(): a count, prefix sums and a stable
+    /// scatter, so that texel k's fragments end in [offsets_[k], offsets_[k + 1]) in walk order.
     void group() {
         const std::size_t texels = std::size_t(width_) * std::size_t(rect_.y1 - rect_.y0);
         if (n_ > std::numeric_limits<std::uint32_t>::max()) throw argument_error("more than 2^32 fragments in one tile: use smaller tiles");
@@ -3627,6 +3654,7 @@ private:
         for (std::size_t i = 0; i < n_; ++i) grouped[cursor[where[i]]++] = {depth[i], optical[i]};
     }
 
+private:
 #if HAIRSHADOW_AVX512_WALK
     /// The vector walk covers thin lines of one alpha (uniform attributes, a footprint constant in
     /// depth); other tiles walk in scalar.
@@ -3843,6 +3871,9 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
             }
             const int count = b.count[l];
             make_room(std::size_t(count) + 1);
+            // Whole-vector stores need 16 slots past n_; near the store's end, compress to memory
+            // instead, so that the store grows exactly as the scalar walk's does.
+            const bool whole_vectors = n_ + std::size_t(count) + 16 <= where_.size();
             const __mmask16 along_x = (b.x_major >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
             const __mmask16 tie = (b.tie >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
             const __m512i m_begin = _mm512_set1_epi32(b.m_begin[l]), counts = _mm512_set1_epi32(count);
@@ -3879,9 +3910,17 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
                     _mm512_min_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(high_pd(px), dx), _mm512_mul_pd(high_pd(py), dy)), inv_length2), one_pd), zero_pd);
                 const __m512 param = join_ps(_mm512_cvtpd_ps(t_low), _mm512_cvtpd_ps(t_high));
                 const __m512 depth = _mm512_add_ps(depth_a, rounded(_mm512_mul_ps(depth_delta, param))); // lerp_exact
-                _mm512_mask_compressstoreu_epi32(where_.data() + n_, keep, local);
-                _mm512_mask_compressstoreu_ps(depth_.data() + n_, keep, depth);
-                _mm512_mask_compressstoreu_ps(optical_.data() + n_, keep, optical_depth);
+                if (whole_vectors) {
+                    // Compressed in registers and stored whole, past n_: a compress straight to
+                    // memory measured 1.3x slower on this machine's CPU.
+                    _mm512_storeu_si512(where_.data() + n_, _mm512_maskz_compress_epi32(keep, local));
+                    _mm512_storeu_ps(depth_.data() + n_, _mm512_maskz_compress_ps(keep, depth));
+                    _mm512_storeu_ps(optical_.data() + n_, optical_depth);
+                } else {
+                    _mm512_mask_compressstoreu_epi32(where_.data() + n_, keep, local);
+                    _mm512_mask_compressstoreu_ps(depth_.data() + n_, keep, depth);
+                    _mm512_mask_compressstoreu_ps(optical_.data() + n_, keep, optical_depth);
+                }
                 n_ += std::size_t(__builtin_popcount(keep));
             }
             // The start fragment, as walk_line emits it, after the walk; stored always and kept when
@@ -3899,8 +3938,125 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
 #endif
 // ---- end hairshadow/raster/tile_fragments.hpp
 
+#include <cstddef>
+#include <cstdint>
+#include <type_traits>
+#include <vector>
+
+namespace hairshadow::detail {
+
+/// Whether a composition can be built without grouping (streamed_tile).
+template <class Placement, class Accumulation, class Reconstruction>
+concept streams_tiles = requires(const Placement& p, typename Placement::texel_state& s,
+                                 typename Reconstruction::template accumulator<Placement, Accumulation>& a,
+                                 typename Reconstruction::template storage<Placement, Accumulation>& out) {
+    p.texel_state_from(0.0f, 0.0f, s);
+    Reconstruction::template accumulate<Placement, Accumulation>(a, 0, 0.0f);
+    Reconstruction::template finish<Placement, Accumulation>(a, out);
+};
+
+/// One thread's working memory for the streamed build: per texel of a tile, its fragment count, depth
+/// range, placement state and accumulator. Kept from tile to tile and from build to build.
+template <class Placement, class Accumulation, class Reconstruction>
+class streamed_tile {
+public:
+    using state = typename Placement::texel_state;
+    using accumulator = typename Reconstruction::template accumulator<Placement, Accumulation>;
+
+    /// Room for tiles of `texels` texels, so that no tile allocates.
+    void reserve(std::size_t texels) {
+        counts_.reserve(texels), ranges_.reserve(texels), states_.reserve(texels), sums_.reserve(texels);
+    }
+
+    /// Whether streaming `tile` beats grouping it. Always without per-texel state (nothing but the
+    /// adds); with it, where the tile holds at least `dense` fragments a texel. Measured for dom:3
+    /// (BENCHMARKS.md, issue 11): 1.2x faster streamed at 47 fragments a texel (curly 1.5M, 512x512),
+    /// even at 12, and 1.15x slower at 1 (Sintel, 2048x2048), where the per-texel passes dominate.
+    static constexpr std::size_t dense = 4;
+    static bool pays(const tile_fragments& tile) noexcept {
+        const texel_rect r = tile.rect();
+        return std::is_empty_v<state> || tile.size() >= dense * std::size_t(r.x1 - r.x0) * std::size_t(r.y1 - r.y0);
+    }
+
+    /// Builds the texels of `tile` (gathered in walk order) into texel_out(x, y), a texel_maps with
+    /// .placement and .data, which it overwrites.
+    template <class TexelOut>
+    void build(const Placement& placement, const tile_fragments& tile, TexelOut&& texel_out) {
+        const texel_rect r = tile.rect();
+        const int width = r.x1 - r.x0;
+        const std::size_t texels = std::size_t(width) * std::size_t(r.y1 - r.y0);
+        const auto where = tile.walk_texels();
+        const auto depth = tile.walk_depths();
+        const auto optical = tile.walk_optical_depths();
+        const std::size_t n = where.size();
+        counts_.assign(texels, 0);
+        states_.resize(texels); // read only where a fragment fell, and then written first
+        sums_.assign(texels, accumulator{});
+        // The depth pass (depth_range_of, fragment by fragment). A placement without per-texel state
+        // needs none: an empty texel's sums are zero, and finish stores the empty texel's maps.
+        constexpr bool stateful = !std::is_empty_v<state>;
+        if constexpr (stateful) {
+            ranges_.resize(texels);
+            for (std::size_t i = 0; i < n; ++i) {
+                const std::uint32_t k = where[i];
+                const float d = depth[i];
+                depth_extent& range = ranges_[k];
+                if (counts_[k]++ == 0) range = {d, d};
+                else add_to_depth_range(range, d);
+            }
+            for (std::size_t k = 0; k < texels; ++k)
+                if (counts_[k] != 0) placement.texel_state_from(ranges_[k].nearest, ranges_[k].furthest, states_[k]);
+        }
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::uint32_t k = where[i];
+            Reconstruction::template accumulate<Placement, Accumulation>(sums_[k], placement.assign(states_[k], depth[i]), optical[i]);
+        }
+        for (int y = r.y0; y < r.y1; ++y)
+            for (int x = r.x0; x < r.x1; ++x) {
+                const std::size_t k = std::size_t(y - r.y0) * std::size_t(width) + std::size_t(x - r.x0);
+                auto& out = texel_out(x, y);
+                out = {};
+                if (stateful && counts_[k] == 0) continue;
+                out.placement = states_[k];
+                Reconstruction::template finish<Placement, Accumulation>(sums_[k], out.data);
+            }
+    }
+
+    std::size_t memory_bytes() const noexcept {
+        return counts_.capacity() * sizeof(std::uint32_t) + ranges_.capacity() * sizeof(depth_extent) + states_.capacity() * sizeof(state) +
+               sums_.capacity() * sizeof(accumulator);
+    }
+
+private:
+    std::vector<std::uint32_t> counts_;
+    std::vector<depth_extent> ranges_;
+    std::vector<state> states_;
+    std::vector<accumulator> sums_;
+};
+
+/// Stands in for streamed_tile in a composition that does not stream.
+struct no_streamed_tile {
+    std::size_t memory_bytes() const noexcept { return 0; }
+};
+
+template <class Placement, class Accumulation, class Reconstruction>
+using streamed_tile_for = typename std::conditional_t<streams_tiles<Placement, Accumulation, Reconstruction>,
+                                                      std::type_identity<streamed_tile<Placement, Accumulation, Reconstruction>>,
+                                                      std::type_identity<no_streamed_tile>>::type;
+
+} // namespace hairshadow::detail
+// ---- end hairshadow/methods/streamed_tile.hpp
+// ---- begin hairshadow/methods/tiled_build.hpp
+/// @file
+/// The tiled build: every method's maps built tile by tile straight from the model, with no buffer of
+/// the whole map's fragments. Segments are projected and binned once (segment_bins); then each tile,
+/// in parallel, gathers its fragments into a per-thread store that stays in cache, and every texel of
+/// the tile is built from its own fragments, in segment order, exactly as from a fragment_buffer.
+
+
 #include <algorithm>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace hairshadow::detail {
@@ -3937,36 +4093,57 @@ private:
     std::unique_ptr<T> value_;
 };
 
-/// Calls build_texel(x, y, fragments) for every texel of the map that w.bins was prepared for (so the
-/// whole-map pre-pass, w.bins.extent(), is known before), tile by tile in parallel (the tiles with the most segments first), with the texel's
-/// optical_fragments in segment order (empty where no fragment falls). Each texel is visited once,
-/// from one thread, so build_texel may write the texel's own output without locks.
-/// Returns the number of fragments.
-template <class BuildTexel>
-std::size_t build_tiles(tiled_workspace& w, BuildTexel&& build_texel) {
+/// The number of threads (slots) for_each_tile runs the tiles of w.bins on.
+inline unsigned tile_slots(const tiled_workspace& w) noexcept { return parallel_slots(w.bins.tiles_by_load().size(), w.bins.options().exec); }
+
+/// What for_each_tile does with a tile's fragments after the walk.
+enum class tile_grouping {
+    grouped,    ///< groups them by texel (tile_fragments::texel)
+    walk_order, ///< leaves them in walk order
+    on_demand,  ///< leaves them in walk order; on_tile may group them (tile_fragments::group)
+};
+
+/// Calls on_tile(slot, tile) for every tile of the map that w.bins was prepared for, in parallel
+/// (the tiles with the most segments first), with the tile's fragments gathered in `slot`'s store
+/// and grouped as `grouping` says. Returns the number of fragments.
+template <class OnTile>
+std::size_t for_each_tile(tiled_workspace& w, tile_grouping grouping, OnTile&& on_tile) {
     const auto& order = w.bins.tiles_by_load();
     const execution& exec = w.bins.options().exec;
     const instruction_set instructions = resolve(w.bins.options().instructions);
-    const unsigned slots = parallel_slots(order.size(), exec);
+    const unsigned slots = tile_slots(w);
     w.tiles.resize(slots);
     w.fragments.assign(slots, 0);
     parallel_for_slots(order.size(), exec, [&](unsigned slot, std::size_t i) {
         tile_fragments& tile = w.tiles[slot];
         tile.gather(w.bins, order[i], instructions);
+        if (grouping == tile_grouping::grouped) tile.group();
         w.fragments[slot] += tile.size();
-        const texel_rect r = tile.rect();
-        for (int y = r.y0; y < r.y1; ++y)
-            for (int x = r.x0; x < r.x1; ++x) build_texel(x, y, tile.texel(x, y));
+        on_tile(slot, tile);
     });
     // Every thread's store as large as the largest: the tiles go to other threads in the next build,
     // which then allocates nothing.
     std::size_t largest = 0;
     for (const auto& tile : w.tiles) largest = std::max(largest, tile.capacity());
     const auto side = std::size_t(w.bins.options().tile_size);
-    for (auto& tile : w.tiles) tile.reserve(largest, side * side);
+    for (auto& tile : w.tiles) tile.reserve(largest, side * side, grouping != tile_grouping::walk_order);
     std::size_t total = 0;
     for (const std::size_t n : w.fragments) total += n;
     return total;
+}
+
+/// Calls build_texel(x, y, fragments) for every texel of the map that w.bins was prepared for (so the
+/// whole-map pre-pass, w.bins.extent(), is known before), tile by tile in parallel, with the texel's
+/// optical_fragments in segment order (empty where no fragment falls). Each texel is visited once,
+/// from one thread, so build_texel may write the texel's own output without locks.
+/// Returns the number of fragments.
+template <class BuildTexel>
+std::size_t build_tiles(tiled_workspace& w, BuildTexel&& build_texel) {
+    return for_each_tile(w, tile_grouping::grouped, [&](unsigned, const tile_fragments& tile) {
+        const texel_rect r = tile.rect();
+        for (int y = r.y0; y < r.y1; ++y)
+            for (int x = r.x0; x < r.x1; ++x) build_texel(x, y, tile.texel(x, y));
+    });
 }
 
 } // namespace hairshadow::detail
@@ -3978,14 +4155,10 @@ namespace hairshadow {
 inline std::size_t count_fragments(const hair_model& model, const light_space& light, const raster_options& options = {}) {
     detail::tiled_workspace w;
     w.bins.prepare(model, light, options);
-    return detail::build_tiles(w, [](int, int, std::span<const optical_fragment>) {});
+    return detail::for_each_tile(w, detail::tile_grouping::walk_order, [](unsigned, const detail::tile_fragments&) {});
 }
 
 } // namespace hairshadow
-
-namespace hairshadow::detail {
-
-} // namespace hairshadow::detail
 // ---- end hairshadow/methods/tiled_build.hpp
 
 #include <vector>
@@ -4047,13 +4220,27 @@ public:
             placement_.prepare(extent_);
             const std::size_t res = std::size_t(light.resolution());
             texels_.resize(res * res);
-            fragments_ = detail::build_tiles(w, [&](int x, int y, std::span<const optical_fragment> in) HAIRSHADOW_ALWAYS_INLINE {
-                auto& out = texels_[std::size_t(y) * res + std::size_t(x)];
-                out = texel_maps{};
-                if (in.empty()) return;
-                placement_.prepare_texel(in, out.placement);
-                reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
-            });
+            const auto texel_out = [&](int x, int y) -> texel_maps& { return texels_[std::size_t(y) * res + std::size_t(x)]; };
+            const auto build_grouped = [&](const detail::tile_fragments& tile) {
+                const texel_rect r = tile.rect();
+                for (int y = r.y0; y < r.y1; ++y)
+                    for (int x = r.x0; x < r.x1; ++x) build_texel(tile.texel(x, y), texel_out(x, y));
+            };
+            if constexpr (detail::streams_tiles<Placement, Accumulation, Reconstruction>) {
+                // Dense tiles reduce their fragments where the walk left them (methods/streamed_tile.hpp);
+                // sparse ones are grouped, which is cheaper there. Both give the same texels.
+                auto& per_thread = streamed_.get();
+                per_thread.resize(detail::tile_slots(w));
+                for (auto& s : per_thread) s.reserve(std::size_t(options.tile_size) * std::size_t(options.tile_size));
+                fragments_ = detail::for_each_tile(w, detail::tile_grouping::on_demand, [&](unsigned slot, detail::tile_fragments& tile) {
+                    if (per_thread[slot].pays(tile)) return per_thread[slot].build(placement_, tile, texel_out);
+                    tile.group();
+                    build_grouped(tile);
+                });
+            } else {
+                fragments_ = detail::for_each_tile(w, detail::tile_grouping::grouped,
+                                                   [&](unsigned, const detail::tile_fragments& tile) { build_grouped(tile); });
+            }
         });
     }
 
@@ -4073,13 +4260,7 @@ public:
             placement_.prepare(extent);
             fragments_ = fragments.size();
             texels_.assign(fragments.texel_count(), texel_maps{});
-            parallel_for(texels_.size(), exec, [&](std::size_t t) {
-                const auto in = fragments.texel(t);
-                if (in.empty()) return;
-                auto& out = texels_[t];
-                placement_.prepare_texel(in, out.placement);
-                reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
-            }, 512);
+            parallel_for(texels_.size(), exec, [&](std::size_t t) { build_texel(fragments.texel(t), texels_[t]); }, 512);
         });
     }
 
@@ -4116,7 +4297,12 @@ public:
     /// Fragments the last build summed.
     std::size_t fragment_count() const noexcept { return fragments_; }
     /// Bytes of working memory the tiled build keeps between builds (not part of the maps).
-    std::size_t workspace_bytes() const noexcept { return workspace_.peek() ? workspace_.peek()->memory_bytes() : 0; }
+    std::size_t workspace_bytes() const noexcept {
+        std::size_t bytes = workspace_.peek() ? workspace_.peek()->memory_bytes() : 0;
+        if (const auto* per_thread = streamed_.peek())
+            for (const auto& s : *per_thread) bytes += s.memory_bytes();
+        return bytes;
+    }
     const light_space& light() const noexcept { return light_; }
     /// Bytes the maps hold: every texel's placement state and stored layers, plus the global state.
     std::size_t memory_bytes() const noexcept { return texels_.size() * sizeof(texel_maps) + Placement::global_bytes(); }
@@ -4124,6 +4310,15 @@ public:
     static constexpr std::size_t texel_bytes() noexcept { return sizeof(texel_maps); }
 
 private:
+    /// One texel's maps from its fragments (fragment or optical_fragment), in segment order.
+    template <class Fragment>
+    HAIRSHADOW_ALWAYS_INLINE void build_texel(std::span<const Fragment> in, texel_maps& out) const {
+        out = texel_maps{};
+        if (in.empty()) return;
+        placement_.prepare_texel(in, out.placement);
+        reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
+    }
+
     /// The light of the maps, given to a reconstruction that needs it (a fibre density's world units).
     void set_light(const light_space& light) {
         light_ = light;
@@ -4152,6 +4347,8 @@ private:
     depth_extent extent_{};
     std::size_t fragments_ = 0;
     detail::scratch<detail::tiled_workspace> workspace_;
+    using streamed_tile = detail::streamed_tile_for<Placement, Accumulation, Reconstruction>;
+    detail::scratch<std::vector<streamed_tile>> streamed_; ///< per thread, where the composition streams
 };
 
 } // namespace hairshadow
@@ -4361,9 +4558,11 @@ public:
     template <class Fragment>
     void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
         if (fragments.empty()) return;
-        s.nearest = s.furthest = fragments[0].depth;
-        for (const auto& f : fragments) s.nearest = std::min(s.nearest, f.depth), s.furthest = std::max(s.furthest, f.depth);
+        const auto range = detail::depth_range_of(fragments);
+        texel_state_from(range.nearest, range.furthest, s);
     }
+    /// The texel's state from its nearest and furthest fragment (per_pixel_depth::texel_state_from).
+    void texel_state_from(float nearest, float furthest, texel_state& s) const noexcept { s.nearest = nearest, s.furthest = furthest; }
     /// Depth of slice boundary k in [0, S].
     float boundary(const texel_state& s, int k) const noexcept { return s.nearest + (s.furthest - s.nearest) * (float(k) / float(S)); }
     /// The slice floor(S (z - near) / (far - near)) of the paper, the furthest fragment in the last.
@@ -4464,10 +4663,15 @@ public:
     template <class Fragment>
     void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
         if (fragments.empty()) return;
-        float lo = fragments[0].depth, hi = lo;
-        for (const auto& f : fragments) lo = std::min(lo, f.depth), hi = std::max(hi, f.depth);
-        s.z0 = lo;
-        if constexpr (Beyond == beyond_last_layer::extend) s.scale = std::max(1.0f, detail::just_above(hi - lo) / extent_);
+        const auto range = detail::depth_range_of(fragments);
+        texel_state_from(range.nearest, range.furthest, s);
+    }
+    /// The texel's state from its nearest and furthest fragment: all the depth pass needs, so that a
+    /// build which sees the texel's fragments among other texels' can reduce them as they come.
+    void texel_state_from(float nearest, float furthest, texel_state& s) const noexcept {
+        s.z0 = nearest;
+        if constexpr (Beyond == beyond_last_layer::extend) s.scale = std::max(1.0f, detail::just_above(furthest - nearest) / extent_);
+        else (void)furthest;
     }
 
     /// d_k / d_K for layer boundary k in [0, K].
@@ -4590,6 +4794,8 @@ public:
     }
     template <class Fragment>
     void prepare_texel(std::span<const Fragment>, texel_state&) const noexcept {}
+    /// No per-texel state (per_pixel_depth::texel_state_from).
+    void texel_state_from(float, float, texel_state&) const noexcept {}
 
     /// Depth of map i, i in [0, N] (D_0 .. D_N): D_0 + (D_N - D_0) spacing(i / N), computed once per build.
     float boundary(const texel_state&, int i) const noexcept { return boundaries_[std::size_t(std::clamp(i, 0, N))]; }
@@ -4845,8 +5051,23 @@ struct interpolation {
                 if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], fragment_optical_depth(f));
             }
         }
+        finish<Placement, Accumulation>(sums, out);
+    }
+
+    /// The build in pieces, for a build that meets a texel's fragments among other texels' (in each
+    /// texel's own order all the same): one accumulator per texel, each fragment accumulated into its
+    /// layer k (as assign gives it), then finished. The same maps as build, bit for bit: build's
+    /// branch-free loop adds +0 to the other layers, which changes no sum.
+    template <class Placement, class Accumulation>
+    using accumulator = std::array<typename Accumulation::sum_type, std::size_t(Placement::layer_count)>;
+    template <class Placement, class Accumulation>
+    static void accumulate(accumulator<Placement, Accumulation>& sums, int k, float optical_depth) noexcept {
+        if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], optical_depth);
+    }
+    template <class Placement, class Accumulation>
+    static void finish(const accumulator<Placement, Accumulation>& sums, storage<Placement, Accumulation>& out) noexcept {
         typename Accumulation::sum_type running{};
-        for (std::size_t k = 0; k < std::size_t(L); ++k) {
+        for (std::size_t k = 0; k < std::size_t(Placement::layer_count); ++k) {
             if constexpr (Placement::cumulative) {
                 running = Accumulation::combine(running, sums[k]);
                 out.layers[k] = Accumulation::store(running);
@@ -4933,6 +5154,9 @@ struct occupancy_bitcount {
         friend bool operator==(const storage&, const storage&) = default;
     };
 
+    /// The texel's fragments into its bits and slabs. No streamed form (interpolation::accumulator):
+    /// measured, streaming occ:128:4 and docc:128:4 was no faster than grouping the tile's fragments
+    /// by texel, and up to 1.2x slower (BENCHMARKS.md, issue 11).
     template <class Placement, class Accumulation, class Fragment>
     static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const Fragment> fragments,
                       storage<Placement, Accumulation>& out) {

@@ -11,6 +11,7 @@
 #include <hairshadow/core/hair_model.hpp>
 #include <hairshadow/core/huge_pages.hpp>
 #include <hairshadow/methods/concepts.hpp>
+#include <hairshadow/methods/streamed_tile.hpp>
 #include <hairshadow/methods/tiled_build.hpp>
 #include <hairshadow/raster/fragment.hpp>
 #include <hairshadow/raster/raster_options.hpp>
@@ -74,13 +75,27 @@ public:
             placement_.prepare(extent_);
             const std::size_t res = std::size_t(light.resolution());
             texels_.resize(res * res);
-            fragments_ = detail::build_tiles(w, [&](int x, int y, std::span<const optical_fragment> in) HAIRSHADOW_ALWAYS_INLINE {
-                auto& out = texels_[std::size_t(y) * res + std::size_t(x)];
-                out = texel_maps{};
-                if (in.empty()) return;
-                placement_.prepare_texel(in, out.placement);
-                reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
-            });
+            const auto texel_out = [&](int x, int y) -> texel_maps& { return texels_[std::size_t(y) * res + std::size_t(x)]; };
+            const auto build_grouped = [&](const detail::tile_fragments& tile) {
+                const texel_rect r = tile.rect();
+                for (int y = r.y0; y < r.y1; ++y)
+                    for (int x = r.x0; x < r.x1; ++x) build_texel(tile.texel(x, y), texel_out(x, y));
+            };
+            if constexpr (detail::streams_tiles<Placement, Accumulation, Reconstruction>) {
+                // Dense tiles reduce their fragments where the walk left them (methods/streamed_tile.hpp);
+                // sparse ones are grouped, which is cheaper there. Both give the same texels.
+                auto& per_thread = streamed_.get();
+                per_thread.resize(detail::tile_slots(w));
+                for (auto& s : per_thread) s.reserve(std::size_t(options.tile_size) * std::size_t(options.tile_size));
+                fragments_ = detail::for_each_tile(w, detail::tile_grouping::on_demand, [&](unsigned slot, detail::tile_fragments& tile) {
+                    if (per_thread[slot].pays(tile)) return per_thread[slot].build(placement_, tile, texel_out);
+                    tile.group();
+                    build_grouped(tile);
+                });
+            } else {
+                fragments_ = detail::for_each_tile(w, detail::tile_grouping::grouped,
+                                                   [&](unsigned, const detail::tile_fragments& tile) { build_grouped(tile); });
+            }
         });
     }
 
@@ -100,13 +115,7 @@ public:
             placement_.prepare(extent);
             fragments_ = fragments.size();
             texels_.assign(fragments.texel_count(), texel_maps{});
-            parallel_for(texels_.size(), exec, [&](std::size_t t) {
-                const auto in = fragments.texel(t);
-                if (in.empty()) return;
-                auto& out = texels_[t];
-                placement_.prepare_texel(in, out.placement);
-                reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
-            }, 512);
+            parallel_for(texels_.size(), exec, [&](std::size_t t) { build_texel(fragments.texel(t), texels_[t]); }, 512);
         });
     }
 
@@ -143,7 +152,12 @@ public:
     /// Fragments the last build summed.
     std::size_t fragment_count() const noexcept { return fragments_; }
     /// Bytes of working memory the tiled build keeps between builds (not part of the maps).
-    std::size_t workspace_bytes() const noexcept { return workspace_.peek() ? workspace_.peek()->memory_bytes() : 0; }
+    std::size_t workspace_bytes() const noexcept {
+        std::size_t bytes = workspace_.peek() ? workspace_.peek()->memory_bytes() : 0;
+        if (const auto* per_thread = streamed_.peek())
+            for (const auto& s : *per_thread) bytes += s.memory_bytes();
+        return bytes;
+    }
     const light_space& light() const noexcept { return light_; }
     /// Bytes the maps hold: every texel's placement state and stored layers, plus the global state.
     std::size_t memory_bytes() const noexcept { return texels_.size() * sizeof(texel_maps) + Placement::global_bytes(); }
@@ -151,6 +165,15 @@ public:
     static constexpr std::size_t texel_bytes() noexcept { return sizeof(texel_maps); }
 
 private:
+    /// One texel's maps from its fragments (fragment or optical_fragment), in segment order.
+    template <class Fragment>
+    HAIRSHADOW_ALWAYS_INLINE void build_texel(std::span<const Fragment> in, texel_maps& out) const {
+        out = texel_maps{};
+        if (in.empty()) return;
+        placement_.prepare_texel(in, out.placement);
+        reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
+    }
+
     /// The light of the maps, given to a reconstruction that needs it (a fibre density's world units).
     void set_light(const light_space& light) {
         light_ = light;
@@ -179,6 +202,8 @@ private:
     depth_extent extent_{};
     std::size_t fragments_ = 0;
     detail::scratch<detail::tiled_workspace> workspace_;
+    using streamed_tile = detail::streamed_tile_for<Placement, Accumulation, Reconstruction>;
+    detail::scratch<std::vector<streamed_tile>> streamed_; ///< per thread, where the composition streams
 };
 
 } // namespace hairshadow

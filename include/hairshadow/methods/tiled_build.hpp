@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace hairshadow::detail {
@@ -47,36 +48,57 @@ private:
     std::unique_ptr<T> value_;
 };
 
-/// Calls build_texel(x, y, fragments) for every texel of the map that w.bins was prepared for (so the
-/// whole-map pre-pass, w.bins.extent(), is known before), tile by tile in parallel (the tiles with the most segments first), with the texel's
-/// optical_fragments in segment order (empty where no fragment falls). Each texel is visited once,
-/// from one thread, so build_texel may write the texel's own output without locks.
-/// Returns the number of fragments.
-template <class BuildTexel>
-std::size_t build_tiles(tiled_workspace& w, BuildTexel&& build_texel) {
+/// The number of threads (slots) for_each_tile runs the tiles of w.bins on.
+inline unsigned tile_slots(const tiled_workspace& w) noexcept { return parallel_slots(w.bins.tiles_by_load().size(), w.bins.options().exec); }
+
+/// What for_each_tile does with a tile's fragments after the walk.
+enum class tile_grouping {
+    grouped,    ///< groups them by texel (tile_fragments::texel)
+    walk_order, ///< leaves them in walk order
+    on_demand,  ///< leaves them in walk order; on_tile may group them (tile_fragments::group)
+};
+
+/// Calls on_tile(slot, tile) for every tile of the map that w.bins was prepared for, in parallel
+/// (the tiles with the most segments first), with the tile's fragments gathered in `slot`'s store
+/// and grouped as `grouping` says. Returns the number of fragments.
+template <class OnTile>
+std::size_t for_each_tile(tiled_workspace& w, tile_grouping grouping, OnTile&& on_tile) {
     const auto& order = w.bins.tiles_by_load();
     const execution& exec = w.bins.options().exec;
     const instruction_set instructions = resolve(w.bins.options().instructions);
-    const unsigned slots = parallel_slots(order.size(), exec);
+    const unsigned slots = tile_slots(w);
     w.tiles.resize(slots);
     w.fragments.assign(slots, 0);
     parallel_for_slots(order.size(), exec, [&](unsigned slot, std::size_t i) {
         tile_fragments& tile = w.tiles[slot];
         tile.gather(w.bins, order[i], instructions);
+        if (grouping == tile_grouping::grouped) tile.group();
         w.fragments[slot] += tile.size();
-        const texel_rect r = tile.rect();
-        for (int y = r.y0; y < r.y1; ++y)
-            for (int x = r.x0; x < r.x1; ++x) build_texel(x, y, tile.texel(x, y));
+        on_tile(slot, tile);
     });
     // Every thread's store as large as the largest: the tiles go to other threads in the next build,
     // which then allocates nothing.
     std::size_t largest = 0;
     for (const auto& tile : w.tiles) largest = std::max(largest, tile.capacity());
     const auto side = std::size_t(w.bins.options().tile_size);
-    for (auto& tile : w.tiles) tile.reserve(largest, side * side);
+    for (auto& tile : w.tiles) tile.reserve(largest, side * side, grouping != tile_grouping::walk_order);
     std::size_t total = 0;
     for (const std::size_t n : w.fragments) total += n;
     return total;
+}
+
+/// Calls build_texel(x, y, fragments) for every texel of the map that w.bins was prepared for (so the
+/// whole-map pre-pass, w.bins.extent(), is known before), tile by tile in parallel, with the texel's
+/// optical_fragments in segment order (empty where no fragment falls). Each texel is visited once,
+/// from one thread, so build_texel may write the texel's own output without locks.
+/// Returns the number of fragments.
+template <class BuildTexel>
+std::size_t build_tiles(tiled_workspace& w, BuildTexel&& build_texel) {
+    return for_each_tile(w, tile_grouping::grouped, [&](unsigned, const tile_fragments& tile) {
+        const texel_rect r = tile.rect();
+        for (int y = r.y0; y < r.y1; ++y)
+            for (int x = r.x0; x < r.x1; ++x) build_texel(x, y, tile.texel(x, y));
+    });
 }
 
 } // namespace hairshadow::detail
@@ -88,11 +110,7 @@ namespace hairshadow {
 inline std::size_t count_fragments(const hair_model& model, const light_space& light, const raster_options& options = {}) {
     detail::tiled_workspace w;
     w.bins.prepare(model, light, options);
-    return detail::build_tiles(w, [](int, int, std::span<const optical_fragment>) {});
+    return detail::for_each_tile(w, detail::tile_grouping::walk_order, [](unsigned, const detail::tile_fragments&) {});
 }
 
 } // namespace hairshadow
-
-namespace hairshadow::detail {
-
-} // namespace hairshadow::detail

@@ -36,9 +36,11 @@ public:
     template <class Fragment>
     void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
         if (fragments.empty()) return;
-        s.nearest = s.furthest = fragments[0].depth;
-        for (const auto& f : fragments) s.nearest = std::min(s.nearest, f.depth), s.furthest = std::max(s.furthest, f.depth);
+        const auto range = detail::depth_range_of(fragments);
+        texel_state_from(range.nearest, range.furthest, s);
     }
+    /// The texel's state from its nearest and furthest fragment (per_pixel_depth::texel_state_from).
+    void texel_state_from(float nearest, float furthest, texel_state& s) const noexcept { s.nearest = nearest, s.furthest = furthest; }
     /// Depth of slice boundary k in [0, S].
     float boundary(const texel_state& s, int k) const noexcept { return s.nearest + (s.furthest - s.nearest) * (float(k) / float(S)); }
     /// The slice floor(S (z - near) / (far - near)) of the paper, the furthest fragment in the last.

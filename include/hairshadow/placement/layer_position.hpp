@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 namespace hairshadow {
 
@@ -51,6 +52,21 @@ template <class Placement>
 auto texel_assigner(const Placement& placement, const typename Placement::texel_state& state) noexcept {
     if constexpr (requires { placement.assigner(state); }) return placement.assigner(state);
     else return [&placement, &state](float depth) noexcept { return placement.assign(state, depth); };
+}
+
+/// Widens a texel's depth range by one more fragment's depth (started at the first fragment's).
+inline void add_to_depth_range(depth_extent& range, float depth) noexcept {
+    range.nearest = std::min(range.nearest, depth);
+    range.furthest = std::max(range.furthest, depth);
+}
+
+/// The nearest and furthest depth of a texel's fragments, reduced in their order from the first:
+/// the order matters only for the sign of a zero, and add_to_depth_range keeps the same order.
+template <class Fragment>
+depth_extent depth_range_of(std::span<const Fragment> fragments) noexcept {
+    depth_extent range{fragments[0].depth, fragments[0].depth};
+    for (const auto& f : fragments) add_to_depth_range(range, f.depth);
+    return range;
 }
 
 /// Layer k's position for a depth between its boundaries lo and hi.

@@ -73,10 +73,15 @@ public:
     template <class Fragment>
     void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
         if (fragments.empty()) return;
-        float lo = fragments[0].depth, hi = lo;
-        for (const auto& f : fragments) lo = std::min(lo, f.depth), hi = std::max(hi, f.depth);
-        s.z0 = lo;
-        if constexpr (Beyond == beyond_last_layer::extend) s.scale = std::max(1.0f, detail::just_above(hi - lo) / extent_);
+        const auto range = detail::depth_range_of(fragments);
+        texel_state_from(range.nearest, range.furthest, s);
+    }
+    /// The texel's state from its nearest and furthest fragment: all the depth pass needs, so that a
+    /// build which sees the texel's fragments among other texels' can reduce them as they come.
+    void texel_state_from(float nearest, float furthest, texel_state& s) const noexcept {
+        s.z0 = nearest;
+        if constexpr (Beyond == beyond_last_layer::extend) s.scale = std::max(1.0f, detail::just_above(furthest - nearest) / extent_);
+        else (void)furthest;
     }
 
     /// d_k / d_K for layer boundary k in [0, K].

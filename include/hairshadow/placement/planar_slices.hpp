@@ -60,6 +60,8 @@ public:
     }
     template <class Fragment>
     void prepare_texel(std::span<const Fragment>, texel_state&) const noexcept {}
+    /// No per-texel state (per_pixel_depth::texel_state_from).
+    void texel_state_from(float, float, texel_state&) const noexcept {}
 
     /// Depth of map i, i in [0, N] (D_0 .. D_N): D_0 + (D_N - D_0) spacing(i / N), computed once per build.
     float boundary(const texel_state&, int i) const noexcept { return boundaries_[std::size_t(std::clamp(i, 0, N))]; }

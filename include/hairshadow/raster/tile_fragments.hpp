@@ -1,8 +1,8 @@
 #pragma once
 /// @file
-/// One tile's fragments, grouped texel by texel: the working set of the tiled build. The tile's
-/// segments are walked once, by the line rule, into a per-thread store; then the fragments are
-/// grouped by texel, each texel's in segment order, the order a fragment_buffer keeps. The walk runs
+/// One tile's fragments: the working set of the tiled build. The tile's segments are walked once, by
+/// the line rule, into a per-thread store, in walk order; group() then groups the fragments by texel,
+/// each texel's in segment order, the order a fragment_buffer keeps. The walk runs
 /// in AVX-512 where the CPU has it (raster/tile_walk_avx512.hpp), else in scalar C++; both give the
 /// same fragments, bit for bit.
 
@@ -29,7 +29,7 @@ namespace detail {
 /// tile and from build to build.
 class tile_fragments {
 public:
-    /// Walks tile t's segments and groups their fragments by texel. `instructions` must be resolved.
+    /// Walks tile t's segments into the store, in walk order. `instructions` must be resolved.
     void gather(const segment_bins& bins, std::size_t t, instruction_set instructions) {
         rect_ = bins.tile_rect(t);
         width_ = rect_.x1 - rect_.x0;
@@ -42,23 +42,29 @@ public:
         (void)vector;
         walk_scalar(bins, t);
 #endif
-        group();
     }
 
     const texel_rect& rect() const noexcept { return rect_; }
-    /// Fragments of the tile's texel (x, y), in map coordinates.
+    /// Fragments of the tile's texel (x, y), in map coordinates, once grouped (group()).
     std::span<const optical_fragment> texel(int x, int y) const noexcept {
         const std::size_t k = std::size_t(y - rect_.y0) * std::size_t(width_) + std::size_t(x - rect_.x0);
         return {grouped_.data() + offsets_[k], std::size_t(offsets_[k + 1] - offsets_[k])};
     }
+    /// The last tile's fragments in walk order: segment after segment, as in the tile's list. Each
+    /// texel's fragments come in the order texel() gives them. walk_texels() are row-major indices
+    /// within the tile.
+    std::span<const std::uint32_t> walk_texels() const noexcept { return {where_.data(), n_}; }
+    std::span<const float> walk_depths() const noexcept { return {depth_.data(), n_}; }
+    std::span<const float> walk_optical_depths() const noexcept { return {optical_.data(), n_}; }
     /// Fragments of the last tile.
     std::size_t size() const noexcept { return n_; }
-    /// Fragments it holds without allocating.
-    std::size_t capacity() const noexcept { return std::min(where_.size(), grouped_.size()); }
-    /// Makes room for `fragments` fragments in tiles of `tile_texels` texels, so that tiles up to that
-    /// size allocate nothing.
-    void reserve(std::size_t fragments, std::size_t tile_texels) {
+    /// Fragments it walks without allocating.
+    std::size_t capacity() const noexcept { return where_.size(); }
+    /// Makes room for `fragments` fragments in tiles of `tile_texels` texels, walked (and grouped, when
+    /// `grouped`), so that tiles up to that size allocate nothing.
+    void reserve(std::size_t fragments, std::size_t tile_texels, bool grouped) {
         if (where_.size() < fragments) where_.resize(fragments), depth_.resize(fragments), optical_.resize(fragments);
+        if (!grouped) return;
         if (grouped_.size() < fragments) grouped_.resize(fragments);
         offsets_.reserve(tile_texels + 2);
     }
@@ -130,7 +136,9 @@ private:
         bins.for_each_segment(t, [&](const segment_shader& s) HAIRSHADOW_ALWAYS_INLINE { walk_segment(s, wide); });
     }
 
-    /// Count, prefix sums and a stable scatter: texel k's fragments end in [offsets_[k], offsets_[k + 1]).
+public:
+    /// Groups the last tile's fragments by texel, for texel(): a count, prefix sums and a stable
+    /// scatter, so that texel k's fragments end in [offsets_[k], offsets_[k + 1]) in walk order.
     void group() {
         const std::size_t texels = std::size_t(width_) * std::size_t(rect_.y1 - rect_.y0);
         if (n_ > std::numeric_limits<std::uint32_t>::max()) throw argument_error("more than 2^32 fragments in one tile: use smaller tiles");
@@ -147,6 +155,7 @@ private:
         for (std::size_t i = 0; i < n_; ++i) grouped[cursor[where[i]]++] = {depth[i], optical[i]};
     }
 
+private:
 #if HAIRSHADOW_AVX512_WALK
     /// The vector walk covers thin lines of one alpha (uniform attributes, a footprint constant in
     /// depth); other tiles walk in scalar.

@@ -190,6 +190,9 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
             }
             const int count = b.count[l];
             make_room(std::size_t(count) + 1);
+            // Whole-vector stores need 16 slots past n_; near the store's end, compress to memory
+            // instead, so that the store grows exactly as the scalar walk's does.
+            const bool whole_vectors = n_ + std::size_t(count) + 16 <= where_.size();
             const __mmask16 along_x = (b.x_major >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
             const __mmask16 tie = (b.tie >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
             const __m512i m_begin = _mm512_set1_epi32(b.m_begin[l]), counts = _mm512_set1_epi32(count);
@@ -226,9 +229,17 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
                     _mm512_min_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(high_pd(px), dx), _mm512_mul_pd(high_pd(py), dy)), inv_length2), one_pd), zero_pd);
                 const __m512 param = join_ps(_mm512_cvtpd_ps(t_low), _mm512_cvtpd_ps(t_high));
                 const __m512 depth = _mm512_add_ps(depth_a, rounded(_mm512_mul_ps(depth_delta, param))); // lerp_exact
-                _mm512_mask_compressstoreu_epi32(where_.data() + n_, keep, local);
-                _mm512_mask_compressstoreu_ps(depth_.data() + n_, keep, depth);
-                _mm512_mask_compressstoreu_ps(optical_.data() + n_, keep, optical_depth);
+                if (whole_vectors) {
+                    // Compressed in registers and stored whole, past n_: a compress straight to
+                    // memory measured 1.3x slower on this machine's CPU.
+                    _mm512_storeu_si512(where_.data() + n_, _mm512_maskz_compress_epi32(keep, local));
+                    _mm512_storeu_ps(depth_.data() + n_, _mm512_maskz_compress_ps(keep, depth));
+                    _mm512_storeu_ps(optical_.data() + n_, optical_depth);
+                } else {
+                    _mm512_mask_compressstoreu_epi32(where_.data() + n_, keep, local);
+                    _mm512_mask_compressstoreu_ps(depth_.data() + n_, keep, depth);
+                    _mm512_mask_compressstoreu_ps(optical_.data() + n_, keep, optical_depth);
+                }
                 n_ += std::size_t(__builtin_popcount(keep));
             }
             // The start fragment, as walk_line emits it, after the walk; stored always and kept when

@@ -56,8 +56,23 @@ struct interpolation {
                 if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], fragment_optical_depth(f));
             }
         }
+        finish<Placement, Accumulation>(sums, out);
+    }
+
+    /// The build in pieces, for a build that meets a texel's fragments among other texels' (in each
+    /// texel's own order all the same): one accumulator per texel, each fragment accumulated into its
+    /// layer k (as assign gives it), then finished. The same maps as build, bit for bit: build's
+    /// branch-free loop adds +0 to the other layers, which changes no sum.
+    template <class Placement, class Accumulation>
+    using accumulator = std::array<typename Accumulation::sum_type, std::size_t(Placement::layer_count)>;
+    template <class Placement, class Accumulation>
+    static void accumulate(accumulator<Placement, Accumulation>& sums, int k, float optical_depth) noexcept {
+        if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], optical_depth);
+    }
+    template <class Placement, class Accumulation>
+    static void finish(const accumulator<Placement, Accumulation>& sums, storage<Placement, Accumulation>& out) noexcept {
         typename Accumulation::sum_type running{};
-        for (std::size_t k = 0; k < std::size_t(L); ++k) {
+        for (std::size_t k = 0; k < std::size_t(Placement::layer_count); ++k) {
             if constexpr (Placement::cumulative) {
                 running = Accumulation::combine(running, sums[k]);
                 out.layers[k] = Accumulation::store(running);

@@ -1,0 +1,120 @@
+#pragma once
+/// @file
+/// The tiled build without grouping fragments by texel, for methods whose per-texel work is a running
+/// reduction: a placement whose texel state follows from the texel's nearest and furthest fragment
+/// (texel_state_from), and a reconstruction that accumulates one fragment at a time (accumulator,
+/// accumulate, finish). The tile's fragments are read twice in walk order, where they already lie:
+/// once for each texel's depth range, once to add each fragment into its texel's layer. Each texel
+/// still meets its own fragments in segment order, so the maps are the grouped build's, bit for bit;
+/// what it saves is the counting sort, whose scattered writes miss the cache on a dense tile.
+
+#include <hairshadow/placement/layer_position.hpp>
+#include <hairshadow/raster/tile_fragments.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <type_traits>
+#include <vector>
+
+namespace hairshadow::detail {
+
+/// Whether a composition can be built without grouping (streamed_tile).
+template <class Placement, class Accumulation, class Reconstruction>
+concept streams_tiles = requires(const Placement& p, typename Placement::texel_state& s,
+                                 typename Reconstruction::template accumulator<Placement, Accumulation>& a,
+                                 typename Reconstruction::template storage<Placement, Accumulation>& out) {
+    p.texel_state_from(0.0f, 0.0f, s);
+    Reconstruction::template accumulate<Placement, Accumulation>(a, 0, 0.0f);
+    Reconstruction::template finish<Placement, Accumulation>(a, out);
+};
+
+/// One thread's working memory for the streamed build: per texel of a tile, its fragment count, depth
+/// range, placement state and accumulator. Kept from tile to tile and from build to build.
+template <class Placement, class Accumulation, class Reconstruction>
+class streamed_tile {
+public:
+    using state = typename Placement::texel_state;
+    using accumulator = typename Reconstruction::template accumulator<Placement, Accumulation>;
+
+    /// Room for tiles of `texels` texels, so that no tile allocates.
+    void reserve(std::size_t texels) {
+        counts_.reserve(texels), ranges_.reserve(texels), states_.reserve(texels), sums_.reserve(texels);
+    }
+
+    /// Whether streaming `tile` beats grouping it. Always without per-texel state (nothing but the
+    /// adds); with it, where the tile holds at least `dense` fragments a texel. Measured for dom:3
+    /// (BENCHMARKS.md, issue 11): 1.2x faster streamed at 47 fragments a texel (curly 1.5M, 512x512),
+    /// even at 12, and 1.15x slower at 1 (Sintel, 2048x2048), where the per-texel passes dominate.
+    static constexpr std::size_t dense = 4;
+    static bool pays(const tile_fragments& tile) noexcept {
+        const texel_rect r = tile.rect();
+        return std::is_empty_v<state> || tile.size() >= dense * std::size_t(r.x1 - r.x0) * std::size_t(r.y1 - r.y0);
+    }
+
+    /// Builds the texels of `tile` (gathered in walk order) into texel_out(x, y), a texel_maps with
+    /// .placement and .data, which it overwrites.
+    template <class TexelOut>
+    void build(const Placement& placement, const tile_fragments& tile, TexelOut&& texel_out) {
+        const texel_rect r = tile.rect();
+        const int width = r.x1 - r.x0;
+        const std::size_t texels = std::size_t(width) * std::size_t(r.y1 - r.y0);
+        const auto where = tile.walk_texels();
+        const auto depth = tile.walk_depths();
+        const auto optical = tile.walk_optical_depths();
+        const std::size_t n = where.size();
+        counts_.assign(texels, 0);
+        states_.resize(texels); // read only where a fragment fell, and then written first
+        sums_.assign(texels, accumulator{});
+        // The depth pass (depth_range_of, fragment by fragment). A placement without per-texel state
+        // needs none: an empty texel's sums are zero, and finish stores the empty texel's maps.
+        constexpr bool stateful = !std::is_empty_v<state>;
+        if constexpr (stateful) {
+            ranges_.resize(texels);
+            for (std::size_t i = 0; i < n; ++i) {
+                const std::uint32_t k = where[i];
+                const float d = depth[i];
+                depth_extent& range = ranges_[k];
+                if (counts_[k]++ == 0) range = {d, d};
+                else add_to_depth_range(range, d);
+            }
+            for (std::size_t k = 0; k < texels; ++k)
+                if (counts_[k] != 0) placement.texel_state_from(ranges_[k].nearest, ranges_[k].furthest, states_[k]);
+        }
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::uint32_t k = where[i];
+            Reconstruction::template accumulate<Placement, Accumulation>(sums_[k], placement.assign(states_[k], depth[i]), optical[i]);
+        }
+        for (int y = r.y0; y < r.y1; ++y)
+            for (int x = r.x0; x < r.x1; ++x) {
+                const std::size_t k = std::size_t(y - r.y0) * std::size_t(width) + std::size_t(x - r.x0);
+                auto& out = texel_out(x, y);
+                out = {};
+                if (stateful && counts_[k] == 0) continue;
+                out.placement = states_[k];
+                Reconstruction::template finish<Placement, Accumulation>(sums_[k], out.data);
+            }
+    }
+
+    std::size_t memory_bytes() const noexcept {
+        return counts_.capacity() * sizeof(std::uint32_t) + ranges_.capacity() * sizeof(depth_extent) + states_.capacity() * sizeof(state) +
+               sums_.capacity() * sizeof(accumulator);
+    }
+
+private:
+    std::vector<std::uint32_t> counts_;
+    std::vector<depth_extent> ranges_;
+    std::vector<state> states_;
+    std::vector<accumulator> sums_;
+};
+
+/// Stands in for streamed_tile in a composition that does not stream.
+struct no_streamed_tile {
+    std::size_t memory_bytes() const noexcept { return 0; }
+};
+
+template <class Placement, class Accumulation, class Reconstruction>
+using streamed_tile_for = typename std::conditional_t<streams_tiles<Placement, Accumulation, Reconstruction>,
+                                                      std::type_identity<streamed_tile<Placement, Accumulation, Reconstruction>>,
+                                                      std::type_identity<no_streamed_tile>>::type;
+
+} // namespace hairshadow::detail
