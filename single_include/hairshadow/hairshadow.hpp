@@ -3989,13 +3989,14 @@ public:
         const auto depth = tile.walk_depths();
         const auto optical = tile.walk_optical_depths();
         const std::size_t n = where.size();
-        counts_.assign(texels, 0);
         states_.resize(texels); // read only where a fragment fell, and then written first
         sums_.assign(texels, accumulator{});
         // The depth pass (depth_range_of, fragment by fragment). A placement without per-texel state
-        // needs none: an empty texel's sums are zero, and finish stores the empty texel's maps.
+        // needs none, nor the counts: an empty texel's sums are zero, and finish stores the empty
+        // texel's maps.
         constexpr bool stateful = !std::is_empty_v<state>;
         if constexpr (stateful) {
+            counts_.assign(texels, 0);
             ranges_.resize(texels);
             for (std::size_t i = 0; i < n; ++i) {
                 const std::uint32_t k = where[i];
@@ -5307,6 +5308,7 @@ using range_opacity_maps = shadow_method<depth_range<N>, float_accumulation, int
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 namespace hairshadow {
 
@@ -5439,6 +5441,19 @@ inline method_spec parse_method_spec(std::string_view text) {
         throw bad(":8bit applies to osm, dom, dc and occ");
     return spec;
 }
+
+namespace detail {
+
+/// The method of a spec with the spec's parameters: policies that take parameters (a fibre density)
+/// are made from them, the others as they default.
+template <class Method>
+Method method_of(const method_spec& spec) {
+    using R = typename Method::reconstruction_type;
+    if constexpr (std::is_constructible_v<R, fibre_density_parameters>) return Method(typename Method::placement_type(), R(spec.density));
+    else return Method();
+}
+
+} // namespace detail
 
 } // namespace hairshadow
 // ---- end hairshadow/methods/spec.hpp

@@ -23,20 +23,6 @@ struct named {
     const char* spec;
 };
 
-/// The CPU method and the GL maps of a spec, with its parameters (a fibre density), as the registries
-/// make them; included from neither, whose run-time dispatch instantiates every size they support.
-template <class Method>
-Method cpu_method(const method_spec& spec) {
-    using R = typename Method::reconstruction_type;
-    if constexpr (std::is_constructible_v<R, fibre_density_parameters>) return Method(typename Method::placement_type(), R(spec.density));
-    else return Method();
-}
-template <class Method>
-gl::maps<Method> gl_maps(const method_spec& spec) {
-    if constexpr (std::is_constructible_v<gl::maps<Method>, const Method&>) return gl::maps<Method>(cpu_method<Method>(spec));
-    else return gl::maps<Method>();
-}
-
 /// Calls visit(spec, Method{}) for every published method and hybrid, float and 8-bit: each kind of
 /// placement, accumulation and reconstruction the registry composes.
 template <class Visit>
@@ -65,9 +51,9 @@ long check_every_method(const hair_model& model, const light_space& light, const
     CHECK(extent.furthest == bins.extent().furthest);
     long occupied = -1;
     for_every_method([&]<class Method>(const method_spec& spec, Method) {
-        Method cpu = cpu_method<Method>(spec);
+        Method cpu = hairshadow::detail::method_of<Method>(spec);
         cpu.build(model, light, options);
-        auto on_gl = gl_maps<Method>(spec);
+        auto on_gl = gl::detail::maps_of_spec<Method>(spec);
         on_gl.build(pass);
         const auto c = test::compare_maps(cpu, on_gl, range, light.resolution());
         CAPTURE(spec.text, c.occupied, c.state_off, c.data_off, c.worst);
@@ -165,9 +151,9 @@ TEST_CASE("the GLSL look-up of compute-built maps gives the CPU query", "[gl][co
     gl::light_pass pass(gl::build_path::compute);
     pass.run(mesh, light);
     for_every_method([&]<class Method>(const method_spec& spec, Method) {
-        auto on_gl = gl_maps<Method>(spec);
+        auto on_gl = gl::detail::maps_of_spec<Method>(spec);
         on_gl.build(pass);
-        Method cpu = cpu_method<Method>(spec);
+        Method cpu = hairshadow::detail::method_of<Method>(spec);
         cpu.build(model, light);
         const auto on_gpu = test::gl_lookup(on_gl.lookup_source(), [&](GLuint p) { on_gl.bind_lookup(p); }, queries);
         std::vector<float> on_cpu(queries.size());

@@ -7,6 +7,9 @@
 #include <hairshadow/gl/fibre_density_maps.hpp>
 #include <hairshadow/gl/interpolated_maps.hpp>
 #include <hairshadow/gl/occupancy_maps.hpp>
+#include <hairshadow/methods/spec.hpp>
+
+#include <type_traits>
 
 namespace hairshadow::gl {
 
@@ -31,5 +34,14 @@ struct maps_of<Method, fibre_density<Source>> {
 
 template <class Method>
 using maps = typename detail::maps_of<Method>::type;
+
+namespace detail {
+/// The GL maps of a spec, made with the spec's parameters where they take them (a fibre density).
+template <class Method>
+maps<Method> maps_of_spec(const method_spec& spec) {
+    if constexpr (std::is_constructible_v<maps<Method>, const Method&>) return maps<Method>(hairshadow::detail::method_of<Method>(spec));
+    else return maps<Method>();
+}
+} // namespace detail
 
 } // namespace hairshadow::gl

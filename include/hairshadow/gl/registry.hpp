@@ -2,7 +2,8 @@
 /// @file
 /// Methods chosen at run time on GL: any method spec with a GL twin becomes maps built on the GPU,
 /// queried through the GLSL look-up or read back for CPU queries. Like methods/registry.hpp this
-/// instantiates every supported size; include it only where specs are parsed.
+/// instantiates every supported size; include it only where specs are parsed, or compile it once
+/// (HAIRSHADOW_SEPARATE_REGISTRY with HAIRSHADOW_GL_REGISTRY_IMPLEMENTATION, as methods/registry.hpp says).
 
 #include <hairshadow/gl/maps.hpp>
 #include <hairshadow/gl/point_queries.hpp>
@@ -48,13 +49,6 @@ private:
 
 namespace detail {
 
-/// The GL maps of a spec, made with the spec's parameters where they take them (a fibre density).
-template <class Method>
-maps<Method> maps_of_spec(const method_spec& spec) {
-    if constexpr (std::is_constructible_v<maps<Method>, const Method&>) return maps<Method>(hairshadow::detail::method_of<Method>(spec));
-    else return maps<Method>();
-}
-
 template <class Method>
 class gl_method_map final : public any_gl_shadow_map {
 public:
@@ -96,12 +90,16 @@ std::unique_ptr<any_gl_shadow_map> make_gl_map(const method_spec& spec) {
 
 /// Makes the (not yet built) GL maps of a spec; throws spec_error for a spec without a GL twin (the
 /// exact reference is CPU-only) and feature_error where the current context lacks what it needs.
-inline std::unique_ptr<any_gl_shadow_map> make_gl_shadow_map(const method_spec& spec) {
+#if defined(HAIRSHADOW_SEPARATE_REGISTRY) && !defined(HAIRSHADOW_GL_REGISTRY_IMPLEMENTATION)
+std::unique_ptr<any_gl_shadow_map> make_gl_shadow_map(const method_spec& spec); // defined in the one implementing file
+#else
+HAIRSHADOW_REGISTRY_LINKAGE std::unique_ptr<any_gl_shadow_map> make_gl_shadow_map(const method_spec& spec) {
     if (spec.family == method_family::dsm) throw spec_error("the exact reference (dsm) has no GL back end; use --backend cpu");
     std::unique_ptr<any_gl_shadow_map> map;
     hairshadow::detail::visit_method(spec, [&]<class Method>() { map = detail::make_gl_map<Method>(spec); });
     if (!map) throw spec_error("unsupported method spec '" + spec.text + "'; valid: " + std::string(method_grammar));
     return map;
 }
+#endif
 
 } // namespace hairshadow::gl

@@ -3,6 +3,11 @@
 /// Methods chosen at run time: any method spec becomes a shadow map behind one interface. This header
 /// instantiates every supported size of every method, so include it only where specs are parsed (the
 /// command line, the benchmarks); code that knows its method at compile time uses the templates.
+///
+/// Each file that includes it takes about two minutes to compile at -O3. A project that parses specs
+/// in several files can compile the registry once: define HAIRSHADOW_SEPARATE_REGISTRY in every file
+/// (make_shadow_map is then only declared), and HAIRSHADOW_REGISTRY_IMPLEMENTATION as well in exactly
+/// one (which then defines it); gl/registry.hpp does the same with HAIRSHADOW_GL_REGISTRY_IMPLEMENTATION.
 
 #include <hairshadow/methods/published.hpp>
 #include <hairshadow/methods/spec.hpp>
@@ -14,6 +19,15 @@
 #include <optional>
 #include <type_traits>
 #include <utility>
+
+/// inline, unless the registry is compiled once (HAIRSHADOW_SEPARATE_REGISTRY).
+#ifndef HAIRSHADOW_REGISTRY_LINKAGE
+#ifdef HAIRSHADOW_SEPARATE_REGISTRY
+#define HAIRSHADOW_REGISTRY_LINKAGE
+#else
+#define HAIRSHADOW_REGISTRY_LINKAGE inline
+#endif
+#endif
 
 namespace hairshadow {
 
@@ -141,15 +155,6 @@ bool visit_with(const method_spec& s, Visit& visit) {
     }
 }
 
-/// The method of a spec with the spec's parameters: policies that take parameters (a fibre density)
-/// are made from them, the others as they default.
-template <class Method>
-Method method_of(const method_spec& spec) {
-    using R = typename Method::reconstruction_type;
-    if constexpr (std::is_constructible_v<R, fibre_density_parameters>) return Method(typename Method::placement_type(), R(spec.density));
-    else return Method();
-}
-
 /// Calls visit.template operator()<Method>() with the shadow_method of a spec (not the exact map's);
 /// false if the spec names none.
 template <class Visit>
@@ -173,13 +178,17 @@ bool visit_method(const method_spec& spec, Visit&& visit) {
 } // namespace detail
 
 /// Makes the (not yet built) shadow map of a spec; throws spec_error for an unsupported one.
-inline std::unique_ptr<any_shadow_map> make_shadow_map(const method_spec& spec) {
+#if defined(HAIRSHADOW_SEPARATE_REGISTRY) && !defined(HAIRSHADOW_REGISTRY_IMPLEMENTATION)
+std::unique_ptr<any_shadow_map> make_shadow_map(const method_spec& spec); // defined in the one implementing file
+#else
+HAIRSHADOW_REGISTRY_LINKAGE std::unique_ptr<any_shadow_map> make_shadow_map(const method_spec& spec) {
     if (spec.family == method_family::dsm) return std::make_unique<detail::reference_map>(spec);
     std::unique_ptr<any_shadow_map> map;
     detail::visit_method(spec, [&]<class Method>() { map = std::make_unique<detail::method_map<Method>>(spec, detail::method_of<Method>(spec)); });
     if (!map) throw spec_error("unsupported method spec '" + spec.text + "'; valid: " + std::string(method_grammar));
     return map;
 }
+#endif
 
 /// Parses and makes in one step.
 inline std::unique_ptr<any_shadow_map> make_shadow_map(std::string_view spec) { return make_shadow_map(parse_method_spec(spec)); }

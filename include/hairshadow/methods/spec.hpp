@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 namespace hairshadow {
 
@@ -143,5 +144,18 @@ inline method_spec parse_method_spec(std::string_view text) {
         throw bad(":8bit applies to osm, dom, dc and occ");
     return spec;
 }
+
+namespace detail {
+
+/// The method of a spec with the spec's parameters: policies that take parameters (a fibre density)
+/// are made from them, the others as they default.
+template <class Method>
+Method method_of(const method_spec& spec) {
+    using R = typename Method::reconstruction_type;
+    if constexpr (std::is_constructible_v<R, fibre_density_parameters>) return Method(typename Method::placement_type(), R(spec.density));
+    else return Method();
+}
+
+} // namespace detail
 
 } // namespace hairshadow

@@ -62,13 +62,14 @@ public:
         const auto depth = tile.walk_depths();
         const auto optical = tile.walk_optical_depths();
         const std::size_t n = where.size();
-        counts_.assign(texels, 0);
         states_.resize(texels); // read only where a fragment fell, and then written first
         sums_.assign(texels, accumulator{});
         // The depth pass (depth_range_of, fragment by fragment). A placement without per-texel state
-        // needs none: an empty texel's sums are zero, and finish stores the empty texel's maps.
+        // needs none, nor the counts: an empty texel's sums are zero, and finish stores the empty
+        // texel's maps.
         constexpr bool stateful = !std::is_empty_v<state>;
         if constexpr (stateful) {
+            counts_.assign(texels, 0);
             ranges_.resize(texels);
             for (std::size_t i = 0; i < n; ++i) {
                 const std::uint32_t k = where[i];
