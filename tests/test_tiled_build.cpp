@@ -238,6 +238,37 @@ TEST_CASE("the tiled line walk keeps exactly the line rule's fragments", "[tiled
     CHECK(checked > 5000);
 }
 
+TEST_CASE("the AVX-512 walk stores the scalar walk's fragments, in its order, tile by tile", "[tiled][raster]") {
+    if (!detail::cpu_has_avx512()) {
+        WARN("this CPU has no AVX-512: nothing to compare");
+        return;
+    }
+    // Tiles of 8 to 200 texels: segments of at most sixteen texels in a tile are walked in lockstep,
+    // longer ones alone (the coarse model's, up to a hundred texels and more), and a batch mixes both.
+    const hair_model coarse = make_procedural({.style = hair_style::wavy, .strands = 400, .segments = 6, .seed = 3});
+    const auto same = [](auto a, auto b) { return std::equal(a.begin(), a.end(), b.begin(), b.end()); };
+    for (const hair_model* model : {&test_model("curly"), &coarse})
+        for (const int res : {96, 512})
+            for (const int tile : {8, 16, 37, 64, 200}) {
+                CAPTURE(model->strand_count(), res, tile);
+                raster_options options;
+                options.tile_size = tile;
+                detail::segment_bins bins;
+                bins.prepare(*model, light_space::fit(light_spec::directional({0.3f, -1.0f, 0.2f}), model->bounds(), res), options);
+                detail::tile_fragments scalar, vector;
+                std::size_t fragments = 0, differing = 0;
+                for (std::size_t t = 0; t < bins.tile_count(); ++t) {
+                    scalar.gather(bins, t, instruction_set::scalar);
+                    vector.gather(bins, t, instruction_set::avx512);
+                    fragments += scalar.size();
+                    differing += !(same(scalar.walk_texels(), vector.walk_texels()) && same(scalar.walk_depths(), vector.walk_depths()) &&
+                                   same(scalar.walk_optical_depths(), vector.walk_optical_depths()));
+                }
+                CHECK(fragments > std::size_t(res));
+                CHECK(differing == 0);
+            }
+}
+
 TEST_CASE("the instruction set resolves to what the CPU runs", "[tiled]") {
     CHECK(resolve(instruction_set::scalar) == instruction_set::scalar);
     const auto best = resolve(instruction_set::automatic);

@@ -3523,6 +3523,12 @@ namespace hairshadow {
 
 namespace detail {
 
+#if HAIRSHADOW_AVX512_WALK
+namespace avx512 {
+struct batch;
+}
+#endif
+
 /// A tile's fragments with their optical depths, each texel's in segment order, so that sums over
 /// them match the fragment_buffer build bit for bit. One per thread; its memory is kept from tile to
 /// tile and from build to build.
@@ -3662,6 +3668,8 @@ private:
         return bins.options().wide_line_width == 0.0f && bins.uniform_attributes() && bins.uniform_shader().constant_alpha();
     }
     void walk_avx512(const segment_bins& bins, std::size_t t, float optical);
+    void walk_lane_avx512(const avx512::batch& b, int l, float optical);
+    void store_start(const avx512::batch& b, int l, float optical) noexcept;
 #endif
 
     texel_rect rect_{};
@@ -3685,11 +3693,14 @@ private:
 /// The tiled build's line walk in AVX-512F, chosen at run time (raster_options::instructions). Sixteen
 /// segments of a tile are set up at once, one per lane: major axis, the texel centres they cross in
 /// the tile, the exact quotient and remainder of the minor coordinate, the end's diamond and the start
-/// fragment (the diamond-exit rule of line_rule.hpp, without a branch). Then each segment is walked
-/// sixteen texels at a time, one per lane, and its fragments are compressed into the tile's store in
-/// order, so that segment order, and every sum, is the scalar walk's. Every quantity is an integer,
-/// or an integer held exactly in a double, until the depth: that is a + (b - a) t, rounded as the
-/// scalar walk rounds it.
+/// fragment (the diamond-exit rule of line_rule.hpp, without a branch). Segments of at most sixteen
+/// texels in the tile are then walked in lockstep, one step of all sixteen at a time, the minor
+/// coordinate carried from step to step as an exact quotient and remainder; a register transpose turns
+/// the steps into each segment's fragments. Longer segments are walked one at a time, sixteen texels
+/// per step. Either way the fragments are compressed into the tile's store segment after segment, so
+/// that segment order, and every sum, is the scalar walk's. Every quantity is an integer, or an
+/// integer held exactly in a double, until the depth: that is a + (b - a) t, rounded as the scalar
+/// walk rounds it.
 
 
 #include <cstdint>
@@ -3708,12 +3719,12 @@ HAIRSHADOW_AVX512_TARGET inline __mmask16 inside_diamond(__m512i px, __m512i py,
 /// floor(x / 2^bits) per lane: an arithmetic shift floors negative values too.
 HAIRSHADOW_AVX512_TARGET inline __m512i texel_of(__m512i x) noexcept { return _mm512_srai_epi32(x, HAIRSHADOW_SUBPIXEL_BITS); }
 
-/// q = floor(num / denom) for integers num and denom > 0 held exactly in doubles (|num| < 2^52), and
-/// whether denom divides num. The product with 1 / denom misses the quotient by far less than one, so
-/// one correction each way makes it exact, with no division on the walk's path.
-HAIRSHADOW_AVX512_TARGET inline __mmask8 exact_quotient(__m512d num, __m512d denom, __m512d inv_denom, __m512d& q) noexcept {
+/// q = floor(num / denom) and the remainder num - q denom, for integers num and denom > 0 held exactly
+/// in doubles (|num| < 2^52); returns whether denom divides num. The product with 1 / denom misses
+/// the quotient by far less than one, so one correction each way makes it exact, with no division.
+HAIRSHADOW_AVX512_TARGET inline __mmask8 exact_quotient(__m512d num, __m512d denom, __m512d inv_denom, __m512d& q, __m512d& rem) noexcept {
     q = _mm512_roundscale_pd(_mm512_mul_pd(num, inv_denom), _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
-    __m512d rem = _mm512_sub_pd(num, _mm512_mul_pd(q, denom)); // exact: integers below 2^53
+    rem = _mm512_sub_pd(num, _mm512_mul_pd(q, denom)); // exact: integers below 2^53
     const __mmask8 below = _mm512_cmp_pd_mask(rem, _mm512_setzero_pd(), _CMP_LT_OQ);
     q = _mm512_mask_sub_pd(q, below, q, _mm512_set1_pd(1.0));
     rem = _mm512_mask_add_pd(rem, below, rem, denom);
@@ -3721,6 +3732,10 @@ HAIRSHADOW_AVX512_TARGET inline __mmask8 exact_quotient(__m512d num, __m512d den
     q = _mm512_mask_add_pd(q, above, q, _mm512_set1_pd(1.0));
     rem = _mm512_mask_sub_pd(rem, above, rem, denom);
     return _mm512_cmp_pd_mask(rem, _mm512_setzero_pd(), _CMP_EQ_OQ);
+}
+HAIRSHADOW_AVX512_TARGET inline __mmask8 exact_quotient(__m512d num, __m512d denom, __m512d inv_denom, __m512d& q) noexcept {
+    __m512d rem;
+    return exact_quotient(num, denom, inv_denom, q, rem);
 }
 
 /// Lane halves as doubles.
@@ -3733,6 +3748,30 @@ HAIRSHADOW_AVX512_TARGET inline __m512 join_ps(__m256 low, __m256 high) noexcept
     return _mm512_castpd_ps(_mm512_insertf64x4(_mm512_castps_pd(_mm512_castps256_ps512(low)), _mm256_castps_pd(high), 1));
 }
 
+/// The depth along sixteen segments (or one, broadcast) at texel centres: segment_shader::parameter,
+/// t = ((x S + H - ax) dx + (y S + H - ay) dy) / |d|^2 clamped to [0, 1], with an exact numerator
+/// and one rounding, then lerp_exact, rounded as the scalar walk rounds them.
+struct depth_along {
+    __m512i ax, ay;
+    __m512d dx_low, dx_high, dy_low, dy_high, inv_length2_low, inv_length2_high;
+    __m512 depth_a, depth_delta;
+
+    HAIRSHADOW_AVX512_TARGET __m512 at(__m512i x, __m512i y) const noexcept {
+        constexpr int bits = HAIRSHADOW_SUBPIXEL_BITS;
+        const __m512i half = _mm512_set1_epi32(std::int32_t(subpixel_scale / 2));
+        const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
+        const __m512i px = _mm512_sub_epi32(_mm512_add_epi32(_mm512_slli_epi32(x, bits), half), ax);
+        const __m512i py = _mm512_sub_epi32(_mm512_add_epi32(_mm512_slli_epi32(y, bits), half), ay);
+        const __m512d t_low = _mm512_max_pd(
+            _mm512_min_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(low_pd(px), dx_low), _mm512_mul_pd(low_pd(py), dy_low)), inv_length2_low), one), zero);
+        const __m512d t_high = _mm512_max_pd(
+            _mm512_min_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(high_pd(px), dx_high), _mm512_mul_pd(high_pd(py), dy_high)), inv_length2_high), one),
+            zero);
+        const __m512 param = join_ps(_mm512_cvtpd_ps(t_low), _mm512_cvtpd_ps(t_high));
+        return _mm512_add_ps(depth_a, rounded(_mm512_mul_ps(depth_delta, param))); // lerp_exact
+    }
+};
+
 /// Sixteen segments set up for the walk, in tile-relative coordinates (sub-pixels for ends, texels
 /// for the rest). Lanes not `simd` are walked in scalar.
 struct alignas(64) batch {
@@ -3742,6 +3781,20 @@ struct alignas(64) batch {
     float start_depth[16];
     float depth_a[16], depth_delta[16];
     std::uint16_t x_major, tie, start, simd;
+
+    /// The depth along the sixteen segments.
+    HAIRSHADOW_AVX512_TARGET depth_along depths() const noexcept {
+        const __m512i a_x = _mm512_load_si512(ax), a_y = _mm512_load_si512(ay);
+        const __m512i dx = _mm512_sub_epi32(_mm512_load_si512(bx), a_x), dy = _mm512_sub_epi32(_mm512_load_si512(by), a_y);
+        return {a_x, a_y, low_pd(dx), high_pd(dx), low_pd(dy), high_pd(dy), _mm512_load_pd(inv_length2), _mm512_load_pd(inv_length2 + 8),
+                _mm512_load_ps(depth_a), _mm512_load_ps(depth_delta)};
+    }
+    /// The depth along lane l's segment, in every lane.
+    HAIRSHADOW_AVX512_TARGET depth_along depths(int l) const noexcept {
+        const __m512d dx = _mm512_set1_pd(double(bx[l] - ax[l])), dy = _mm512_set1_pd(double(by[l] - ay[l]));
+        const __m512d inv = _mm512_set1_pd(inv_length2[l]);
+        return {_mm512_set1_epi32(ax[l]), _mm512_set1_epi32(ay[l]), dx, dx, dy, dy, inv, inv, _mm512_set1_ps(depth_a[l]), _mm512_set1_ps(depth_delta[l])};
+    }
 };
 
 /// Vector set-up of the sixteen segments in b.ax..b.by for a tile of w x h texels: walk_line's
@@ -3811,35 +3864,105 @@ HAIRSHADOW_AVX512_TARGET inline void set_up(batch& b, int w, int h) noexcept {
     b.start = std::uint16_t(inside_diamond(ax, ay, sx, sy) & outside_walk & __mmask16(~inside_diamond(bx, by, sx, sy)) & in_tile);
     _mm512_store_si512(b.start_x, sx);
     _mm512_store_si512(b.start_y, sy);
-    // Its depth, as the walk computes a fragment's (segment_shader::parameter, lerp_exact).
-    const __m512i px = _mm512_sub_epi32(_mm512_add_epi32(_mm512_slli_epi32(sx, bits), half), ax);
-    const __m512i py = _mm512_sub_epi32(_mm512_add_epi32(_mm512_slli_epi32(sy, bits), half), ay);
-    const __m512d zero_pd = _mm512_setzero_pd();
-    const __m512d t_low = _mm512_max_pd(_mm512_min_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(low_pd(px), low_pd(dx)), _mm512_mul_pd(low_pd(py), low_pd(dy))),
-                                                                    _mm512_load_pd(b.inv_length2)), ones), zero_pd);
-    const __m512d t_high = _mm512_max_pd(_mm512_min_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(high_pd(px), high_pd(dx)), _mm512_mul_pd(high_pd(py), high_pd(dy))),
-                                                                     _mm512_load_pd(b.inv_length2 + 8)), ones), zero_pd);
-    const __m512 param = join_ps(_mm512_cvtpd_ps(t_low), _mm512_cvtpd_ps(t_high));
-    _mm512_store_ps(b.start_depth, _mm512_add_ps(_mm512_load_ps(b.depth_a), rounded(_mm512_mul_ps(_mm512_load_ps(b.depth_delta), param))));
+    // Its depth, as the walk computes a fragment's.
+    _mm512_store_ps(b.start_depth, b.depths().at(sx, sy));
+}
+
+} // namespace hairshadow::detail::avx512
+
+namespace hairshadow::detail::avx512 {
+
+/// Rows become columns: r[i][c] moves to r[c][i], for sixteen rows of sixteen 32-bit lanes, in 64
+/// shuffles (pairs of lanes, then pairs of pairs, then 128-bit quarters twice).
+HAIRSHADOW_AVX512_TARGET inline void transpose(__m512i r[16]) noexcept {
+    __m512i t[16], u[16];
+    for (int i = 0; i < 16; i += 2) t[i] = _mm512_unpacklo_epi32(r[i], r[i + 1]), t[i + 1] = _mm512_unpackhi_epi32(r[i], r[i + 1]);
+    // u[4g + j]: in 128-bit quarter k, column 4k + j of rows 4g .. 4g + 3.
+    for (int g = 0; g < 16; g += 4) {
+        u[g] = _mm512_unpacklo_epi64(t[g], t[g + 2]), u[g + 1] = _mm512_unpackhi_epi64(t[g], t[g + 2]);
+        u[g + 2] = _mm512_unpacklo_epi64(t[g + 1], t[g + 3]), u[g + 3] = _mm512_unpackhi_epi64(t[g + 1], t[g + 3]);
+    }
+    for (int j = 0; j < 4; ++j) {
+        const __m512i low01 = _mm512_shuffle_i32x4(u[j], u[4 + j], 0x44), high01 = _mm512_shuffle_i32x4(u[j], u[4 + j], 0xEE);
+        const __m512i low23 = _mm512_shuffle_i32x4(u[8 + j], u[12 + j], 0x44), high23 = _mm512_shuffle_i32x4(u[8 + j], u[12 + j], 0xEE);
+        r[j] = _mm512_shuffle_i32x4(low01, low23, 0x88), r[4 + j] = _mm512_shuffle_i32x4(low01, low23, 0xDD);
+        r[8 + j] = _mm512_shuffle_i32x4(high01, high23, 0x88), r[12 + j] = _mm512_shuffle_i32x4(high01, high23, 0xDD);
+    }
+}
+
+/// A step that makes no fragment, in a lockstep block.
+inline constexpr std::uint32_t no_texel = 0xFFFFFFFFu;
+
+/// The first `steps` (at most 16) texels of the sixteen segments of b at once, one segment per lane:
+/// step j's texel indices (no_texel where it makes no fragment) in where[j], its depths in depth[j];
+/// rows past `steps` make no fragment. The arithmetic is the per-segment walk's, lane for lane, so
+/// the fragments are the same bits.
+HAIRSHADOW_AVX512_TARGET inline void walk_lockstep(const batch& b, int steps, int w, __m512i where[16], __m512i depth[16]) noexcept {
+    const __m512i one = _mm512_set1_epi32(1);
+    const __m512i none = _mm512_set1_epi32(std::int32_t(no_texel)), width = _mm512_set1_epi32(w);
+    const __mmask16 along_x = b.x_major, tie = b.tie;
+    const depth_along along = b.depths();
+    const __m512i m_begin = _mm512_load_si512(b.m_begin), counts = _mm512_load_si512(b.count);
+    const __m512i end_major = _mm512_load_si512(b.end_major), end_minor = _mm512_load_si512(b.end_minor);
+    const __m512i minor_extent = _mm512_load_si512(b.minor_extent);
+    const __m512d num0_low = _mm512_load_pd(b.num0), num0_high = _mm512_load_pd(b.num0 + 8);
+    const __m512d step_low = _mm512_load_pd(b.step), step_high = _mm512_load_pd(b.step + 8);
+    const __m512d denom_low = _mm512_load_pd(b.denom), denom_high = _mm512_load_pd(b.denom + 8);
+    const __m512d inv_denom_low = _mm512_load_pd(b.inv_denom), inv_denom_high = _mm512_load_pd(b.inv_denom + 8);
+    // The minor coordinate at step j is floor((num0 + j step) / denom): held as quotient q and
+    // remainder r, and stepped by step's own quotient and remainder with a carry, in exact integers
+    // (r + r_step < 2 denom <= 2^31), so that no step divides.
+    __m512d part[8];
+    exact_quotient(num0_low, denom_low, inv_denom_low, part[0], part[1]);
+    exact_quotient(num0_high, denom_high, inv_denom_high, part[2], part[3]);
+    exact_quotient(step_low, denom_low, inv_denom_low, part[4], part[5]);
+    exact_quotient(step_high, denom_high, inv_denom_high, part[6], part[7]);
+    __m512i q = join_epi32(_mm512_cvttpd_epi32(part[0]), _mm512_cvttpd_epi32(part[2]));
+    __m512i r = join_epi32(_mm512_cvttpd_epi32(part[1]), _mm512_cvttpd_epi32(part[3]));
+    const __m512i q_step = join_epi32(_mm512_cvttpd_epi32(part[4]), _mm512_cvttpd_epi32(part[6]));
+    const __m512i r_step = join_epi32(_mm512_cvttpd_epi32(part[5]), _mm512_cvttpd_epi32(part[7]));
+    const __m512i denom = join_epi32(_mm512_cvttpd_epi32(denom_low), _mm512_cvttpd_epi32(denom_high));
+    for (int j = 0; j < steps; ++j) {
+        const __m512i i = _mm512_set1_epi32(j);
+        const __mmask16 active = _mm512_cmpgt_epi32_mask(counts, i);
+        const __m512i m = _mm512_add_epi32(m_begin, i);
+        const __mmask16 on_tie = _mm512_cmpeq_epi32_mask(r, _mm512_setzero_si512());
+        const __m512i minor = _mm512_mask_sub_epi32(q, __mmask16(on_tie & tie), q, one);
+        q = _mm512_add_epi32(q, q_step);
+        r = _mm512_add_epi32(r, r_step);
+        const __mmask16 carry = _mm512_cmpge_epu32_mask(r, denom);
+        q = _mm512_mask_add_epi32(q, carry, q, one);
+        r = _mm512_mask_sub_epi32(r, carry, r, denom);
+        const __mmask16 at_end = _mm512_cmpeq_epi32_mask(m, end_major) & _mm512_cmpeq_epi32_mask(minor, end_minor);
+        const __mmask16 keep = active & _mm512_cmplt_epu32_mask(minor, minor_extent) & __mmask16(~at_end);
+        const __m512i x = _mm512_mask_blend_epi32(along_x, minor, m), y = _mm512_mask_blend_epi32(along_x, m, minor);
+        where[j] = _mm512_mask_add_epi32(none, keep, _mm512_mullo_epi32(y, width), x);
+        depth[j] = _mm512_castps_si512(along.at(x, y));
+    }
+    for (int j = steps; j < 16; ++j) where[j] = none, depth[j] = _mm512_setzero_si512();
 }
 
 } // namespace hairshadow::detail::avx512
 
 namespace hairshadow::detail {
 
-/// Walks tile t, whose every fragment has optical depth `optical` (simd_tile()).
+/// Walks tile t, whose every fragment has optical depth `optical` (simd_tile()). A batch of sixteen
+/// segments of at most sixteen texels in the tile (most of them, at 512x512 in tiles of 64) is walked
+/// in lockstep, one segment per lane, and a transpose turns the steps into each segment's fragments;
+/// other segments are walked one at a time, sixteen texels per step. Either way the fragments are
+/// stored segment after segment, in the tile's order: the scalar walk's store, bit for bit.
 HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_bins& bins, std::size_t t, float optical) {
     using namespace avx512;
     constexpr int bits = HAIRSHADOW_SUBPIXEL_BITS;
     // Bounds that keep every product exact in a double and every coordinate in 32 bits.
     constexpr std::int64_t most_length = std::int64_t(1) << 22, most_coordinate = std::int64_t(1) << 24;
-    const int w = width_, h = rect_.y1 - rect_.y0;
+    const int w = width_;
     const std::int64_t ox = std::int64_t(rect_.x0) << bits, oy = std::int64_t(rect_.y0) << bits;
     const auto list = bins.tile_segments(t);
-    const __m512i iota = _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
-    const __m512i half = _mm512_set1_epi32(std::int32_t(subpixel_scale / 2)), one = _mm512_set1_epi32(1);
-    const __m512d zero_pd = _mm512_setzero_pd(), one_pd = _mm512_set1_pd(1.0);
+    const __m512i none = _mm512_set1_epi32(std::int32_t(no_texel)), sixteen = _mm512_set1_epi32(16);
+    const __m512 optical_depth = _mm512_set1_ps(optical);
     batch b;
+    __m512i where[16], depth[16]; // a block of lockstep steps, then of segments
     for (std::size_t base = 0; base < list.size(); base += 16) {
         const int lanes = int(std::min<std::size_t>(16, list.size() - base));
         b.simd = 0;
@@ -3863,74 +3986,122 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
             b.ax[l] = 0, b.ay[l] = 0, b.bx[l] = std::int32_t(subpixel_scale), b.by[l] = 0; // a harmless stand-in
             b.depth_a[l] = 0.0f, b.depth_delta[l] = 0.0f;
         }
-        set_up(b, w, h);
+        set_up(b, w, rect_.y1 - rect_.y0);
+        const __m512i counts = _mm512_load_si512(b.count);
+        auto lockstep = __mmask16(b.simd & _mm512_cmple_epi32_mask(counts, sixteen));
+        const int steps = lockstep ? _mm512_mask_reduce_max_epi32(lockstep, counts) : 0;
+        // Every lockstep segment pays for the longest one's steps, and the batch for two transposes:
+        // unless most lanes are short (all sixteen for sixteen steps, twelve for eight), they walk
+        // alone. The rule was chosen by measuring on this project's benchmark machine (BENCHMARKS.md,
+        // issue 11); it chooses a path, never a fragment.
+        if (2 * __builtin_popcount(lockstep) < steps + 16) lockstep = 0;
+        if (lockstep) {
+            walk_lockstep(b, steps, w, where, depth);
+            transpose(where);
+            transpose(depth);
+        }
         for (int l = 0; l < lanes; ++l) {
             if (!((b.simd >> l) & 1u)) {
                 walk_segment_apart(bins, list[base + std::size_t(l)]);
                 continue;
             }
-            const int count = b.count[l];
-            make_room(std::size_t(count) + 1);
-            // Whole-vector stores need 16 slots past n_; near the store's end, compress to memory
-            // instead, so that the store grows exactly as the scalar walk's does.
-            const bool whole_vectors = n_ + std::size_t(count) + 16 <= where_.size();
-            const __mmask16 along_x = (b.x_major >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
-            const __mmask16 tie = (b.tie >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
-            const __m512i m_begin = _mm512_set1_epi32(b.m_begin[l]), counts = _mm512_set1_epi32(count);
-            const __m512i end_major = _mm512_set1_epi32(b.end_major[l]), end_minor = _mm512_set1_epi32(b.end_minor[l]);
-            const __m512i minor_extent = _mm512_set1_epi32(b.minor_extent[l]), width = _mm512_set1_epi32(w);
-            const __m512i ax = _mm512_set1_epi32(b.ax[l]), ay = _mm512_set1_epi32(b.ay[l]);
-            const __m512d num0 = _mm512_set1_pd(b.num0[l]), step = _mm512_set1_pd(b.step[l]), denom = _mm512_set1_pd(b.denom[l]);
-            const __m512d inv_denom = _mm512_set1_pd(b.inv_denom[l]);
-            const __m512d dx = _mm512_set1_pd(double(b.bx[l] - b.ax[l])), dy = _mm512_set1_pd(double(b.by[l] - b.ay[l]));
-            const __m512d inv_length2 = _mm512_set1_pd(b.inv_length2[l]);
-            const __m512 depth_a = _mm512_set1_ps(b.depth_a[l]), depth_delta = _mm512_set1_ps(b.depth_delta[l]);
-            const __m512 optical_depth = _mm512_set1_ps(optical);
-            for (int c = 0; c < count; c += 16) {
-                const __m512i i = _mm512_add_epi32(iota, _mm512_set1_epi32(c));
-                const __mmask16 active = _mm512_cmplt_epi32_mask(i, counts);
-                const __m512i m = _mm512_add_epi32(i, m_begin);
-                // minor = floor(num / denom) and whether it divides exactly: exact_quotient.
-                __m512d q_low, q_high;
-                const __mmask8 tie_low = exact_quotient(_mm512_add_pd(num0, _mm512_mul_pd(low_pd(i), step)), denom, inv_denom, q_low);
-                const __mmask8 tie_high = exact_quotient(_mm512_add_pd(num0, _mm512_mul_pd(high_pd(i), step)), denom, inv_denom, q_high);
-                const auto on_tie = __mmask16(tie_low | (tie_high << 8));
-                const __m512i q = join_epi32(_mm512_cvttpd_epi32(q_low), _mm512_cvttpd_epi32(q_high));
-                const __m512i minor = _mm512_mask_sub_epi32(q, __mmask16(on_tie & tie), q, one);
-                const __mmask16 at_end = _mm512_cmpeq_epi32_mask(m, end_major) & _mm512_cmpeq_epi32_mask(minor, end_minor);
-                const __mmask16 keep = active & _mm512_cmplt_epu32_mask(minor, minor_extent) & __mmask16(~at_end);
-                const __m512i x = _mm512_mask_blend_epi32(along_x, minor, m), y = _mm512_mask_blend_epi32(along_x, m, minor);
-                const __m512i local = _mm512_add_epi32(_mm512_mullo_epi32(y, width), x);
-                // t = ((x S + H - ax) dx + (y S + H - ay) dy) / |d|^2, clamped: segment_shader::parameter.
-                const __m512i px = _mm512_sub_epi32(_mm512_add_epi32(_mm512_slli_epi32(x, bits), half), ax);
-                const __m512i py = _mm512_sub_epi32(_mm512_add_epi32(_mm512_slli_epi32(y, bits), half), ay);
-                const __m512d t_low = _mm512_max_pd(
-                    _mm512_min_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(low_pd(px), dx), _mm512_mul_pd(low_pd(py), dy)), inv_length2), one_pd), zero_pd);
-                const __m512d t_high = _mm512_max_pd(
-                    _mm512_min_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(high_pd(px), dx), _mm512_mul_pd(high_pd(py), dy)), inv_length2), one_pd), zero_pd);
-                const __m512 param = join_ps(_mm512_cvtpd_ps(t_low), _mm512_cvtpd_ps(t_high));
-                const __m512 depth = _mm512_add_ps(depth_a, rounded(_mm512_mul_ps(depth_delta, param))); // lerp_exact
-                if (whole_vectors) {
-                    // Compressed in registers and stored whole, past n_: a compress straight to
-                    // memory measured 1.3x slower on this machine's CPU.
-                    _mm512_storeu_si512(where_.data() + n_, _mm512_maskz_compress_epi32(keep, local));
-                    _mm512_storeu_ps(depth_.data() + n_, _mm512_maskz_compress_ps(keep, depth));
-                    _mm512_storeu_ps(optical_.data() + n_, optical_depth);
-                } else {
-                    _mm512_mask_compressstoreu_epi32(where_.data() + n_, keep, local);
-                    _mm512_mask_compressstoreu_ps(depth_.data() + n_, keep, depth);
-                    _mm512_mask_compressstoreu_ps(optical_.data() + n_, keep, optical_depth);
-                }
-                n_ += std::size_t(__builtin_popcount(keep));
+            if (!((lockstep >> l) & 1u)) {
+                walk_lane_avx512(b, l, optical);
+                continue;
             }
-            // The start fragment, as walk_line emits it, after the walk; stored always and kept when
-            // there is one, since whether there is one is anybody's guess.
-            where_[n_] = std::uint32_t(b.start_y[l] * w + b.start_x[l]);
-            depth_[n_] = b.start_depth[l];
-            optical_[n_] = optical;
-            n_ += (b.start >> l) & 1u;
+            make_room(std::size_t(b.count[l]) + 1);
+            const __mmask16 keep = _mm512_cmpneq_epi32_mask(where[l], none);
+            const __m512 lane_depth = _mm512_castsi512_ps(depth[l]);
+            if (n_ + 16 <= where_.size()) { // see walk_lane_avx512
+                _mm512_storeu_si512(where_.data() + n_, _mm512_maskz_compress_epi32(keep, where[l]));
+                _mm512_storeu_ps(depth_.data() + n_, _mm512_maskz_compress_ps(keep, lane_depth));
+                _mm512_storeu_ps(optical_.data() + n_, optical_depth);
+            } else {
+                _mm512_mask_compressstoreu_epi32(where_.data() + n_, keep, where[l]);
+                _mm512_mask_compressstoreu_ps(depth_.data() + n_, keep, lane_depth);
+                _mm512_mask_compressstoreu_ps(optical_.data() + n_, keep, optical_depth);
+            }
+            n_ += std::size_t(__builtin_popcount(keep));
+            store_start(b, l, optical);
         }
     }
+}
+
+/// The start fragment of lane l, as walk_line emits it, after the walk; stored always and kept when
+/// there is one, since whether there is one is anybody's guess.
+HAIRSHADOW_AVX512_TARGET inline void tile_fragments::store_start(const avx512::batch& b, int l, float optical) noexcept {
+    where_[n_] = std::uint32_t(b.start_y[l] * width_ + b.start_x[l]);
+    depth_[n_] = b.start_depth[l];
+    optical_[n_] = optical;
+    n_ += (b.start >> l) & 1u;
+}
+
+/// Lane l of b walked alone, sixteen texels per step: for segments of more than sixteen texels in the
+/// tile.
+HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_lane_avx512(const avx512::batch& b, int l, float optical) {
+    using namespace avx512;
+    const int w = width_;
+    const __m512i iota = _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
+    const __m512i one = _mm512_set1_epi32(1);
+    const int count = b.count[l];
+    make_room(std::size_t(count) + 1);
+    // Whole-vector stores need 16 slots past n_; near the store's end, compress to memory
+    // instead, so that the store grows exactly as the scalar walk's does.
+    const bool whole_vectors = n_ + std::size_t(count) + 16 <= where_.size();
+    const __mmask16 along_x = (b.x_major >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
+    const __mmask16 tie = (b.tie >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
+    const __m512i m_begin = _mm512_set1_epi32(b.m_begin[l]), counts = _mm512_set1_epi32(count);
+    const __m512i end_major = _mm512_set1_epi32(b.end_major[l]), end_minor = _mm512_set1_epi32(b.end_minor[l]);
+    const __m512i minor_extent = _mm512_set1_epi32(b.minor_extent[l]), width = _mm512_set1_epi32(w);
+    const __m512d num0 = _mm512_set1_pd(b.num0[l]), step = _mm512_set1_pd(b.step[l]), denom = _mm512_set1_pd(b.denom[l]);
+    const __m512d inv_denom = _mm512_set1_pd(b.inv_denom[l]);
+    const __m512 optical_depth = _mm512_set1_ps(optical);
+    const depth_along along = b.depths(l);
+    // minor = floor(num / denom) for the first sixteen texels, as quotient q and remainder r
+    // (exact_quotient); each next sixteen add sixteen steps' quotient and remainder, with a carry, as
+    // walk_lockstep does one step.
+    __m512d part[4];
+    exact_quotient(_mm512_add_pd(num0, _mm512_mul_pd(low_pd(iota), step)), denom, inv_denom, part[0], part[1]);
+    exact_quotient(_mm512_add_pd(num0, _mm512_mul_pd(high_pd(iota), step)), denom, inv_denom, part[2], part[3]);
+    __m512i q = join_epi32(_mm512_cvttpd_epi32(part[0]), _mm512_cvttpd_epi32(part[2]));
+    __m512i r = join_epi32(_mm512_cvttpd_epi32(part[1]), _mm512_cvttpd_epi32(part[3]));
+    __m512i q_step = _mm512_setzero_si512(), r_step = q_step;
+    const __m512i denom_i = _mm512_set1_epi32(std::int32_t(b.denom[l]));
+    if (count > 16) {
+        exact_quotient(_mm512_mul_pd(_mm512_set1_pd(16.0), step), denom, inv_denom, part[0], part[1]);
+        q_step = _mm512_broadcast_i64x4(_mm512_cvttpd_epi32(part[0]));
+        r_step = _mm512_broadcast_i64x4(_mm512_cvttpd_epi32(part[1]));
+    }
+    for (int c = 0; c < count; c += 16) {
+        const __m512i i = _mm512_add_epi32(iota, _mm512_set1_epi32(c));
+        const __mmask16 active = _mm512_cmplt_epi32_mask(i, counts);
+        const __m512i m = _mm512_add_epi32(i, m_begin);
+        const __mmask16 on_tie = _mm512_cmpeq_epi32_mask(r, _mm512_setzero_si512());
+        const __m512i minor = _mm512_mask_sub_epi32(q, __mmask16(on_tie & tie), q, one);
+        q = _mm512_add_epi32(q, q_step);
+        r = _mm512_add_epi32(r, r_step);
+        const __mmask16 carry = _mm512_cmpge_epu32_mask(r, denom_i);
+        q = _mm512_mask_add_epi32(q, carry, q, one);
+        r = _mm512_mask_sub_epi32(r, carry, r, denom_i);
+        const __mmask16 at_end = _mm512_cmpeq_epi32_mask(m, end_major) & _mm512_cmpeq_epi32_mask(minor, end_minor);
+        const __mmask16 keep = active & _mm512_cmplt_epu32_mask(minor, minor_extent) & __mmask16(~at_end);
+        const __m512i x = _mm512_mask_blend_epi32(along_x, minor, m), y = _mm512_mask_blend_epi32(along_x, m, minor);
+        const __m512i local = _mm512_add_epi32(_mm512_mullo_epi32(y, width), x);
+        const __m512 depth = along.at(x, y);
+        if (whole_vectors) {
+            // Compressed in registers and stored whole, past n_: a compress straight to
+            // memory measured 1.3x slower on this machine's CPU.
+            _mm512_storeu_si512(where_.data() + n_, _mm512_maskz_compress_epi32(keep, local));
+            _mm512_storeu_ps(depth_.data() + n_, _mm512_maskz_compress_ps(keep, depth));
+            _mm512_storeu_ps(optical_.data() + n_, optical_depth);
+        } else {
+            _mm512_mask_compressstoreu_epi32(where_.data() + n_, keep, local);
+            _mm512_mask_compressstoreu_ps(depth_.data() + n_, keep, depth);
+            _mm512_mask_compressstoreu_ps(optical_.data() + n_, keep, optical_depth);
+        }
+        n_ += std::size_t(__builtin_popcount(keep));
+    }
+    store_start(b, l, optical);
 }
 
 } // namespace hairshadow::detail

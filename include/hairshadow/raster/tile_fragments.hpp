@@ -24,6 +24,12 @@ namespace hairshadow {
 
 namespace detail {
 
+#if HAIRSHADOW_AVX512_WALK
+namespace avx512 {
+struct batch;
+}
+#endif
+
 /// A tile's fragments with their optical depths, each texel's in segment order, so that sums over
 /// them match the fragment_buffer build bit for bit. One per thread; its memory is kept from tile to
 /// tile and from build to build.
@@ -163,6 +169,8 @@ private:
         return bins.options().wide_line_width == 0.0f && bins.uniform_attributes() && bins.uniform_shader().constant_alpha();
     }
     void walk_avx512(const segment_bins& bins, std::size_t t, float optical);
+    void walk_lane_avx512(const avx512::batch& b, int l, float optical);
+    void store_start(const avx512::batch& b, int l, float optical) noexcept;
 #endif
 
     texel_rect rect_{};
