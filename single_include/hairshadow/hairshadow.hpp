@@ -3772,6 +3772,43 @@ struct depth_along {
     }
 };
 
+/// floor(num / denom) along a walk, per lane, as quotient and remainder (0 <= r < denom): each
+/// advance() adds num's step, held as its own quotient and remainder, with a carry. Exact integers:
+/// r + r_step < 2 denom <= 2^31, so that no step divides.
+struct carried_quotient {
+    __m512i q, r, q_step, r_step, denom;
+
+    /// The minor texel of the line rule: the quotient, one less on an exact tie where `tie` says so.
+    HAIRSHADOW_AVX512_TARGET __m512i minor(__mmask16 tie) const noexcept {
+        const __mmask16 on_tie = _mm512_cmpeq_epi32_mask(r, _mm512_setzero_si512());
+        return _mm512_mask_sub_epi32(q, __mmask16(on_tie & tie), q, _mm512_set1_epi32(1));
+    }
+    HAIRSHADOW_AVX512_TARGET void advance() noexcept {
+        q = _mm512_add_epi32(q, q_step);
+        r = _mm512_add_epi32(r, r_step);
+        const __mmask16 carry = _mm512_cmpge_epu32_mask(r, denom);
+        q = _mm512_mask_add_epi32(q, carry, q, _mm512_set1_epi32(1));
+        r = _mm512_mask_sub_epi32(r, carry, r, denom);
+    }
+};
+
+/// The texels of sixteen walk steps in the tile, each lane's at major coordinate m: the row-major
+/// index where the step makes a fragment (in the tile, not the end's diamond, `active`), else `none`;
+/// x and y are the texel's coordinates.
+HAIRSHADOW_AVX512_TARGET inline __m512i step_texels(__m512i m, __m512i minor, __mmask16 active, __mmask16 along_x, __m512i end_major,
+                                                   __m512i end_minor, __m512i minor_extent, __m512i width, __m512i none, __m512i& x,
+                                                   __m512i& y) noexcept {
+    const __mmask16 at_end = _mm512_cmpeq_epi32_mask(m, end_major) & _mm512_cmpeq_epi32_mask(minor, end_minor);
+    const __mmask16 keep = active & _mm512_cmplt_epu32_mask(minor, minor_extent) & __mmask16(~at_end);
+    x = _mm512_mask_blend_epi32(along_x, minor, m), y = _mm512_mask_blend_epi32(along_x, m, minor);
+    return _mm512_mask_add_epi32(none, keep, _mm512_mullo_epi32(y, width), x);
+}
+
+/// Sixteen integers held in two halves of doubles, as int32.
+HAIRSHADOW_AVX512_TARGET inline __m512i integers_of(__m512d low, __m512d high) noexcept {
+    return join_epi32(_mm512_cvttpd_epi32(low), _mm512_cvttpd_epi32(high));
+}
+
 /// Sixteen segments set up for the walk, in tile-relative coordinates (sub-pixels for ends, texels
 /// for the rest). Lanes not `simd` are walked in scalar.
 struct alignas(64) batch {
@@ -3898,7 +3935,6 @@ inline constexpr std::uint32_t no_texel = 0xFFFFFFFFu;
 /// rows past `steps` make no fragment. The arithmetic is the per-segment walk's, lane for lane, so
 /// the fragments are the same bits.
 HAIRSHADOW_AVX512_TARGET inline void walk_lockstep(const batch& b, int steps, int w, __m512i where[16], __m512i depth[16]) noexcept {
-    const __m512i one = _mm512_set1_epi32(1);
     const __m512i none = _mm512_set1_epi32(std::int32_t(no_texel)), width = _mm512_set1_epi32(w);
     const __mmask16 along_x = b.x_major, tie = b.tie;
     const depth_along along = b.depths();
@@ -3909,34 +3945,21 @@ HAIRSHADOW_AVX512_TARGET inline void walk_lockstep(const batch& b, int steps, in
     const __m512d step_low = _mm512_load_pd(b.step), step_high = _mm512_load_pd(b.step + 8);
     const __m512d denom_low = _mm512_load_pd(b.denom), denom_high = _mm512_load_pd(b.denom + 8);
     const __m512d inv_denom_low = _mm512_load_pd(b.inv_denom), inv_denom_high = _mm512_load_pd(b.inv_denom + 8);
-    // The minor coordinate at step j is floor((num0 + j step) / denom): held as quotient q and
-    // remainder r, and stepped by step's own quotient and remainder with a carry, in exact integers
-    // (r + r_step < 2 denom <= 2^31), so that no step divides.
+    // The minor coordinate at step j is floor((num0 + j step) / denom), carried from step to step.
     __m512d part[8];
     exact_quotient(num0_low, denom_low, inv_denom_low, part[0], part[1]);
     exact_quotient(num0_high, denom_high, inv_denom_high, part[2], part[3]);
     exact_quotient(step_low, denom_low, inv_denom_low, part[4], part[5]);
     exact_quotient(step_high, denom_high, inv_denom_high, part[6], part[7]);
-    __m512i q = join_epi32(_mm512_cvttpd_epi32(part[0]), _mm512_cvttpd_epi32(part[2]));
-    __m512i r = join_epi32(_mm512_cvttpd_epi32(part[1]), _mm512_cvttpd_epi32(part[3]));
-    const __m512i q_step = join_epi32(_mm512_cvttpd_epi32(part[4]), _mm512_cvttpd_epi32(part[6]));
-    const __m512i r_step = join_epi32(_mm512_cvttpd_epi32(part[5]), _mm512_cvttpd_epi32(part[7]));
-    const __m512i denom = join_epi32(_mm512_cvttpd_epi32(denom_low), _mm512_cvttpd_epi32(denom_high));
+    carried_quotient minor_at{integers_of(part[0], part[2]), integers_of(part[1], part[3]), integers_of(part[4], part[6]), integers_of(part[5], part[7]),
+                              integers_of(denom_low, denom_high)};
     for (int j = 0; j < steps; ++j) {
         const __m512i i = _mm512_set1_epi32(j);
-        const __mmask16 active = _mm512_cmpgt_epi32_mask(counts, i);
-        const __m512i m = _mm512_add_epi32(m_begin, i);
-        const __mmask16 on_tie = _mm512_cmpeq_epi32_mask(r, _mm512_setzero_si512());
-        const __m512i minor = _mm512_mask_sub_epi32(q, __mmask16(on_tie & tie), q, one);
-        q = _mm512_add_epi32(q, q_step);
-        r = _mm512_add_epi32(r, r_step);
-        const __mmask16 carry = _mm512_cmpge_epu32_mask(r, denom);
-        q = _mm512_mask_add_epi32(q, carry, q, one);
-        r = _mm512_mask_sub_epi32(r, carry, r, denom);
-        const __mmask16 at_end = _mm512_cmpeq_epi32_mask(m, end_major) & _mm512_cmpeq_epi32_mask(minor, end_minor);
-        const __mmask16 keep = active & _mm512_cmplt_epu32_mask(minor, minor_extent) & __mmask16(~at_end);
-        const __m512i x = _mm512_mask_blend_epi32(along_x, minor, m), y = _mm512_mask_blend_epi32(along_x, m, minor);
-        where[j] = _mm512_mask_add_epi32(none, keep, _mm512_mullo_epi32(y, width), x);
+        const __m512i minor = minor_at.minor(tie);
+        minor_at.advance();
+        __m512i x, y;
+        where[j] = step_texels(_mm512_add_epi32(m_begin, i), minor, _mm512_cmpgt_epi32_mask(counts, i), along_x, end_major, end_minor,
+                               minor_extent, width, none, x, y);
         depth[j] = _mm512_castps_si512(along.at(x, y));
     }
     for (int j = steps; j < 16; ++j) where[j] = none, depth[j] = _mm512_setzero_si512();
@@ -4042,7 +4065,7 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_lane_avx512(const avx5
     using namespace avx512;
     const int w = width_;
     const __m512i iota = _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
-    const __m512i one = _mm512_set1_epi32(1);
+    const __m512i none = _mm512_set1_epi32(std::int32_t(no_texel));
     const int count = b.count[l];
     make_room(std::size_t(count) + 1);
     // Whole-vector stores need 16 slots past n_; near the store's end, compress to memory
@@ -4063,39 +4086,30 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_lane_avx512(const avx5
     __m512d part[4];
     exact_quotient(_mm512_add_pd(num0, _mm512_mul_pd(low_pd(iota), step)), denom, inv_denom, part[0], part[1]);
     exact_quotient(_mm512_add_pd(num0, _mm512_mul_pd(high_pd(iota), step)), denom, inv_denom, part[2], part[3]);
-    __m512i q = join_epi32(_mm512_cvttpd_epi32(part[0]), _mm512_cvttpd_epi32(part[2]));
-    __m512i r = join_epi32(_mm512_cvttpd_epi32(part[1]), _mm512_cvttpd_epi32(part[3]));
-    __m512i q_step = _mm512_setzero_si512(), r_step = q_step;
-    const __m512i denom_i = _mm512_set1_epi32(std::int32_t(b.denom[l]));
+    carried_quotient minor_at{integers_of(part[0], part[2]), integers_of(part[1], part[3]), _mm512_setzero_si512(), _mm512_setzero_si512(),
+                              _mm512_set1_epi32(std::int32_t(b.denom[l]))};
     if (count > 16) {
         exact_quotient(_mm512_mul_pd(_mm512_set1_pd(16.0), step), denom, inv_denom, part[0], part[1]);
-        q_step = _mm512_broadcast_i64x4(_mm512_cvttpd_epi32(part[0]));
-        r_step = _mm512_broadcast_i64x4(_mm512_cvttpd_epi32(part[1]));
+        minor_at.q_step = _mm512_broadcast_i64x4(_mm512_cvttpd_epi32(part[0]));
+        minor_at.r_step = _mm512_broadcast_i64x4(_mm512_cvttpd_epi32(part[1]));
     }
     for (int c = 0; c < count; c += 16) {
         const __m512i i = _mm512_add_epi32(iota, _mm512_set1_epi32(c));
-        const __mmask16 active = _mm512_cmplt_epi32_mask(i, counts);
-        const __m512i m = _mm512_add_epi32(i, m_begin);
-        const __mmask16 on_tie = _mm512_cmpeq_epi32_mask(r, _mm512_setzero_si512());
-        const __m512i minor = _mm512_mask_sub_epi32(q, __mmask16(on_tie & tie), q, one);
-        q = _mm512_add_epi32(q, q_step);
-        r = _mm512_add_epi32(r, r_step);
-        const __mmask16 carry = _mm512_cmpge_epu32_mask(r, denom_i);
-        q = _mm512_mask_add_epi32(q, carry, q, one);
-        r = _mm512_mask_sub_epi32(r, carry, r, denom_i);
-        const __mmask16 at_end = _mm512_cmpeq_epi32_mask(m, end_major) & _mm512_cmpeq_epi32_mask(minor, end_minor);
-        const __mmask16 keep = active & _mm512_cmplt_epu32_mask(minor, minor_extent) & __mmask16(~at_end);
-        const __m512i x = _mm512_mask_blend_epi32(along_x, minor, m), y = _mm512_mask_blend_epi32(along_x, m, minor);
-        const __m512i local = _mm512_add_epi32(_mm512_mullo_epi32(y, width), x);
+        const __m512i minor = minor_at.minor(tie);
+        minor_at.advance();
+        __m512i x, y;
+        const __m512i texels = step_texels(_mm512_add_epi32(i, m_begin), minor, _mm512_cmplt_epi32_mask(i, counts), along_x, end_major, end_minor,
+                                           minor_extent, width, none, x, y);
+        const __mmask16 keep = _mm512_cmpneq_epi32_mask(texels, none);
         const __m512 depth = along.at(x, y);
         if (whole_vectors) {
             // Compressed in registers and stored whole, past n_: a compress straight to
             // memory measured 1.3x slower on this machine's CPU.
-            _mm512_storeu_si512(where_.data() + n_, _mm512_maskz_compress_epi32(keep, local));
+            _mm512_storeu_si512(where_.data() + n_, _mm512_maskz_compress_epi32(keep, texels));
             _mm512_storeu_ps(depth_.data() + n_, _mm512_maskz_compress_ps(keep, depth));
             _mm512_storeu_ps(optical_.data() + n_, optical_depth);
         } else {
-            _mm512_mask_compressstoreu_epi32(where_.data() + n_, keep, local);
+            _mm512_mask_compressstoreu_epi32(where_.data() + n_, keep, texels);
             _mm512_mask_compressstoreu_ps(depth_.data() + n_, keep, depth);
             _mm512_mask_compressstoreu_ps(optical_.data() + n_, keep, optical_depth);
         }
