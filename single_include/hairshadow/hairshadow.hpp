@@ -3670,6 +3670,7 @@ private:
     void walk_avx512(const segment_bins& bins, std::size_t t, float optical);
     void walk_lane_avx512(const avx512::batch& b, int l, float optical);
     void store_start(const avx512::batch& b, int l, float optical) noexcept;
+    void store_kept(__mmask16 keep, __m512i texels, __m512 depths, __m512 optical, bool whole) noexcept;
 #endif
 
     texel_rect rect_{};
@@ -3720,9 +3721,9 @@ HAIRSHADOW_AVX512_TARGET inline __mmask16 inside_diamond(__m512i px, __m512i py,
 HAIRSHADOW_AVX512_TARGET inline __m512i texel_of(__m512i x) noexcept { return _mm512_srai_epi32(x, HAIRSHADOW_SUBPIXEL_BITS); }
 
 /// q = floor(num / denom) and the remainder num - q denom, for integers num and denom > 0 held exactly
-/// in doubles (|num| < 2^52); returns whether denom divides num. The product with 1 / denom misses
-/// the quotient by far less than one, so one correction each way makes it exact, with no division.
-HAIRSHADOW_AVX512_TARGET inline __mmask8 exact_quotient(__m512d num, __m512d denom, __m512d inv_denom, __m512d& q, __m512d& rem) noexcept {
+/// in doubles (|num| < 2^52). The product with 1 / denom misses the quotient by far less than one, so
+/// one correction each way makes it exact, with no division.
+HAIRSHADOW_AVX512_TARGET inline void exact_quotient(__m512d num, __m512d denom, __m512d inv_denom, __m512d& q, __m512d& rem) noexcept {
     q = _mm512_roundscale_pd(_mm512_mul_pd(num, inv_denom), _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
     rem = _mm512_sub_pd(num, _mm512_mul_pd(q, denom)); // exact: integers below 2^53
     const __mmask8 below = _mm512_cmp_pd_mask(rem, _mm512_setzero_pd(), _CMP_LT_OQ);
@@ -3731,11 +3732,6 @@ HAIRSHADOW_AVX512_TARGET inline __mmask8 exact_quotient(__m512d num, __m512d den
     const __mmask8 above = _mm512_cmp_pd_mask(rem, denom, _CMP_GE_OQ);
     q = _mm512_mask_add_pd(q, above, q, _mm512_set1_pd(1.0));
     rem = _mm512_mask_sub_pd(rem, above, rem, denom);
-    return _mm512_cmp_pd_mask(rem, _mm512_setzero_pd(), _CMP_EQ_OQ);
-}
-HAIRSHADOW_AVX512_TARGET inline __mmask8 exact_quotient(__m512d num, __m512d denom, __m512d inv_denom, __m512d& q) noexcept {
-    __m512d rem;
-    return exact_quotient(num, denom, inv_denom, q, rem);
 }
 
 /// Lane halves as doubles.
@@ -3905,10 +3901,6 @@ HAIRSHADOW_AVX512_TARGET inline void set_up(batch& b, int w, int h) noexcept {
     _mm512_store_ps(b.start_depth, b.depths().at(sx, sy));
 }
 
-} // namespace hairshadow::detail::avx512
-
-namespace hairshadow::detail::avx512 {
-
 /// Rows become columns: r[i][c] moves to r[c][i], for sixteen rows of sixteen 32-bit lanes, in 64
 /// shuffles (pairs of lanes, then pairs of pairs, then 128-bit quarters twice).
 HAIRSHADOW_AVX512_TARGET inline void transpose(__m512i r[16]) noexcept {
@@ -4033,21 +4025,27 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
                 continue;
             }
             make_room(std::size_t(b.count[l]) + 1);
-            const __mmask16 keep = _mm512_cmpneq_epi32_mask(where[l], none);
-            const __m512 lane_depth = _mm512_castsi512_ps(depth[l]);
-            if (n_ + 16 <= where_.size()) { // see walk_lane_avx512
-                _mm512_storeu_si512(where_.data() + n_, _mm512_maskz_compress_epi32(keep, where[l]));
-                _mm512_storeu_ps(depth_.data() + n_, _mm512_maskz_compress_ps(keep, lane_depth));
-                _mm512_storeu_ps(optical_.data() + n_, optical_depth);
-            } else {
-                _mm512_mask_compressstoreu_epi32(where_.data() + n_, keep, where[l]);
-                _mm512_mask_compressstoreu_ps(depth_.data() + n_, keep, lane_depth);
-                _mm512_mask_compressstoreu_ps(optical_.data() + n_, keep, optical_depth);
-            }
-            n_ += std::size_t(__builtin_popcount(keep));
+            store_kept(_mm512_cmpneq_epi32_mask(where[l], none), where[l], _mm512_castsi512_ps(depth[l]), optical_depth, n_ + 16 <= where_.size());
             store_start(b, l, optical);
         }
     }
+}
+
+/// Stores the `keep` lanes of texels and depths at n_, in lane order, and advances n_. Whole vectors,
+/// compressed in registers, where `whole` says 16 slots past n_ are there (a compress straight to
+/// memory measured 1.3x slower on this machine's CPU); near the store's end, compressed to memory, so
+/// that the store grows exactly as the scalar walk's does.
+HAIRSHADOW_AVX512_TARGET inline void tile_fragments::store_kept(__mmask16 keep, __m512i texels, __m512 depths, __m512 optical, bool whole) noexcept {
+    if (whole) {
+        _mm512_storeu_si512(where_.data() + n_, _mm512_maskz_compress_epi32(keep, texels));
+        _mm512_storeu_ps(depth_.data() + n_, _mm512_maskz_compress_ps(keep, depths));
+        _mm512_storeu_ps(optical_.data() + n_, optical);
+    } else {
+        _mm512_mask_compressstoreu_epi32(where_.data() + n_, keep, texels);
+        _mm512_mask_compressstoreu_ps(depth_.data() + n_, keep, depths);
+        _mm512_mask_compressstoreu_ps(optical_.data() + n_, keep, optical);
+    }
+    n_ += std::size_t(__builtin_popcount(keep));
 }
 
 /// The start fragment of lane l, as walk_line emits it, after the walk; stored always and kept when
@@ -4060,7 +4058,7 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::store_start(const avx512::b
 }
 
 /// Lane l of b walked alone, sixteen texels per step: for segments of more than sixteen texels in the
-/// tile.
+/// tile, and for every segment of a batch that does not walk in lockstep.
 HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_lane_avx512(const avx512::batch& b, int l, float optical) {
     using namespace avx512;
     const int w = width_;
@@ -4068,9 +4066,7 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_lane_avx512(const avx5
     const __m512i none = _mm512_set1_epi32(std::int32_t(no_texel));
     const int count = b.count[l];
     make_room(std::size_t(count) + 1);
-    // Whole-vector stores need 16 slots past n_; near the store's end, compress to memory
-    // instead, so that the store grows exactly as the scalar walk's does.
-    const bool whole_vectors = n_ + std::size_t(count) + 16 <= where_.size();
+    const bool whole_vectors = n_ + std::size_t(count) + 16 <= where_.size(); // store_kept
     const __mmask16 along_x = (b.x_major >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
     const __mmask16 tie = (b.tie >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
     const __m512i m_begin = _mm512_set1_epi32(b.m_begin[l]), counts = _mm512_set1_epi32(count);
@@ -4100,20 +4096,7 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_lane_avx512(const avx5
         __m512i x, y;
         const __m512i texels = step_texels(_mm512_add_epi32(i, m_begin), minor, _mm512_cmplt_epi32_mask(i, counts), along_x, end_major, end_minor,
                                            minor_extent, width, none, x, y);
-        const __mmask16 keep = _mm512_cmpneq_epi32_mask(texels, none);
-        const __m512 depth = along.at(x, y);
-        if (whole_vectors) {
-            // Compressed in registers and stored whole, past n_: a compress straight to
-            // memory measured 1.3x slower on this machine's CPU.
-            _mm512_storeu_si512(where_.data() + n_, _mm512_maskz_compress_epi32(keep, texels));
-            _mm512_storeu_ps(depth_.data() + n_, _mm512_maskz_compress_ps(keep, depth));
-            _mm512_storeu_ps(optical_.data() + n_, optical_depth);
-        } else {
-            _mm512_mask_compressstoreu_epi32(where_.data() + n_, keep, texels);
-            _mm512_mask_compressstoreu_ps(depth_.data() + n_, keep, depth);
-            _mm512_mask_compressstoreu_ps(optical_.data() + n_, keep, optical_depth);
-        }
-        n_ += std::size_t(__builtin_popcount(keep));
+        store_kept(_mm512_cmpneq_epi32_mask(texels, none), texels, along.at(x, y), optical_depth, whole_vectors);
     }
     store_start(b, l, optical);
 }
