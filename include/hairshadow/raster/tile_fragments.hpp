@@ -171,7 +171,7 @@ private:
     void walk_avx512(const segment_bins& bins, std::size_t t, float optical);
     void walk_lane_avx512(const avx512::batch& b, int l, float optical);
     void store_start(const avx512::batch& b, int l, float optical) noexcept;
-    void store_kept(__mmask16 keep, __m512i texels, __m512 depths, __m512 optical, bool whole) noexcept;
+    HAIRSHADOW_AVX512_TARGET void store_kept(__mmask16 keep, __m512i texels, __m512 depths, __m512 optical, bool whole) noexcept;
 #endif
 
     texel_rect rect_{};
