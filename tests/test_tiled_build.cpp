@@ -269,6 +269,52 @@ TEST_CASE("the AVX-512 walk stores the scalar walk's fragments, in its order, ti
             }
 }
 
+TEMPLATE_TEST_CASE("assign_each gives assign's layers sixteen at a time, at and beside every boundary", "[tiled][placement]",
+                   per_pixel_depth<3>, (per_pixel_depth<4, layer_sizes::uniform, beyond_last_layer::ignore>),
+                   (per_pixel_depth<4, layer_sizes::uniform, beyond_last_layer::extend>), per_pixel_depth<8>, uniform_slices<16>,
+                   gamma_slices<16>, uniform_slices<5>, depth_range<128>, depth_range<24>, depth_range<1>, per_pixel_depth<16>,
+                   (per_pixel_depth<128, layer_sizes::uniform, beyond_last_layer::extend>),
+                   (per_pixel_depth<32, layer_sizes::linear, beyond_last_layer::ignore>)) {
+    if (!detail::cpu_has_avx512()) {
+        WARN("this CPU has no AVX-512: nothing to compare");
+        return;
+    }
+    using state = typename TestType::texel_state;
+    TestType placement;
+    placement.prepare(depth_extent{0.1f, 0.9f});
+    // Texels with z0 (and, to extend, furthest) spread over the map's range.
+    std::vector<state> states(37);
+    for (std::size_t k = 0; k < states.size(); ++k)
+        placement.texel_state_from(0.1f + 0.02f * float(k), 0.1f + 0.02f * float(k) + 0.013f * float(k % 11), states[k]);
+    // Depths at each boundary of each texel, a few units in the last place either side, in front of the
+    // first and beyond the last; a count that leaves a partial last step.
+    std::vector<std::uint32_t> texels;
+    std::vector<float> depths;
+    for (std::uint32_t k = 0; k < states.size(); ++k)
+        for (int b = 0; b <= TestType::layer_count; ++b) {
+            float d = placement.boundary(states[k], b);
+            for (int ulp = 0; ulp < 3; ++ulp) d = std::nextafter(d, -1.0f);
+            for (int ulp = 0; ulp < 7; ++ulp, d = std::nextafter(d, 2.0f)) texels.push_back(k), depths.push_back(d);
+            texels.push_back(k), depths.push_back(-1.0f);
+            texels.push_back(k), depths.push_back(3.0f);
+        }
+    texels.push_back(5), depths.push_back(0.5f);
+    REQUIRE(texels.size() % 16 != 0);
+    std::vector<std::int32_t> scalar(texels.size(), -7), vector(texels.size(), -7);
+    detail::assign_each(placement, std::span<const state>(states), texels, depths, std::span(scalar), instruction_set::scalar);
+    detail::assign_each(placement, std::span<const state>(states), texels, depths, std::span(vector), instruction_set::avx512);
+    std::size_t differing = 0, wrong = 0;
+    std::vector<bool> seen(std::size_t(TestType::layer_count) + 1);
+    for (std::size_t i = 0; i < texels.size(); ++i) {
+        differing += scalar[i] != vector[i];
+        wrong += scalar[i] != placement.assign(states[texels[i]], depths[i]);
+        seen[std::size_t(scalar[i] + 1)] = true;
+    }
+    CHECK(differing == 0);
+    CHECK(wrong == 0);
+    CHECK(std::count(seen.begin(), seen.end(), true) >= TestType::layer_count); // every layer met
+}
+
 TEST_CASE("the instruction set resolves to what the CPU runs", "[tiled]") {
     CHECK(resolve(instruction_set::scalar) == instruction_set::scalar);
     const auto best = resolve(instruction_set::automatic);
@@ -314,13 +360,14 @@ TEST_CASE("the thread pool runs nested and concurrent loops and passes exception
 }
 
 TEST_CASE("the compositions that reduce texel by texel build without grouping fragments", "[tiled]") {
-    // methods/streamed_tile.hpp: the interpolated methods stream (OSM, DOM, ROSM and their hybrids),
-    // DC, the occupancy maps and the fibre densities group; the bit-for-bit test above covers both.
+    // methods/streamed_tile.hpp: the interpolated methods (OSM, DOM, ROSM and their hybrids) and the
+    // occupancy maps stream, DC and the fibre densities group; the bit-for-bit test above covers both.
     STATIC_REQUIRE(detail::streams_tiles<planar_slices<16, uniform_spacing>, float_accumulation, interpolation>);
     STATIC_REQUIRE(detail::streams_tiles<per_pixel_depth<3>, emulated_8bit, interpolation>);
     STATIC_REQUIRE(detail::streams_tiles<depth_range<16>, float_accumulation, interpolation>);
     STATIC_REQUIRE(detail::streams_tiles<per_pixel_depth<4, layer_sizes::uniform, beyond_last_layer::extend>, float_accumulation, interpolation>);
-    STATIC_REQUIRE_FALSE(detail::streams_tiles<depth_range<128>, float_accumulation, occupancy_bitcount<4>>);
+    STATIC_REQUIRE(detail::streams_tiles<depth_range<128>, float_accumulation, occupancy_bitcount<4>>);
+    STATIC_REQUIRE(detail::streams_tiles<per_pixel_depth<128>, emulated_8bit, occupancy_bitcount<1>>);
     STATIC_REQUIRE_FALSE(detail::streams_tiles<clustered<4>, float_accumulation, interpolation>);
     STATIC_REQUIRE_FALSE(detail::streams_tiles<per_pixel_depth<1>, float_accumulation, fibre_density<fibre_density_source::fixed>>);
 }

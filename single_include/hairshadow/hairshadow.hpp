@@ -2695,6 +2695,7 @@ void rasterize_wide_line(const prepared_segment& s, float width, const texel_rec
 // ---- end hairshadow/raster/prepared_segment.hpp
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -2805,8 +2806,16 @@ private:
     // 2. once every chunk's counts are known, write each segment into its tiles' lists.
     // Per-segment thickness and opacity are kept only when the model has them per point; otherwise
     // every segment shares one pair.
+    //
+    // A segment's entry in first_tile_: its first tile in the low bits, and in the high ones which
+    // others it reaches. The two-tile and 2x2 cases (a quarter of the curly model's segments at
+    // 512x512, most at 2048x2048) are written from the entry alone; only the rest re-read the segment,
+    // a cache miss each, which cost half the writing pass.
     static constexpr std::uint32_t no_tile = std::numeric_limits<std::uint32_t>::max();
-    static constexpr std::uint32_t more_tiles = std::uint32_t(1) << 31; ///< in first_tile_: the segment reaches other tiles too
+    static constexpr std::uint32_t more_tiles = std::uint32_t(1) << 31; ///< others than the flags below say: visit_tiles tells
+    static constexpr std::uint32_t and_right = std::uint32_t(1) << 30;  ///< the tile to the right too (and_below: the 2x2 block)
+    static constexpr std::uint32_t and_below = std::uint32_t(1) << 29;  ///< the tile below too
+    static constexpr std::uint32_t tile_bits = and_below - 1;
 
     void project_and_bin(const hair_model& model, const light_space& light, int res) {
         res_ = res;
@@ -2814,7 +2823,7 @@ private:
         tile_magic_ = (std::uint64_t(1) << 32) / std::uint64_t(opt_.tile_size) + 1;
         static_assert(HAIRSHADOW_MAX_RESOLUTION <= (1 << 16), "tile_of needs texel coordinates below 2^16");
         const std::size_t tiles = tile_count();
-        if (tiles >= more_tiles) throw argument_error("too many tiles: use larger tiles");
+        if (tiles > tile_bits) throw argument_error("too many tiles: use larger tiles");
         first_segment_.assign(model.strand_count() + 1, 0);
         for (std::size_t s = 0; s < model.strand_count(); ++s)
             first_segment_[s + 1] = first_segment_[s] + (model.strand_size(s) > 1 ? model.strand_size(s) - 1 : 0);
@@ -2897,8 +2906,16 @@ private:
             for (std::size_t seg = first_segment_[chunk_strand_[c]]; seg < end; ++seg) {
                 const std::uint32_t first = first_tile[seg];
                 if (first == no_tile) continue;
-                if (!(first & more_tiles)) binned[cursor[first]++] = std::uint32_t(seg);
-                else visit_tiles(segments_[seg], reach, [&](std::size_t tile) HAIRSHADOW_ALWAYS_INLINE { binned[cursor[tile]++] = std::uint32_t(seg); });
+                const auto put = [&](std::size_t tile) HAIRSHADOW_ALWAYS_INLINE { binned[cursor[tile]++] = std::uint32_t(seg); };
+                if (first & more_tiles) {
+                    visit_tiles(segments_[seg], reach, put);
+                    continue;
+                }
+                const std::size_t tile = first & tile_bits, below = tile + std::size_t(tiles_x_);
+                put(tile);
+                if (first & and_right) put(tile + 1);
+                if (first & and_below) put(below);
+                if ((first & and_right) && (first & and_below)) put(below + 1);
             }
         });
         by_load_.resize(tiles);
@@ -2911,18 +2928,28 @@ private:
         });
     }
 
-    /// Counts segment s in each tile it reaches and returns its first tile (with more_tiles set when
-    /// it reaches others too), or no_tile; widens e by its ends when its box meets the map.
+    /// Counts segment s in each tile it reaches and returns its entry in first_tile_ (its first tile
+    /// and which others it reaches), or no_tile; widens e by its ends when its box meets the map.
     HAIRSHADOW_ALWAYS_INLINE std::uint32_t count_tiles(const prepared_segment& s, std::int64_t reach, std::uint64_t* counts, depth_extent& e) const noexcept {
-        std::uint32_t first = no_tile;
-        if (s.empty() || !meets_map(s, reach)) return first;
+        if (s.empty() || !meets_map(s, reach)) return no_tile;
         e.nearest = std::min({e.nearest, s.depth_a, s.depth_b});
         e.furthest = std::max({e.furthest, s.depth_a, s.depth_b});
+        std::size_t visited = 0;
+        std::array<std::size_t, 4> tiles{}; // the first four it reaches
         visit_tiles(s, reach, [&](std::size_t tile) HAIRSHADOW_ALWAYS_INLINE {
             ++counts[tile];
-            first = first == no_tile ? std::uint32_t(tile) : (first | more_tiles);
+            if (visited < tiles.size()) tiles[visited] = tile;
+            ++visited;
         });
-        return first;
+        if (visited == 0) return no_tile;
+        // Tiles are visited row by row, left to right, so a set the flags describe comes in this order.
+        const std::size_t first = tiles[0], right = first + 1, below = first + std::size_t(tiles_x_);
+        const auto entry = std::uint32_t(first);
+        if (visited == 1) return entry;
+        if (visited == 2 && tiles[1] == right) return entry | and_right;
+        if (visited == 2 && tiles[1] == below) return entry | and_below;
+        if (visited == 4 && tiles[1] == right && tiles[2] == below && tiles[3] == below + 1) return entry | and_right | and_below;
+        return std::uint32_t(first) | more_tiles;
     }
 
     /// One segment of project_strand_avx512 that the vector code leaves alone, prepared and counted
@@ -3502,8 +3529,67 @@ concept reconstruction_policy =
 /// accumulate, finish). The tile's fragments are read twice in walk order, where they already lie:
 /// once for each texel's depth range, once to add each fragment into its texel's layer. Each texel
 /// still meets its own fragments in segment order, so the maps are the grouped build's, bit for bit;
-/// what it saves is the counting sort, whose scattered writes miss the cache on a dense tile.
+/// what it saves is the counting sort, whose scattered writes miss the cache on a dense tile. The
+/// layers are chosen a block of fragments at a time (placement/assign_each.hpp: sixteen a step with
+/// AVX-512), then added one by one, in walk order.
 
+// ---- begin hairshadow/placement/assign_each.hpp
+/// @file
+/// A placement's layer for each of many fragments: the streamed build's per-fragment step
+/// (methods/streamed_tile.hpp). A placement may offer assign_each_avx512, which gives assign()'s
+/// layers bit for bit sixteen fragments at a time: the same IEEE subtraction, division and
+/// comparisons in every lane, so that only the instruction count changes. The rest are assigned one
+/// at a time. Which runs follows raster_options::instructions (raster/instruction_set.hpp).
+
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+namespace hairshadow::detail {
+
+#if HAIRSHADOW_AVX512_WALK
+/// Whether `Placement` assigns sixteen fragments at a time.
+template <class Placement>
+concept assigns_each_avx512 = requires(const Placement& p, const typename Placement::texel_state* states, std::span<const std::uint32_t> texels,
+                                       std::span<const float> depths, std::int32_t* layers) {
+    p.assign_each_avx512(states, texels, depths, layers);
+};
+
+namespace avx512 {
+/// The first `remaining` of sixteen lanes (all of them from 16 on).
+inline __mmask16 first_lanes(std::size_t remaining) noexcept {
+    return remaining >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << remaining) - 1u);
+}
+
+/// Per lane, how many of boundaries[0..Count) x has reached (x >= b), as the placements' scalar
+/// assign counts them: none for NaN.
+template <int Count>
+HAIRSHADOW_AVX512_TARGET inline __m512i boundaries_reached(__m512 x, const float* boundaries) noexcept {
+    const __m512i one = _mm512_set1_epi32(1);
+    __m512i reached = _mm512_setzero_si512();
+    for (int i = 0; i < Count; ++i)
+        reached = _mm512_mask_add_epi32(reached, _mm512_cmp_ps_mask(x, _mm512_set1_ps(boundaries[i]), _CMP_GE_OQ), reached, one);
+    return reached;
+}
+} // namespace avx512
+#endif
+
+/// layers[i] = placement.assign(states[texels[i]], depths[i]) for every fragment i, sixteen at a time
+/// where the placement can and `instructions` (resolved) is avx512.
+template <class Placement>
+void assign_each(const Placement& placement, std::span<const typename Placement::texel_state> states, std::span<const std::uint32_t> texels,
+                 std::span<const float> depths, std::span<std::int32_t> layers, instruction_set instructions) noexcept {
+#if HAIRSHADOW_AVX512_WALK
+    if constexpr (assigns_each_avx512<Placement>)
+        if (instructions == instruction_set::avx512) return placement.assign_each_avx512(states.data(), texels, depths, layers.data());
+#endif
+    (void)instructions;
+    for (std::size_t i = 0; i < texels.size(); ++i) layers[i] = placement.assign(states[texels[i]], depths[i]);
+}
+
+} // namespace hairshadow::detail
+// ---- end hairshadow/placement/assign_each.hpp
 // ---- begin hairshadow/raster/tile_fragments.hpp
 /// @file
 /// One tile's fragments: the working set of the tiled build. The tile's segments are walked once, by
@@ -4106,8 +4192,11 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_lane_avx512(const avx5
 #endif
 // ---- end hairshadow/raster/tile_fragments.hpp
 
+#include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <type_traits>
 #include <vector>
 
@@ -4123,8 +4212,7 @@ concept streams_tiles = requires(const Placement& p, typename Placement::texel_s
     Reconstruction::template finish<Placement, Accumulation>(a, out);
 };
 
-/// One thread's working memory for the streamed build: per texel of a tile, its fragment count, depth
-/// range, placement state and accumulator. Kept from tile to tile and from build to build.
+/// One thread's working memory for the streamed build: per texel of a tile, its depth range, placement state and accumulator. Kept from tile to tile and from build to build.
 template <class Placement, class Accumulation, class Reconstruction>
 class streamed_tile {
 public:
@@ -4133,7 +4221,7 @@ public:
 
     /// Room for tiles of `texels` texels, so that no tile allocates.
     void reserve(std::size_t texels) {
-        counts_.reserve(texels), ranges_.reserve(texels), states_.reserve(texels), sums_.reserve(texels);
+        ranges_.reserve(texels), states_.reserve(texels), sums_.reserve(texels);
     }
 
     /// Whether streaming `tile` beats grouping it. Always without per-texel state (nothing but the
@@ -4147,9 +4235,9 @@ public:
     }
 
     /// Builds the texels of `tile` (gathered in walk order) into texel_out(x, y), a texel_maps with
-    /// .placement and .data, which it overwrites.
+    /// .placement and .data, which it overwrites. `instructions` (resolved) chooses assign_each's path.
     template <class TexelOut>
-    void build(const Placement& placement, const tile_fragments& tile, TexelOut&& texel_out) {
+    void build(const Placement& placement, const tile_fragments& tile, instruction_set instructions, TexelOut&& texel_out) {
         const texel_rect r = tile.rect();
         const int width = r.x1 - r.x0;
         const std::size_t texels = std::size_t(width) * std::size_t(r.y1 - r.y0);
@@ -4159,45 +4247,48 @@ public:
         const std::size_t n = where.size();
         states_.resize(texels); // read only where a fragment fell, and then written first
         sums_.assign(texels, accumulator{});
-        // The depth pass (depth_range_of, fragment by fragment). A placement without per-texel state
-        // needs none, nor the counts: an empty texel's sums are zero, and finish stores the empty
-        // texel's maps.
+        // The depth pass (depth_range_of, fragment by fragment), without a branch: every range starts
+        // empty, [+inf, -inf], so that the first fragment's min and max give {d, d}, as depth_range_of
+        // starts, and the later ones the same results in the same order. The depths are finite (the
+        // model's points are), so a texel is empty where its range still is. A placement without
+        // per-texel state needs no depth pass: an empty texel's sums are zero, and finish stores the
+        // empty texel's maps.
         constexpr bool stateful = !std::is_empty_v<state>;
+        constexpr float inf = std::numeric_limits<float>::infinity();
         if constexpr (stateful) {
-            counts_.assign(texels, 0);
-            ranges_.resize(texels);
-            for (std::size_t i = 0; i < n; ++i) {
-                const std::uint32_t k = where[i];
-                const float d = depth[i];
-                depth_extent& range = ranges_[k];
-                if (counts_[k]++ == 0) range = {d, d};
-                else add_to_depth_range(range, d);
-            }
+            ranges_.assign(texels, depth_extent{inf, -inf});
+            for (std::size_t i = 0; i < n; ++i) add_to_depth_range(ranges_[where[i]], depth[i]);
             for (std::size_t k = 0; k < texels; ++k)
-                if (counts_[k] != 0) placement.texel_state_from(ranges_[k].nearest, ranges_[k].furthest, states_[k]);
+                if (!empty(ranges_[k])) placement.texel_state_from(ranges_[k].nearest, ranges_[k].furthest, states_[k]);
         }
-        for (std::size_t i = 0; i < n; ++i) {
-            const std::uint32_t k = where[i];
-            Reconstruction::template accumulate<Placement, Accumulation>(sums_[k], placement.assign(states_[k], depth[i]), optical[i]);
+        std::array<std::int32_t, block> layers;
+        for (std::size_t first = 0; first < n; first += block) {
+            const std::size_t count = std::min(block, n - first);
+            assign_each(placement, std::span<const state>(states_), where.subspan(first, count), depth.subspan(first, count),
+                        std::span(layers).first(count), instructions);
+            for (std::size_t i = 0; i < count; ++i)
+                Reconstruction::template accumulate<Placement, Accumulation>(sums_[where[first + i]], layers[i], optical[first + i]);
         }
         for (int y = r.y0; y < r.y1; ++y)
             for (int x = r.x0; x < r.x1; ++x) {
                 const std::size_t k = std::size_t(y - r.y0) * std::size_t(width) + std::size_t(x - r.x0);
                 auto& out = texel_out(x, y);
                 out = {};
-                if (stateful && counts_[k] == 0) continue;
+                if (stateful && empty(ranges_[k])) continue;
                 out.placement = states_[k];
                 Reconstruction::template finish<Placement, Accumulation>(sums_[k], out.data);
             }
     }
 
     std::size_t memory_bytes() const noexcept {
-        return counts_.capacity() * sizeof(std::uint32_t) + ranges_.capacity() * sizeof(depth_extent) + states_.capacity() * sizeof(state) +
-               sums_.capacity() * sizeof(accumulator);
+        return ranges_.capacity() * sizeof(depth_extent) + states_.capacity() * sizeof(state) + sums_.capacity() * sizeof(accumulator);
     }
 
 private:
-    std::vector<std::uint32_t> counts_;
+    /// Fragments whose layers are chosen at a time: a block's layers stay in the first-level cache.
+    static constexpr std::size_t block = 512;
+    static bool empty(const depth_extent& range) noexcept { return !(range.nearest <= range.furthest); }
+
     std::vector<depth_extent> ranges_;
     std::vector<state> states_;
     std::vector<accumulator> sums_;
@@ -4401,8 +4492,9 @@ public:
                 auto& per_thread = streamed_.get();
                 per_thread.resize(detail::tile_slots(w));
                 for (auto& s : per_thread) s.reserve(std::size_t(options.tile_size) * std::size_t(options.tile_size));
+                const instruction_set instructions = resolve(options.instructions);
                 fragments_ = detail::for_each_tile(w, detail::tile_grouping::on_demand, [&](unsigned slot, detail::tile_fragments& tile) {
-                    if (per_thread[slot].pays(tile)) return per_thread[slot].build(placement_, tile, texel_out);
+                    if (per_thread[slot].pays(tile)) return per_thread[slot].build(placement_, tile, instructions, texel_out);
                     tile.group();
                     build_grouped(tile);
                 });
@@ -4698,6 +4790,7 @@ private:
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <string_view>
 
@@ -4732,13 +4825,56 @@ public:
     }
     /// The texel's state from its nearest and furthest fragment (per_pixel_depth::texel_state_from).
     void texel_state_from(float nearest, float furthest, texel_state& s) const noexcept { s.nearest = nearest, s.furthest = furthest; }
-    /// Depth of slice boundary k in [0, S].
-    float boundary(const texel_state& s, int k) const noexcept { return s.nearest + (s.furthest - s.nearest) * (float(k) / float(S)); }
+    /// Depth of slice boundary k in [0, S] (never a fused multiply-add, so that every build, and
+    /// assign_each_avx512, places a boundary on the same float).
+    float boundary(const texel_state& s, int k) const noexcept {
+        return s.nearest + detail::rounded((s.furthest - s.nearest) * (float(k) / float(S)));
+    }
     /// The slice floor(S (z - near) / (far - near)) of the paper, the furthest fragment in the last.
     int assign(const texel_state& s, float depth) const noexcept {
         if (!(s.furthest > s.nearest)) return 0;
         return std::clamp(slice_of(s, depth), 0, S - 1);
     }
+#if HAIRSHADOW_AVX512_WALK
+    /// assign() for fragment i of a tile, layers[i] = assign(states[texels[i]], depths[i]), sixteen at
+    /// a time (placement/assign_each.hpp): the same estimate, settled against the same boundaries,
+    /// lane by lane, one step at a time while any lane still moves.
+    HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state* states, std::span<const std::uint32_t> texels,
+                                                     std::span<const float> depths, std::int32_t* layers) const noexcept {
+        static_assert(sizeof(texel_state) == 2 * sizeof(float) && offsetof(texel_state, furthest) == sizeof(float));
+        const float* ranges = reinterpret_cast<const float*>(states);
+        const __m512 slices = _mm512_set1_ps(float(S));
+        const __m512i one = _mm512_set1_epi32(1), last = _mm512_set1_epi32(S);
+        for (std::size_t i = 0; i < texels.size(); i += 16) {
+            const __mmask16 lanes = detail::avx512::first_lanes(texels.size() - i);
+            const __m512i texel = _mm512_maskz_loadu_epi32(lanes, texels.data() + i);
+            const __m512 depth = _mm512_maskz_loadu_ps(lanes, depths.data() + i);
+            const __m512 nearest = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, texel, ranges, 8);
+            const __m512 furthest = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, texel, ranges + 1, 8);
+            const __m512 span = _mm512_sub_ps(furthest, nearest);
+            const __mmask16 ranged = _mm512_mask_cmp_ps_mask(lanes, furthest, nearest, _CMP_GT_OQ); // else slice 0
+            // settle_layer: the estimate's whole part (0 for NaN and negatives), then down and up.
+            const __m512 estimate = _mm512_mul_ps(_mm512_div_ps(_mm512_sub_ps(depth, nearest), span), slices);
+            const __mmask16 positive = _mm512_mask_cmp_ps_mask(ranged, estimate, _mm512_setzero_ps(), _CMP_GT_OQ);
+            __m512i k = _mm512_maskz_cvttps_epi32(positive, _mm512_min_ps(estimate, slices));
+            for (;;) { // down while k > 0 and depth < boundary(k)
+                const __mmask16 movable = _mm512_mask_cmpgt_epi32_mask(ranged, k, _mm512_setzero_si512());
+                const __mmask16 down = _mm512_mask_cmp_ps_mask(movable, depth, boundary_avx512(nearest, span, k), _CMP_LT_OQ);
+                if (!down) break;
+                k = _mm512_mask_sub_epi32(k, down, k, one);
+            }
+            for (;;) { // up while k < S and depth >= boundary(k + 1)
+                const __m512i next = _mm512_add_epi32(k, one);
+                const __mmask16 movable = _mm512_mask_cmplt_epi32_mask(ranged, k, last);
+                const __mmask16 up = _mm512_mask_cmp_ps_mask(movable, depth, boundary_avx512(nearest, span, next), _CMP_GE_OQ);
+                if (!up) break;
+                k = _mm512_mask_mov_epi32(k, up, next);
+            }
+            k = _mm512_min_epi32(k, _mm512_set1_epi32(S - 1)); // never negative: it starts at 0 or above and stops there
+            _mm512_mask_storeu_epi32(layers + i, lanes, k);
+        }
+    }
+#endif
     layer_position locate(const texel_state& s, float depth) const noexcept {
         if (!(s.furthest > s.nearest)) return depth > s.nearest ? layer_position{S, 0.0f} : layer_position{-1, 0.0f};
         if (!(depth >= s.nearest)) return {-1, 0.0f};
@@ -4749,6 +4885,13 @@ public:
     static constexpr std::size_t global_bytes() noexcept { return 0; }
 
 private:
+#if HAIRSHADOW_AVX512_WALK
+    /// boundary(k) for each lane's texel (nearest, and span = furthest - nearest) and k.
+    HAIRSHADOW_AVX512_TARGET static __m512 boundary_avx512(__m512 nearest, __m512 span, __m512i k) noexcept {
+        const __m512 fraction = _mm512_div_ps(_mm512_cvtepi32_ps(k), _mm512_set1_ps(float(S)));
+        return _mm512_add_ps(nearest, detail::avx512::rounded(_mm512_mul_ps(span, fraction)));
+    }
+#endif
     /// The k with boundary(k) <= depth < boundary(k + 1), or S past the furthest boundary, settled
     /// against the boundaries so that slab boundaries are exact.
     int slice_of(const texel_state& s, float depth) const noexcept {
@@ -4769,6 +4912,7 @@ private:
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <type_traits>
 #include <span>
@@ -4815,6 +4959,8 @@ public:
         friend bool operator==(const z0_and_scale&, const z0_and_scale&) = default;
     };
     using texel_state = std::conditional_t<Beyond == beyond_last_layer::extend, z0_and_scale, z0_only>;
+    static_assert(sizeof(z0_only) == sizeof(float) && sizeof(z0_and_scale) == 2 * sizeof(float) && offsetof(z0_and_scale, scale) == sizeof(float),
+                  "assign_each_avx512 gathers z0 and the stretch as floats");
 
     /// Layers covering `extent` in linear depth in total (d_K); by default half the depth range of the
     /// whole map, a choice of ours: the paper leaves d_k to the user.
@@ -4875,6 +5021,36 @@ public:
             return p.index;
         }
     }
+#if HAIRSHADOW_AVX512_WALK
+    /// assign() for fragment i of a tile, layers[i] = assign(states[texels[i]], depths[i]), sixteen at
+    /// a time (placement/assign_each.hpp): z0 (and the stretch) gathered from the texels' states, the
+    /// same subtraction and division lane by lane, then assign's boundary count (K <= 8) or locate's
+    /// estimate settled against the same boundaries. The settled layer does not depend on the
+    /// estimate, only on the boundaries, so the estimate need not match locate's to the bit.
+    HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state* states, std::span<const std::uint32_t> texels,
+                                                     std::span<const float> depths, std::int32_t* layers) const noexcept {
+        constexpr int stride = int(sizeof(texel_state)); // the gathers' scale: 4 or 8 bytes a texel
+        const float* z0s = reinterpret_cast<const float*>(states);
+        const __m512 extent = _mm512_set1_ps(extent_);
+        for (std::size_t i = 0; i < texels.size(); i += 16) {
+            const __mmask16 lanes = detail::avx512::first_lanes(texels.size() - i);
+            const __m512i texel = _mm512_maskz_loadu_epi32(lanes, texels.data() + i);
+            const __m512 depth = _mm512_maskz_loadu_ps(lanes, depths.data() + i);
+            const __m512 z0 = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, texel, z0s, stride);
+            __m512 span = extent;
+            if constexpr (Beyond == beyond_last_layer::extend)
+                span = _mm512_mul_ps(extent, _mm512_mask_i32gather_ps(_mm512_set1_ps(1.0f), lanes, texel, z0s + 1, stride));
+            const __m512 rel = _mm512_div_ps(_mm512_sub_ps(depth, z0), span);
+            __m512i layer; // the boundaries d_1..d_K reached: K beyond the last layer, 0 in front and for NaN
+            if constexpr (K <= 8) layer = detail::avx512::boundaries_reached<K>(rel, relative_boundaries.data() + 1);
+            else layer = settled_layer_avx512(rel, lanes);
+            if constexpr (Beyond == beyond_last_layer::ignore)
+                layer = _mm512_mask_set1_epi32(layer, _mm512_cmpeq_epi32_mask(layer, _mm512_set1_epi32(K)), -1);
+            else layer = _mm512_min_epi32(layer, _mm512_set1_epi32(K - 1));
+            _mm512_mask_storeu_epi32(layers + i, lanes, layer);
+        }
+    }
+#endif
     layer_position locate(const texel_state& s, float depth) const noexcept {
         const float rel = (depth - s.z0) / span_of(s);
         if (!(rel >= 0.0f)) return {-1, 0.0f};
@@ -4892,6 +5068,42 @@ public:
     std::optional<float> requested_extent() const noexcept { return requested_extent_; }
 
 private:
+#if HAIRSHADOW_AVX512_WALK
+    /// For K > 8, per lane, locate()'s layer of `rel`: 0 in front (and for NaN), K from 1 on, else the
+    /// k with d_k <= rel < d_k+1, settled from the closed-form estimate one step at a time.
+    HAIRSHADOW_AVX512_TARGET static __m512i settled_layer_avx512(__m512 rel, __mmask16 lanes) noexcept {
+        const __m512 last = _mm512_set1_ps(float(K - 1));
+        const __m512i one = _mm512_set1_epi32(1);
+        const float* d = relative_boundaries.data();
+        const __mmask16 inside = _mm512_mask_cmp_ps_mask(_mm512_mask_cmp_ps_mask(lanes, rel, _mm512_setzero_ps(), _CMP_GE_OQ), rel,
+                                                         _mm512_set1_ps(1.0f), _CMP_LT_OQ);
+        __m512 estimate;
+        if constexpr (Sizes == layer_sizes::linear) {
+            const __m512 root = _mm512_sqrt_ps(_mm512_add_ps(_mm512_set1_ps(1.0f), _mm512_mul_ps(rel, _mm512_set1_ps(4.0f * float(K * (K + 1))))));
+            estimate = _mm512_mul_ps(_mm512_sub_ps(root, _mm512_set1_ps(1.0f)), _mm512_set1_ps(0.5f));
+        } else {
+            estimate = _mm512_mul_ps(rel, _mm512_set1_ps(float(K)));
+        }
+        const __mmask16 positive = _mm512_mask_cmp_ps_mask(inside, estimate, _mm512_setzero_ps(), _CMP_GT_OQ);
+        __m512i k = _mm512_maskz_cvttps_epi32(positive, _mm512_min_ps(estimate, last));
+        for (;;) { // down while k > 0 and rel < d_k
+            const __mmask16 movable = _mm512_mask_cmpgt_epi32_mask(inside, k, _mm512_setzero_si512());
+            const __mmask16 down = _mm512_mask_cmp_ps_mask(movable, rel, _mm512_mask_i32gather_ps(rel, movable, k, d, 4), _CMP_LT_OQ);
+            if (!down) break;
+            k = _mm512_mask_sub_epi32(k, down, k, one);
+        }
+        for (;;) { // up while k < K - 1 and rel >= d_k+1
+            const __m512i next = _mm512_add_epi32(k, one);
+            const __mmask16 movable = _mm512_mask_cmplt_epi32_mask(inside, k, _mm512_set1_epi32(K - 1));
+            const __mmask16 up = _mm512_mask_cmp_ps_mask(movable, rel, _mm512_mask_i32gather_ps(rel, movable, next, d, 4), _CMP_GE_OQ);
+            if (!up) break;
+            k = _mm512_mask_mov_epi32(k, up, next);
+        }
+        // Beyond the last boundary (rel >= 1): K; in front or NaN: 0, as assign maps locate's -1.
+        const __mmask16 beyond = _mm512_mask_cmp_ps_mask(lanes, rel, _mm512_set1_ps(1.0f), _CMP_GE_OQ);
+        return _mm512_mask_mov_epi32(_mm512_maskz_mov_epi32(inside, k), beyond, _mm512_set1_epi32(K));
+    }
+#endif
     float span_of(const texel_state& s) const noexcept {
         if constexpr (Beyond == beyond_last_layer::extend) return extent_ * s.scale;
         else return extent_;
@@ -4914,6 +5126,7 @@ private:
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <string_view>
 
@@ -4970,6 +5183,20 @@ public:
     float boundary(const texel_state&, int i) const noexcept { return boundaries_[std::size_t(std::clamp(i, 0, N))]; }
     /// The slice a fragment at `depth` falls in: D_k <= depth < D_{k+1}.
     int assign(const texel_state&, float depth) const noexcept { return std::min(reached(depth), N - 1); }
+#if HAIRSHADOW_AVX512_WALK
+    /// assign() for each depth, sixteen at a time (placement/assign_each.hpp): the same comparisons
+    /// with D_1..D_N lane by lane. For the branch-free count's N only.
+    HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state*, std::span<const std::uint32_t> texels, std::span<const float> depths,
+                                                     std::int32_t* layers) const noexcept
+        requires(N <= 16)
+    {
+        for (std::size_t i = 0; i < texels.size(); i += 16) {
+            const __mmask16 lanes = detail::avx512::first_lanes(texels.size() - i);
+            const __m512i reached = detail::avx512::boundaries_reached<N>(_mm512_maskz_loadu_ps(lanes, depths.data() + i), boundaries_.data() + 1);
+            _mm512_mask_storeu_epi32(layers + i, lanes, _mm512_min_epi32(reached, _mm512_set1_epi32(N - 1)));
+        }
+    }
+#endif
     layer_position locate(const texel_state&, float depth) const noexcept {
         if (!(depth >= near_)) return {-1, 0.0f};
         if (depth >= far_) return {N, 0.0f};
@@ -5323,9 +5550,7 @@ struct occupancy_bitcount {
         friend bool operator==(const storage&, const storage&) = default;
     };
 
-    /// The texel's fragments into its bits and slabs. No streamed form (interpolation::accumulator):
-    /// measured, streaming occ:128:4 and docc:128:4 was no faster than grouping the tile's fragments
-    /// by texel, and up to 1.2x slower (BENCHMARKS.md, issue 11).
+    /// The texel's fragments into its bits and slabs.
     template <class Placement, class Accumulation, class Fragment>
     static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const Fragment> fragments,
                       storage<Placement, Accumulation>& out) {
@@ -5351,6 +5576,30 @@ struct occupancy_bitcount {
             }
         }
         for (std::size_t i = 0; i < std::size_t(Slabs); ++i) out.slabs[i] = Accumulation::store(sums[i]);
+    }
+
+    /// The build in pieces, for a build that meets a texel's fragments among other texels' (in each
+    /// texel's own order all the same; methods/streamed_tile.hpp): each fragment's bit set and its
+    /// optical depth added to its slab's sum, as build does, then stored. The same maps as build, bit
+    /// for bit: build's branch-free loop adds +0 to the other slabs, which changes no sum. Measured,
+    /// this pays once the slices are chosen sixteen fragments at a time (placement/assign_each.hpp);
+    /// before, fragment by fragment, it was up to 1.2x slower than grouping (BENCHMARKS.md, issue 11).
+    template <class Placement, class Accumulation>
+    struct accumulator {
+        std::array<std::uint32_t, std::size_t(Placement::layer_count / 32)> bits{};
+        std::array<typename Accumulation::sum_type, std::size_t(Slabs)> sums{};
+    };
+    template <class Placement, class Accumulation>
+    static void accumulate(accumulator<Placement, Accumulation>& a, int k, float optical_depth) noexcept {
+        if (k < 0) return;
+        constexpr int per_slab = Placement::layer_count / Slabs;
+        a.bits[std::size_t(k / 32)] |= std::uint32_t(1) << (k % 32);
+        a.sums[std::size_t(k / per_slab)] = Accumulation::add(a.sums[std::size_t(k / per_slab)], optical_depth);
+    }
+    template <class Placement, class Accumulation>
+    static void finish(const accumulator<Placement, Accumulation>& a, storage<Placement, Accumulation>& out) noexcept {
+        out.bits = a.bits;
+        for (std::size_t i = 0; i < std::size_t(Slabs); ++i) out.slabs[i] = Accumulation::store(a.sums[i]);
     }
 
     /// Set bits among slices [begin, end).

@@ -87,8 +87,9 @@ public:
                 auto& per_thread = streamed_.get();
                 per_thread.resize(detail::tile_slots(w));
                 for (auto& s : per_thread) s.reserve(std::size_t(options.tile_size) * std::size_t(options.tile_size));
+                const instruction_set instructions = resolve(options.instructions);
                 fragments_ = detail::for_each_tile(w, detail::tile_grouping::on_demand, [&](unsigned slot, detail::tile_fragments& tile) {
-                    if (per_thread[slot].pays(tile)) return per_thread[slot].build(placement_, tile, texel_out);
+                    if (per_thread[slot].pays(tile)) return per_thread[slot].build(placement_, tile, instructions, texel_out);
                     tile.group();
                     build_grouped(tile);
                 });

@@ -6,13 +6,19 @@
 /// accumulate, finish). The tile's fragments are read twice in walk order, where they already lie:
 /// once for each texel's depth range, once to add each fragment into its texel's layer. Each texel
 /// still meets its own fragments in segment order, so the maps are the grouped build's, bit for bit;
-/// what it saves is the counting sort, whose scattered writes miss the cache on a dense tile.
+/// what it saves is the counting sort, whose scattered writes miss the cache on a dense tile. The
+/// layers are chosen a block of fragments at a time (placement/assign_each.hpp: sixteen a step with
+/// AVX-512), then added one by one, in walk order.
 
+#include <hairshadow/placement/assign_each.hpp>
 #include <hairshadow/placement/layer_position.hpp>
 #include <hairshadow/raster/tile_fragments.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <type_traits>
 #include <vector>
 
@@ -28,8 +34,7 @@ concept streams_tiles = requires(const Placement& p, typename Placement::texel_s
     Reconstruction::template finish<Placement, Accumulation>(a, out);
 };
 
-/// One thread's working memory for the streamed build: per texel of a tile, its fragment count, depth
-/// range, placement state and accumulator. Kept from tile to tile and from build to build.
+/// One thread's working memory for the streamed build: per texel of a tile, its depth range, placement state and accumulator. Kept from tile to tile and from build to build.
 template <class Placement, class Accumulation, class Reconstruction>
 class streamed_tile {
 public:
@@ -38,7 +43,7 @@ public:
 
     /// Room for tiles of `texels` texels, so that no tile allocates.
     void reserve(std::size_t texels) {
-        counts_.reserve(texels), ranges_.reserve(texels), states_.reserve(texels), sums_.reserve(texels);
+        ranges_.reserve(texels), states_.reserve(texels), sums_.reserve(texels);
     }
 
     /// Whether streaming `tile` beats grouping it. Always without per-texel state (nothing but the
@@ -52,9 +57,9 @@ public:
     }
 
     /// Builds the texels of `tile` (gathered in walk order) into texel_out(x, y), a texel_maps with
-    /// .placement and .data, which it overwrites.
+    /// .placement and .data, which it overwrites. `instructions` (resolved) chooses assign_each's path.
     template <class TexelOut>
-    void build(const Placement& placement, const tile_fragments& tile, TexelOut&& texel_out) {
+    void build(const Placement& placement, const tile_fragments& tile, instruction_set instructions, TexelOut&& texel_out) {
         const texel_rect r = tile.rect();
         const int width = r.x1 - r.x0;
         const std::size_t texels = std::size_t(width) * std::size_t(r.y1 - r.y0);
@@ -64,45 +69,48 @@ public:
         const std::size_t n = where.size();
         states_.resize(texels); // read only where a fragment fell, and then written first
         sums_.assign(texels, accumulator{});
-        // The depth pass (depth_range_of, fragment by fragment). A placement without per-texel state
-        // needs none, nor the counts: an empty texel's sums are zero, and finish stores the empty
-        // texel's maps.
+        // The depth pass (depth_range_of, fragment by fragment), without a branch: every range starts
+        // empty, [+inf, -inf], so that the first fragment's min and max give {d, d}, as depth_range_of
+        // starts, and the later ones the same results in the same order. The depths are finite (the
+        // model's points are), so a texel is empty where its range still is. A placement without
+        // per-texel state needs no depth pass: an empty texel's sums are zero, and finish stores the
+        // empty texel's maps.
         constexpr bool stateful = !std::is_empty_v<state>;
+        constexpr float inf = std::numeric_limits<float>::infinity();
         if constexpr (stateful) {
-            counts_.assign(texels, 0);
-            ranges_.resize(texels);
-            for (std::size_t i = 0; i < n; ++i) {
-                const std::uint32_t k = where[i];
-                const float d = depth[i];
-                depth_extent& range = ranges_[k];
-                if (counts_[k]++ == 0) range = {d, d};
-                else add_to_depth_range(range, d);
-            }
+            ranges_.assign(texels, depth_extent{inf, -inf});
+            for (std::size_t i = 0; i < n; ++i) add_to_depth_range(ranges_[where[i]], depth[i]);
             for (std::size_t k = 0; k < texels; ++k)
-                if (counts_[k] != 0) placement.texel_state_from(ranges_[k].nearest, ranges_[k].furthest, states_[k]);
+                if (!empty(ranges_[k])) placement.texel_state_from(ranges_[k].nearest, ranges_[k].furthest, states_[k]);
         }
-        for (std::size_t i = 0; i < n; ++i) {
-            const std::uint32_t k = where[i];
-            Reconstruction::template accumulate<Placement, Accumulation>(sums_[k], placement.assign(states_[k], depth[i]), optical[i]);
+        std::array<std::int32_t, block> layers;
+        for (std::size_t first = 0; first < n; first += block) {
+            const std::size_t count = std::min(block, n - first);
+            assign_each(placement, std::span<const state>(states_), where.subspan(first, count), depth.subspan(first, count),
+                        std::span(layers).first(count), instructions);
+            for (std::size_t i = 0; i < count; ++i)
+                Reconstruction::template accumulate<Placement, Accumulation>(sums_[where[first + i]], layers[i], optical[first + i]);
         }
         for (int y = r.y0; y < r.y1; ++y)
             for (int x = r.x0; x < r.x1; ++x) {
                 const std::size_t k = std::size_t(y - r.y0) * std::size_t(width) + std::size_t(x - r.x0);
                 auto& out = texel_out(x, y);
                 out = {};
-                if (stateful && counts_[k] == 0) continue;
+                if (stateful && empty(ranges_[k])) continue;
                 out.placement = states_[k];
                 Reconstruction::template finish<Placement, Accumulation>(sums_[k], out.data);
             }
     }
 
     std::size_t memory_bytes() const noexcept {
-        return counts_.capacity() * sizeof(std::uint32_t) + ranges_.capacity() * sizeof(depth_extent) + states_.capacity() * sizeof(state) +
-               sums_.capacity() * sizeof(accumulator);
+        return ranges_.capacity() * sizeof(depth_extent) + states_.capacity() * sizeof(state) + sums_.capacity() * sizeof(accumulator);
     }
 
 private:
-    std::vector<std::uint32_t> counts_;
+    /// Fragments whose layers are chosen at a time: a block's layers stay in the first-level cache.
+    static constexpr std::size_t block = 512;
+    static bool empty(const depth_extent& range) noexcept { return !(range.nearest <= range.furthest); }
+
     std::vector<depth_extent> ranges_;
     std::vector<state> states_;
     std::vector<accumulator> sums_;

@@ -3,10 +3,13 @@
 /// Occupancy maps' per-texel depth range (Sintorn & Assarsson 2009, section 3.1): the nearest and
 /// furthest fragment of each texel bound S equal slices, so that every slice lies inside the hair.
 
+#include <hairshadow/config.hpp>
+#include <hairshadow/placement/assign_each.hpp>
 #include <hairshadow/placement/layer_position.hpp>
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <string_view>
 
@@ -41,13 +44,56 @@ public:
     }
     /// The texel's state from its nearest and furthest fragment (per_pixel_depth::texel_state_from).
     void texel_state_from(float nearest, float furthest, texel_state& s) const noexcept { s.nearest = nearest, s.furthest = furthest; }
-    /// Depth of slice boundary k in [0, S].
-    float boundary(const texel_state& s, int k) const noexcept { return s.nearest + (s.furthest - s.nearest) * (float(k) / float(S)); }
+    /// Depth of slice boundary k in [0, S] (never a fused multiply-add, so that every build, and
+    /// assign_each_avx512, places a boundary on the same float).
+    float boundary(const texel_state& s, int k) const noexcept {
+        return s.nearest + detail::rounded((s.furthest - s.nearest) * (float(k) / float(S)));
+    }
     /// The slice floor(S (z - near) / (far - near)) of the paper, the furthest fragment in the last.
     int assign(const texel_state& s, float depth) const noexcept {
         if (!(s.furthest > s.nearest)) return 0;
         return std::clamp(slice_of(s, depth), 0, S - 1);
     }
+#if HAIRSHADOW_AVX512_WALK
+    /// assign() for fragment i of a tile, layers[i] = assign(states[texels[i]], depths[i]), sixteen at
+    /// a time (placement/assign_each.hpp): the same estimate, settled against the same boundaries,
+    /// lane by lane, one step at a time while any lane still moves.
+    HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state* states, std::span<const std::uint32_t> texels,
+                                                     std::span<const float> depths, std::int32_t* layers) const noexcept {
+        static_assert(sizeof(texel_state) == 2 * sizeof(float) && offsetof(texel_state, furthest) == sizeof(float));
+        const float* ranges = reinterpret_cast<const float*>(states);
+        const __m512 slices = _mm512_set1_ps(float(S));
+        const __m512i one = _mm512_set1_epi32(1), last = _mm512_set1_epi32(S);
+        for (std::size_t i = 0; i < texels.size(); i += 16) {
+            const __mmask16 lanes = detail::avx512::first_lanes(texels.size() - i);
+            const __m512i texel = _mm512_maskz_loadu_epi32(lanes, texels.data() + i);
+            const __m512 depth = _mm512_maskz_loadu_ps(lanes, depths.data() + i);
+            const __m512 nearest = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, texel, ranges, 8);
+            const __m512 furthest = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, texel, ranges + 1, 8);
+            const __m512 span = _mm512_sub_ps(furthest, nearest);
+            const __mmask16 ranged = _mm512_mask_cmp_ps_mask(lanes, furthest, nearest, _CMP_GT_OQ); // else slice 0
+            // settle_layer: the estimate's whole part (0 for NaN and negatives), then down and up.
+            const __m512 estimate = _mm512_mul_ps(_mm512_div_ps(_mm512_sub_ps(depth, nearest), span), slices);
+            const __mmask16 positive = _mm512_mask_cmp_ps_mask(ranged, estimate, _mm512_setzero_ps(), _CMP_GT_OQ);
+            __m512i k = _mm512_maskz_cvttps_epi32(positive, _mm512_min_ps(estimate, slices));
+            for (;;) { // down while k > 0 and depth < boundary(k)
+                const __mmask16 movable = _mm512_mask_cmpgt_epi32_mask(ranged, k, _mm512_setzero_si512());
+                const __mmask16 down = _mm512_mask_cmp_ps_mask(movable, depth, boundary_avx512(nearest, span, k), _CMP_LT_OQ);
+                if (!down) break;
+                k = _mm512_mask_sub_epi32(k, down, k, one);
+            }
+            for (;;) { // up while k < S and depth >= boundary(k + 1)
+                const __m512i next = _mm512_add_epi32(k, one);
+                const __mmask16 movable = _mm512_mask_cmplt_epi32_mask(ranged, k, last);
+                const __mmask16 up = _mm512_mask_cmp_ps_mask(movable, depth, boundary_avx512(nearest, span, next), _CMP_GE_OQ);
+                if (!up) break;
+                k = _mm512_mask_mov_epi32(k, up, next);
+            }
+            k = _mm512_min_epi32(k, _mm512_set1_epi32(S - 1)); // never negative: it starts at 0 or above and stops there
+            _mm512_mask_storeu_epi32(layers + i, lanes, k);
+        }
+    }
+#endif
     layer_position locate(const texel_state& s, float depth) const noexcept {
         if (!(s.furthest > s.nearest)) return depth > s.nearest ? layer_position{S, 0.0f} : layer_position{-1, 0.0f};
         if (!(depth >= s.nearest)) return {-1, 0.0f};
@@ -58,6 +104,13 @@ public:
     static constexpr std::size_t global_bytes() noexcept { return 0; }
 
 private:
+#if HAIRSHADOW_AVX512_WALK
+    /// boundary(k) for each lane's texel (nearest, and span = furthest - nearest) and k.
+    HAIRSHADOW_AVX512_TARGET static __m512 boundary_avx512(__m512 nearest, __m512 span, __m512i k) noexcept {
+        const __m512 fraction = _mm512_div_ps(_mm512_cvtepi32_ps(k), _mm512_set1_ps(float(S)));
+        return _mm512_add_ps(nearest, detail::avx512::rounded(_mm512_mul_ps(span, fraction)));
+    }
+#endif
     /// The k with boundary(k) <= depth < boundary(k + 1), or S past the furthest boundary, settled
     /// against the boundaries so that slab boundaries are exact.
     int slice_of(const texel_state& s, float depth) const noexcept {

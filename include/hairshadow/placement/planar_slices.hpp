@@ -5,12 +5,14 @@
 /// map of its slice and to every later one (each map holds the opacity in front of its depth); a query
 /// interpolates linearly in depth between the maps that enclose it.
 
+#include <hairshadow/placement/assign_each.hpp>
 #include <hairshadow/placement/layer_position.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <string_view>
 
@@ -67,6 +69,20 @@ public:
     float boundary(const texel_state&, int i) const noexcept { return boundaries_[std::size_t(std::clamp(i, 0, N))]; }
     /// The slice a fragment at `depth` falls in: D_k <= depth < D_{k+1}.
     int assign(const texel_state&, float depth) const noexcept { return std::min(reached(depth), N - 1); }
+#if HAIRSHADOW_AVX512_WALK
+    /// assign() for each depth, sixteen at a time (placement/assign_each.hpp): the same comparisons
+    /// with D_1..D_N lane by lane. For the branch-free count's N only.
+    HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state*, std::span<const std::uint32_t> texels, std::span<const float> depths,
+                                                     std::int32_t* layers) const noexcept
+        requires(N <= 16)
+    {
+        for (std::size_t i = 0; i < texels.size(); i += 16) {
+            const __mmask16 lanes = detail::avx512::first_lanes(texels.size() - i);
+            const __m512i reached = detail::avx512::boundaries_reached<N>(_mm512_maskz_loadu_ps(lanes, depths.data() + i), boundaries_.data() + 1);
+            _mm512_mask_storeu_epi32(layers + i, lanes, _mm512_min_epi32(reached, _mm512_set1_epi32(N - 1)));
+        }
+    }
+#endif
     layer_position locate(const texel_state&, float depth) const noexcept {
         if (!(depth >= near_)) return {-1, 0.0f};
         if (depth >= far_) return {N, 0.0f};

@@ -40,9 +40,7 @@ struct occupancy_bitcount {
         friend bool operator==(const storage&, const storage&) = default;
     };
 
-    /// The texel's fragments into its bits and slabs. No streamed form (interpolation::accumulator):
-    /// measured, streaming occ:128:4 and docc:128:4 was no faster than grouping the tile's fragments
-    /// by texel, and up to 1.2x slower (BENCHMARKS.md, issue 11).
+    /// The texel's fragments into its bits and slabs.
     template <class Placement, class Accumulation, class Fragment>
     static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const Fragment> fragments,
                       storage<Placement, Accumulation>& out) {
@@ -68,6 +66,30 @@ struct occupancy_bitcount {
             }
         }
         for (std::size_t i = 0; i < std::size_t(Slabs); ++i) out.slabs[i] = Accumulation::store(sums[i]);
+    }
+
+    /// The build in pieces, for a build that meets a texel's fragments among other texels' (in each
+    /// texel's own order all the same; methods/streamed_tile.hpp): each fragment's bit set and its
+    /// optical depth added to its slab's sum, as build does, then stored. The same maps as build, bit
+    /// for bit: build's branch-free loop adds +0 to the other slabs, which changes no sum. Measured,
+    /// this pays once the slices are chosen sixteen fragments at a time (placement/assign_each.hpp);
+    /// before, fragment by fragment, it was up to 1.2x slower than grouping (BENCHMARKS.md, issue 11).
+    template <class Placement, class Accumulation>
+    struct accumulator {
+        std::array<std::uint32_t, std::size_t(Placement::layer_count / 32)> bits{};
+        std::array<typename Accumulation::sum_type, std::size_t(Slabs)> sums{};
+    };
+    template <class Placement, class Accumulation>
+    static void accumulate(accumulator<Placement, Accumulation>& a, int k, float optical_depth) noexcept {
+        if (k < 0) return;
+        constexpr int per_slab = Placement::layer_count / Slabs;
+        a.bits[std::size_t(k / 32)] |= std::uint32_t(1) << (k % 32);
+        a.sums[std::size_t(k / per_slab)] = Accumulation::add(a.sums[std::size_t(k / per_slab)], optical_depth);
+    }
+    template <class Placement, class Accumulation>
+    static void finish(const accumulator<Placement, Accumulation>& a, storage<Placement, Accumulation>& out) noexcept {
+        out.bits = a.bits;
+        for (std::size_t i = 0; i < std::size_t(Slabs); ++i) out.slabs[i] = Accumulation::store(a.sums[i]);
     }
 
     /// Set bits among slices [begin, end).
