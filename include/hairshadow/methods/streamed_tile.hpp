@@ -34,7 +34,8 @@ concept streams_tiles = requires(const Placement& p, typename Placement::texel_s
     Reconstruction::template finish<Placement, Accumulation>(a, out);
 };
 
-/// One thread's working memory for the streamed build: per texel of a tile, its depth range, placement state and accumulator. Kept from tile to tile and from build to build.
+/// One thread's working memory for the streamed build: per texel of a tile, its depth range, placement
+/// state and accumulator. Kept from tile to tile and from build to build.
 template <class Placement, class Accumulation, class Reconstruction>
 class streamed_tile {
 public:
