@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include <atomic>
+#include <cstring>
 #include <random>
 #include <thread>
 
@@ -314,6 +315,67 @@ TEMPLATE_TEST_CASE("assign_each gives assign's layers sixteen at a time, at and 
     CHECK(wrong == 0);
     CHECK(std::count(seen.begin(), seen.end(), true) >= TestType::layer_count); // every layer met
 }
+
+#if HAIRSHADOW_AVX512_WALK // the vector members exist only where the vector paths are compiled
+TEMPLATE_TEST_CASE("density clustering's vector pre-pass and bin assignment give the scalar state and layers, bit for bit", "[tiled][placement]",
+                   clustered<1>, clustered<3>, clustered<4>, clustered<8>, clustered<16>) {
+    if (!detail::cpu_has_avx512()) {
+        WARN("this CPU has no AVX-512: nothing to compare");
+        return;
+    }
+    using state = typename TestType::texel_state;
+    const TestType placement;
+    random_stream random(7);
+    // Texels of every count up to 70 (partial last steps; below clustered::vector_worthwhile, the
+    // scalar steps), then ones made to meet each special case.
+    std::vector<std::vector<optical_fragment>> texels;
+    for (int n = 1; n <= 70; ++n) {
+        std::vector<optical_fragment> t;
+        for (int i = 0; i < n; ++i) t.push_back({random.uniform(0.2f, 0.8f), random.uniform(0.0f, 2.0f)});
+        texels.push_back(t);
+        // Repeated depths (ties between centres), few distinct values, and clusters that take nothing.
+        for (auto& f : t) f.depth = 0.25f + 0.125f * float(int(f.depth * 8.0f) % 3);
+        texels.push_back(t);
+    }
+    texels.push_back(std::vector<optical_fragment>(23, {0.5f, 0.3f}));                       // one depth: bins of no width
+    texels.push_back({{0.0f, 0.1f}, {-0.0f, 0.2f}, {0.5f, 0.1f}, {-0.0f, 0.4f}});            // a zero of either sign at the front
+    texels.push_back({{0.4f, 0.0f}, {0.6f, 0.0f}, {0.7f, 0.0f}, {0.3f, 0.0f}, {0.2f, 0.0f}}); // no weight: no cluster usable
+    // Terms past the vector's exact range (2^15), in the second pass and in the first, but within the
+    // scalar's (2^27).
+    texels.push_back({{0.4f, 0.5f}, {1000.0f, 1.5f}, {0.7f, 0.25f}, {0.41f, 0.5f}, {0.9f, 1.0f}});
+    texels.push_back(std::vector<optical_fragment>(5, {20000.0f, 2.0f}));
+    std::vector<optical_fragment> spread;
+    for (int i = 0; i < 200; ++i) spread.push_back({i % 2 ? -1.5f + 0.01f * float(i) : 1.9f - 0.005f * float(i), 6.5f});
+    texels.push_back(spread); // the whole range of depths and the largest optical depth
+    std::vector<optical_fragment> zeros(20, {0.5f, 1.0f});
+    zeros[3].depth = 0.0f, zeros[17].depth = -0.0f; // in order +0 comes first; in lanes, -0 (lane 1)
+    texels.push_back(zeros);
+    std::size_t differing_states = 0, differing_layers = 0, differing_ranges = 0, fragments = 0;
+    for (const auto& t : texels) {
+        const std::span<const optical_fragment> in(t);
+        const depth_extent range = detail::depth_range_of(in), vector_range = detail::avx512::texel_depth_range(in);
+        differing_ranges += std::memcmp(&range, &vector_range, sizeof(range)) != 0;
+        state scalar, vector;
+        placement.prepare_texel(in, scalar);
+        placement.prepare_texel_avx512(in, vector);
+        differing_states += std::memcmp(&scalar, &vector, sizeof(state)) != 0;
+        std::vector<std::int32_t> layers(t.size(), -7);
+        placement.assign_texel_avx512(scalar, in, layers.data());
+        for (std::size_t i = 0; i < t.size(); ++i, ++fragments) differing_layers += layers[i] != placement.assign(scalar, t[i].depth);
+        // The grouped build's per-texel steps through their dispatch, against their scalar forms.
+        state dispatched;
+        detail::prepare_texel(placement, in, dispatched, instruction_set::avx512);
+        differing_states += !(dispatched == scalar);
+        std::vector<int> visited;
+        detail::for_each_layer(placement, scalar, in, instruction_set::avx512, [&](int k, const optical_fragment&) { visited.push_back(k); });
+        for (std::size_t i = 0; i < t.size(); ++i) differing_layers += visited[i] != layers[i];
+    }
+    CHECK(fragments > 2000);
+    CHECK(differing_ranges == 0);
+    CHECK(differing_states == 0);
+    CHECK(differing_layers == 0);
+}
+#endif
 
 TEST_CASE("the instruction set resolves to what the CPU runs", "[tiled]") {
     CHECK(resolve(instruction_set::scalar) == instruction_set::scalar);

@@ -3535,16 +3535,22 @@ concept reconstruction_policy =
 
 // ---- begin hairshadow/placement/assign_each.hpp
 /// @file
-/// A placement's layer for each of many fragments: the streamed build's per-fragment step
-/// (methods/streamed_tile.hpp). A placement may offer assign_each_avx512, which gives assign()'s
-/// layers bit for bit sixteen fragments at a time: the same IEEE subtraction, division and
-/// comparisons in every lane, so that only the instruction count changes. The rest are assigned one
-/// at a time. Which runs follows raster_options::instructions (raster/instruction_set.hpp).
+/// A placement's per-fragment steps, sixteen fragments at a time where the placement offers it:
+/// - assign_each: the layers of fragments from many texels (the streamed build, methods/streamed_tile.hpp),
+///   through a placement's assign_each_avx512;
+/// - prepare_texel and for_each_layer: one texel's pre-pass and layers (the grouped build), through
+///   prepare_texel_avx512 and assign_texel_avx512.
+/// The vector forms give the scalar results bit for bit: the same IEEE subtraction, division and
+/// comparisons in every lane, so that only the instruction count changes. Which runs follows
+/// raster_options::instructions (raster/instruction_set.hpp).
 
 
+#include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 
 namespace hairshadow::detail {
 
@@ -3554,6 +3560,19 @@ template <class Placement>
 concept assigns_each_avx512 = requires(const Placement& p, const typename Placement::texel_state* states, std::span<const std::uint32_t> texels,
                                        std::span<const float> depths, std::int32_t* layers) {
     p.assign_each_avx512(states, texels, depths, layers);
+};
+
+/// Whether `Placement` has a vector pre-pass for one texel's optical fragments.
+template <class Placement>
+concept prepares_texel_avx512 = requires(const Placement& p, std::span<const optical_fragment> fragments, typename Placement::texel_state& s) {
+    p.prepare_texel_avx512(fragments, s);
+};
+
+/// Whether `Placement` assigns one texel's optical fragments sixteen at a time.
+template <class Placement>
+concept assigns_texel_avx512 = requires(const Placement& p, const typename Placement::texel_state& s, std::span<const optical_fragment> fragments,
+                                        std::int32_t* layers) {
+    p.assign_texel_avx512(s, fragments, layers);
 };
 
 namespace avx512 {
@@ -3586,6 +3605,44 @@ void assign_each(const Placement& placement, std::span<const typename Placement:
 #endif
     (void)instructions;
     for (std::size_t i = 0; i < texels.size(); ++i) layers[i] = placement.assign(states[texels[i]], depths[i]);
+}
+
+/// placement.prepare_texel(fragments, state), sixteen fragments at a time where the placement can and
+/// `instructions` (resolved) is avx512.
+template <class Placement, class Fragment>
+void prepare_texel(const Placement& placement, std::span<const Fragment> fragments, typename Placement::texel_state& state,
+                   instruction_set instructions) noexcept {
+#if HAIRSHADOW_AVX512_WALK
+    if constexpr (std::is_same_v<Fragment, optical_fragment> && prepares_texel_avx512<Placement>)
+        if (instructions == instruction_set::avx512) return placement.prepare_texel_avx512(fragments, state);
+#endif
+    (void)instructions;
+    placement.prepare_texel(fragments, state);
+}
+
+/// Calls visit(layer, fragment) for each of a texel's fragments in order, with layer =
+/// placement.assign(state, fragment.depth): sixteen at a time where the placement can and
+/// `instructions` (resolved) is avx512, else through texel_assigner.
+template <class Placement, class Fragment, class Visit>
+HAIRSHADOW_ALWAYS_INLINE inline void for_each_layer(const Placement& placement, const typename Placement::texel_state& state,
+                                             std::span<const Fragment> fragments, instruction_set instructions, Visit&& visit) {
+#if HAIRSHADOW_AVX512_WALK
+    if constexpr (std::is_same_v<Fragment, optical_fragment> && assigns_texel_avx512<Placement>) {
+        if (instructions == instruction_set::avx512) {
+            constexpr std::size_t block = 64; // a block's layers stay in registers and the first-level cache
+            std::array<std::int32_t, block> layers;
+            for (std::size_t first = 0; first < fragments.size(); first += block) {
+                const auto part = fragments.subspan(first, std::min(block, fragments.size() - first));
+                placement.assign_texel_avx512(state, part, layers.data());
+                for (std::size_t i = 0; i < part.size(); ++i) visit(int(layers[i]), part[i]);
+            }
+            return;
+        }
+    }
+#endif
+    (void)instructions;
+    const auto assign = texel_assigner(placement, state);
+    for (const auto& f : fragments) visit(assign(f.depth), f);
 }
 
 } // namespace hairshadow::detail
@@ -4482,10 +4539,11 @@ public:
             const std::size_t res = std::size_t(light.resolution());
             texels_.resize(res * res);
             const auto texel_out = [&](int x, int y) -> texel_maps& { return texels_[std::size_t(y) * res + std::size_t(x)]; };
+            const instruction_set instructions = resolve(options.instructions);
             const auto build_grouped = [&](const detail::tile_fragments& tile) {
                 const texel_rect r = tile.rect();
                 for (int y = r.y0; y < r.y1; ++y)
-                    for (int x = r.x0; x < r.x1; ++x) build_texel(tile.texel(x, y), texel_out(x, y));
+                    for (int x = r.x0; x < r.x1; ++x) build_texel(tile.texel(x, y), texel_out(x, y), instructions);
             };
             if constexpr (detail::streams_tiles<Placement, Accumulation, Reconstruction>) {
                 // Dense tiles reduce their fragments where the walk left them (methods/streamed_tile.hpp);
@@ -4493,7 +4551,6 @@ public:
                 auto& per_thread = streamed_.get();
                 per_thread.resize(detail::tile_slots(w));
                 for (auto& s : per_thread) s.reserve(std::size_t(options.tile_size) * std::size_t(options.tile_size));
-                const instruction_set instructions = resolve(options.instructions);
                 fragments_ = detail::for_each_tile(w, detail::tile_grouping::on_demand, [&](unsigned slot, detail::tile_fragments& tile) {
                     if (per_thread[slot].pays(tile)) return per_thread[slot].build(placement_, tile, instructions, texel_out);
                     tile.group();
@@ -4522,7 +4579,7 @@ public:
             placement_.prepare(extent);
             fragments_ = fragments.size();
             texels_.assign(fragments.texel_count(), texel_maps{});
-            parallel_for(texels_.size(), exec, [&](std::size_t t) { build_texel(fragments.texel(t), texels_[t]); }, 512);
+            parallel_for(texels_.size(), exec, [&](std::size_t t) { build_texel(fragments.texel(t), texels_[t], instruction_set::scalar); }, 512);
         });
     }
 
@@ -4572,13 +4629,17 @@ public:
     static constexpr std::size_t texel_bytes() noexcept { return sizeof(texel_maps); }
 
 private:
-    /// One texel's maps from its fragments (fragment or optical_fragment), in segment order.
+    /// One texel's maps from its fragments (fragment or optical_fragment), in segment order, with the
+    /// vector steps `instructions` (resolved) allows (placement/assign_each.hpp): the same maps.
     template <class Fragment>
-    HAIRSHADOW_ALWAYS_INLINE void build_texel(std::span<const Fragment> in, texel_maps& out) const {
+    HAIRSHADOW_ALWAYS_INLINE void build_texel(std::span<const Fragment> in, texel_maps& out, instruction_set instructions) const {
         out = texel_maps{};
         if (in.empty()) return;
-        placement_.prepare_texel(in, out.placement);
-        reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
+        detail::prepare_texel(placement_, in, out.placement, instructions);
+        if constexpr (requires { reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data, instructions); })
+            reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data, instructions);
+        else
+            reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
     }
 
     /// The light of the maps, given to a reconstruction that needs it (a fibre density's world units).
@@ -4625,6 +4686,169 @@ private:
 /// mu_j +- sqrt(3) sigma_j (a uniform distribution's width from its variance); overlapping bins meet at
 /// the midpoint of the overlap; a fragment outside every bin goes to the nearest cluster.
 
+// ---- begin hairshadow/placement/clustered_avx512.hpp
+/// @file
+/// Density clustering's per-texel passes sixteen fragments at a time (placement/clustered.hpp): the
+/// depth range, the two k-means sums and the assignment of fragments to bins. Each lane does the
+/// scalar pass's own IEEE operations, and the k-means sums are integers (fixed point), whose order
+/// changes nothing, so the texel's state and layers are the scalar ones bit for bit.
+
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+namespace hairshadow::detail {
+
+/// Density clustering's k-means sums are fixed point with 2^36 units to the unit (clustered::fixed_sum).
+inline constexpr double cluster_fixed_scale = 68719476736.0;
+
+#if HAIRSHADOW_AVX512_WALK
+namespace avx512 {
+
+static_assert(sizeof(optical_fragment) == 2 * sizeof(float), "optical_fragment is loaded as pairs of floats");
+
+/// Sixteen of a texel's fragments from `f` (the first `remaining`, where fewer are left): their depths
+/// and optical depths, zero past the end. Returns the lanes that hold a fragment.
+HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __mmask16 load_fragments(const optical_fragment* f, std::size_t remaining, __m512& depth,
+                                                         __m512& optical) noexcept {
+    const auto* floats = reinterpret_cast<const float*>(f);
+    const std::size_t n = std::min<std::size_t>(remaining, 16);
+    const __m512 front = _mm512_maskz_loadu_ps(first_lanes(2 * n), floats);
+    const __m512 back = n > 8 ? _mm512_maskz_loadu_ps(first_lanes(2 * n - 16), floats + 16) : _mm512_setzero_ps();
+    const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+    depth = _mm512_permutex2var_ps(front, even, back);
+    optical = _mm512_permutex2var_ps(front, _mm512_add_epi32(even, _mm512_set1_epi32(1)), back);
+    return first_lanes(n);
+}
+
+/// detail::depth_range_of: the same nearest and furthest depth. The lanes are reduced in another
+/// order than the fragments come, which can change only the sign of a zero, so a range that ends
+/// at zero is reduced again in order.
+HAIRSHADOW_AVX512_TARGET inline depth_extent texel_depth_range(std::span<const optical_fragment> fragments) noexcept {
+    __m512 nearest = _mm512_set1_ps(fragments[0].depth), furthest = nearest;
+    for (std::size_t i = 0; i < fragments.size(); i += 16) {
+        __m512 depth, optical;
+        const __mmask16 lanes = load_fragments(fragments.data() + i, fragments.size() - i, depth, optical);
+        nearest = _mm512_mask_mov_ps(nearest, lanes & _mm512_cmp_ps_mask(depth, nearest, _CMP_LT_OQ), depth);
+        furthest = _mm512_mask_mov_ps(furthest, lanes & _mm512_cmp_ps_mask(furthest, depth, _CMP_LT_OQ), depth);
+    }
+    alignas(64) float near_lanes[16], far_lanes[16];
+    _mm512_store_ps(near_lanes, nearest), _mm512_store_ps(far_lanes, furthest);
+    depth_extent range{near_lanes[0], far_lanes[0]};
+    for (int i = 1; i < 16; ++i) range.nearest = std::min(range.nearest, near_lanes[i]), range.furthest = std::max(range.furthest, far_lanes[i]);
+    if (range.nearest == 0.0f || range.furthest == 0.0f) return depth_range_of(fragments);
+    return range;
+}
+
+/// Per lane, the nearest of the `usable` centres by |depth - centre| in float, the first of equals:
+/// clustered::nearest (the first usable one for a NaN depth, 0 where none is usable).
+template <int K>
+HAIRSHADOW_AVX512_TARGET inline __m512i nearest_centre(__m512 depth, const float* centres, std::uint32_t usable) noexcept {
+    __m512i best = _mm512_setzero_si512();
+    __m512 best_distance = _mm512_setzero_ps();
+    bool first = true;
+    for (int j = 0; j < K; ++j) {
+        if (!(usable >> j & 1u)) continue;
+        const __m512 distance = _mm512_abs_ps(_mm512_sub_ps(depth, _mm512_set1_ps(centres[j])));
+        const __mmask16 nearer = first ? __mmask16(0xFFFF) : _mm512_cmp_ps_mask(distance, best_distance, _CMP_LT_OQ);
+        best = _mm512_mask_mov_epi32(best, nearer, _mm512_set1_epi32(j));
+        best_distance = _mm512_mask_mov_ps(best_distance, nearer, distance);
+        first = false;
+    }
+    return best;
+}
+
+/// clustered::fixed_sum (x in units of 2^-36, truncated toward zero) in every lane. Exact while
+/// |x| < 2^15 (2^51 units): where one of `lanes` is not, `in_range` is cleared.
+HAIRSHADOW_AVX512_TARGET inline __m512i fixed_terms(__m512d x, __mmask8 lanes, bool& in_range) noexcept {
+    const __m512d units = _mm512_mul_pd(x, _mm512_set1_pd(cluster_fixed_scale));
+    in_range &= _mm512_mask_cmp_pd_mask(lanes, _mm512_abs_pd(units), _mm512_set1_pd(0x1p51), _CMP_NLT_UQ) == 0;
+    // A whole number below 2^51 in magnitude plus 1.5 * 2^52 is exact, and its bits are those of
+    // 1.5 * 2^52 plus the number.
+    const __m512d whole = _mm512_roundscale_pd(units, _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC);
+    const __m512d magic = _mm512_set1_pd(0x1.8p52);
+    return _mm512_sub_epi64(_mm512_castpd_si512(_mm512_add_pd(whole, magic)), _mm512_castpd_si512(magic));
+}
+
+/// Lanes 8 * half to 8 * half + 7 of x, in double.
+HAIRSHADOW_AVX512_TARGET inline __m512d widen_half(__m512 x, int half) noexcept {
+    const __m256 part = half == 0 ? _mm512_castps512_ps256(x) : _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(x), 1));
+    return _mm512_cvtps_pd(part);
+}
+
+/// One of clustered::prepare_texel's k-means passes: for every fragment, the nearest of the `usable`
+/// centres j takes fixed_sum(b) into weight[j] and into sum[j] fixed_sum(b * depth) (the first pass)
+/// or, with Spread, fixed_sum(b * d * d) for d = depth - centre (the second). Sums of clusters that
+/// are not usable are left 0. Returns false, with the sums unfinished, where a term is too large for
+/// the vector's exact conversion (|term| >= 2^15), which only absurd depths make.
+template <int K, bool Spread>
+    requires(K <= 16)
+HAIRSHADOW_AVX512_TARGET inline bool add_cluster_sums(std::span<const optical_fragment> fragments, const float* centres, std::uint32_t usable,
+                                                      std::int64_t* weight, std::int64_t* sum) noexcept {
+    __m512i weights[K], sums[K];
+    for (int j = 0; j < K; ++j) weights[j] = sums[j] = _mm512_setzero_si512();
+    bool in_range = true;
+    alignas(64) double centre_values[16] = {};
+    for (int j = 0; j < K; ++j) centre_values[j] = double(centres[j]);
+    const __m512d centres_low = _mm512_load_pd(centre_values), centres_high = _mm512_load_pd(centre_values + 8);
+    for (std::size_t i = 0; i < fragments.size(); i += 16) {
+        __m512 depth, optical;
+        const __mmask16 lanes = load_fragments(fragments.data() + i, fragments.size() - i, depth, optical);
+        const __m512i nearest = nearest_centre<K>(depth, centres, usable);
+        for (int half = 0; half < 2; ++half) {
+            const auto half_lanes = __mmask8(lanes >> (8 * half));
+            if (half_lanes == 0) break;
+            const __m512d b = widen_half(optical, half), d = widen_half(depth, half);
+            const __m512i weight_term = fixed_terms(b, half_lanes, in_range);
+            __m512i sum_term;
+            if constexpr (Spread) {
+                // Each lane's own centre, picked from the (up to sixteen) centres by its index.
+                const __m512i index = _mm512_cvtepi32_epi64(half == 0 ? _mm512_castsi512_si256(nearest) : _mm512_extracti64x4_epi64(nearest, 1));
+                const __m512d from_centre = _mm512_sub_pd(d, _mm512_permutex2var_pd(centres_low, index, centres_high));
+                sum_term = fixed_terms(_mm512_mul_pd(_mm512_mul_pd(b, from_centre), from_centre), half_lanes, in_range);
+            } else {
+                sum_term = fixed_terms(_mm512_mul_pd(b, d), half_lanes, in_range);
+            }
+            for (int j = 0; j < K; ++j) {
+                if (!(usable >> j & 1u)) continue;
+                const auto mine = __mmask8(__mmask8(_mm512_cmpeq_epi32_mask(nearest, _mm512_set1_epi32(j)) >> (8 * half)) & half_lanes);
+                weights[j] = _mm512_mask_add_epi64(weights[j], mine, weights[j], weight_term);
+                sums[j] = _mm512_mask_add_epi64(sums[j], mine, sums[j], sum_term);
+            }
+        }
+    }
+    for (int j = 0; j < K; ++j) weight[j] = _mm512_reduce_add_epi64(weights[j]), sum[j] = _mm512_reduce_add_epi64(sums[j]);
+    return in_range;
+}
+
+/// clustered::texel_assigner for every fragment: the first `filled` bin [lo, hi) holding the depth
+/// (or equal to a bin of no width), else the nearest usable mean.
+template <int K>
+HAIRSHADOW_AVX512_TARGET inline void assign_to_bins(std::span<const optical_fragment> fragments, const float* lo, const float* hi, std::uint32_t filled,
+                                                    const float* means, std::uint32_t usable, std::int32_t* layers) noexcept {
+    for (std::size_t i = 0; i < fragments.size(); i += 16) {
+        __m512 depth, optical;
+        const __mmask16 lanes = load_fragments(fragments.data() + i, fragments.size() - i, depth, optical);
+        __m512i layer = nearest_centre<K>(depth, means, usable);
+        for (int j = K - 1; j >= 0; --j) { // the first bin holding the depth is the last to write
+            if (!(filled >> j & 1u)) continue;
+            const __m512 low = _mm512_set1_ps(lo[j]);
+            __mmask16 inside = _mm512_cmp_ps_mask(depth, _mm512_set1_ps(hi[j]), _CMP_LT_OQ);
+            if (lo[j] == hi[j]) inside |= _mm512_cmp_ps_mask(depth, low, _CMP_EQ_OQ);
+            inside &= _mm512_cmp_ps_mask(depth, low, _CMP_GE_OQ);
+            layer = _mm512_mask_mov_epi32(layer, inside, _mm512_set1_epi32(j));
+        }
+        _mm512_mask_storeu_epi32(layers + i, lanes, layer);
+    }
+}
+
+} // namespace avx512
+#endif
+
+} // namespace hairshadow::detail
+// ---- end hairshadow/placement/clustered_avx512.hpp
 
 #include <array>
 #include <cmath>
@@ -4670,40 +4894,74 @@ public:
     void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
         s.sigma.fill(-1.0f);
         if (fragments.empty()) return;
-        float lo = fragments[0].depth, hi = lo;
-        for (const auto& f : fragments) lo = std::min(lo, f.depth), hi = std::max(hi, f.depth);
-        // Initial centres: the middles of K equal parts of [nearest, furthest].
-        std::array<float, K> centre;
-        for (int j = 0; j < K; ++j) centre[std::size_t(j)] = lo + (hi - lo) * (float(j) + 0.5f) / float(K);
+        const depth_extent range = detail::depth_range_of(fragments);
+        const std::array<float, K> centre = initial_centres(range.nearest, range.furthest);
         // One k-means iteration: weighted means of the fragments nearest each centre. The sums are
         // exact integers (fixed_sum), so no order of the fragments changes them, and the GPU's compute
         // build, summing in whatever order its threads run, gets the same means bit for bit.
-        std::array<std::int64_t, K> weight{}, sum{};
+        cluster_sums sums{};
         for (const auto& f : fragments) {
             const auto j = std::size_t(nearest(centre, f.depth, [](int) { return true; }));
             const double b = fragment_optical_depth(f);
-            weight[j] += fixed_sum(b);
-            sum[j] += fixed_sum(b * double(f.depth)); // exact in double: two floats' product
+            sums.weight[j] += fixed_sum(b);
+            sums.sum[j] += fixed_sum(b * double(f.depth)); // exact in double: two floats' product
         }
-        for (std::size_t j = 0; j < std::size_t(K); ++j) {
-            s.mean[j] = weight[j] > 0 ? float(double(sum[j]) / double(weight[j])) : centre[j];
-            s.sigma[j] = weight[j] > 0 ? 0.0f : -1.0f;
-        }
+        set_means(sums, centre, s);
         // Second pass: weighted variance of each cluster's fragments around its mean.
-        std::array<std::int64_t, K> var_weight{}, var_sum{};
+        cluster_sums spread{};
         for (const auto& f : fragments) {
-            const auto j = std::size_t(nearest(s.mean, f.depth, [&](int i) { return s.sigma[std::size_t(i)] >= 0.0f; }));
+            const auto j = std::size_t(nearest(s.mean, f.depth, [&](int i) { return usable(s, i); }));
             const double b = fragment_optical_depth(f), d = double(f.depth) - s.mean[j];
-            var_weight[j] += fixed_sum(b);
-            var_sum[j] += fixed_sum(b * d * d);
+            spread.weight[j] += fixed_sum(b);
+            spread.sum[j] += fixed_sum(b * d * d);
         }
-        for (std::size_t j = 0; j < std::size_t(K); ++j)
-            if (s.sigma[j] >= 0.0f && var_weight[j] > 0) s.sigma[j] = float(std::sqrt(double(var_sum[j]) / double(var_weight[j])));
+        set_sigmas(spread, s);
     }
+
+#if HAIRSHADOW_AVX512_WALK
+    /// Fragments in a texel from which the vector paths below beat the scalar ones: below it, the
+    /// vectors' set-up and reductions cost more than they save (BENCHMARKS.md, issue 11).
+    static constexpr std::size_t vector_worthwhile = 4;
+    /// prepare_texel for a texel's optical fragments, sixteen at a time: the same state, bit for bit
+    /// (placement/clustered_avx512.hpp).
+    HAIRSHADOW_AVX512_TARGET void prepare_texel_avx512(std::span<const optical_fragment> fragments, texel_state& s) const noexcept
+        requires(K <= 16) {
+        if (fragments.size() < vector_worthwhile) return prepare_texel(fragments, s);
+        s.sigma.fill(-1.0f);
+        const depth_extent range = detail::avx512::texel_depth_range(fragments);
+        const std::array<float, K> centre = initial_centres(range.nearest, range.furthest);
+        cluster_sums sums{}, spread{};
+        if (!detail::avx512::add_cluster_sums<K, false>(fragments, centre.data(), all_usable(), sums.weight.data(), sums.sum.data()))
+            return prepare_texel(fragments, s); // a term beyond the vector's exact range: only absurd depths
+        set_means(sums, centre, s);
+        if (!detail::avx512::add_cluster_sums<K, true>(fragments, s.mean.data(), usable_mask(s), spread.weight.data(), spread.sum.data()))
+            return prepare_texel(fragments, s);
+        set_sigmas(spread, s);
+    }
+
+    /// layers[i] = assign(s, fragments[i].depth), sixteen at a time, bit for bit.
+    HAIRSHADOW_AVX512_TARGET void assign_texel_avx512(const texel_state& s, std::span<const optical_fragment> fragments,
+                                                       std::int32_t* layers) const noexcept
+        requires(K <= 16) {
+        if (fragments.size() < vector_worthwhile) {
+            const texel_assigner assign(*this, s);
+            for (std::size_t i = 0; i < fragments.size(); ++i) layers[i] = assign(fragments[i].depth);
+            return;
+        }
+        const std::array<bin, K> b = bins(s);
+        std::array<float, K> lo, hi;
+        std::uint32_t filled = 0;
+        for (std::size_t j = 0; j < std::size_t(K); ++j) {
+            lo[j] = b[j].lo, hi[j] = b[j].hi;
+            if (!b[j].empty) filled |= 1u << j;
+        }
+        detail::avx512::assign_to_bins<K>(fragments, lo.data(), hi.data(), filled, s.mean.data(), usable_mask(s), layers);
+    }
+#endif
 
     /// A k-means term in fixed point, 2^-36 (truncated toward zero): sums of up to 2^24 terms of
     /// optical depth below 7 (alpha <= HAIRSHADOW_ALPHA_MAX) times a depth within [-2, 2] stay exact.
-    static std::int64_t fixed_sum(double x) noexcept { return std::int64_t(x * 68719476736.0); }
+    static std::int64_t fixed_sum(double x) noexcept { return std::int64_t(x * detail::cluster_fixed_scale); }
 
     /// The bins of a texel in depth order; adjacent overlapping bins meet at the overlap's midpoint.
     std::array<bin, K> bins(const texel_state& s) const noexcept {
@@ -4738,7 +4996,7 @@ public:
                 const auto& x = bins_[std::size_t(j)];
                 if (!x.empty && depth >= x.lo && (depth < x.hi || (x.lo == x.hi && depth == x.lo))) return j;
             }
-            return nearest(state_->mean, depth, [&](int i) { return state_->sigma[std::size_t(i)] >= 0.0f; });
+            return nearest(state_->mean, depth, [&](int i) { return usable(*state_, i); });
         }
 
     private:
@@ -4768,6 +5026,38 @@ public:
     static constexpr std::size_t global_bytes() noexcept { return 0; }
 
 private:
+    /// A k-means pass's sums per cluster, in fixed point (fixed_sum).
+    struct cluster_sums {
+        std::array<std::int64_t, K> weight, sum;
+    };
+    /// Initial centres: the middles of K equal parts of [lo, hi].
+    static std::array<float, K> initial_centres(float lo, float hi) noexcept {
+        std::array<float, K> centre;
+        for (int j = 0; j < K; ++j) centre[std::size_t(j)] = lo + (hi - lo) * (float(j) + 0.5f) / float(K);
+        return centre;
+    }
+    /// The k-means step's result: each cluster's weighted mean, or its centre where it took nothing;
+    /// sigma 0 marks a cluster that took weight, -1 one that did not.
+    static void set_means(const cluster_sums& sums, const std::array<float, K>& centre, texel_state& s) noexcept {
+        for (std::size_t j = 0; j < std::size_t(K); ++j) {
+            s.mean[j] = sums.weight[j] > 0 ? float(double(sums.sum[j]) / double(sums.weight[j])) : centre[j];
+            s.sigma[j] = sums.weight[j] > 0 ? 0.0f : -1.0f;
+        }
+    }
+    /// Each used cluster's weighted standard deviation from its variance sums.
+    static void set_sigmas(const cluster_sums& spread, texel_state& s) noexcept {
+        for (std::size_t j = 0; j < std::size_t(K); ++j)
+            if (s.sigma[j] >= 0.0f && spread.weight[j] > 0) s.sigma[j] = float(std::sqrt(double(spread.sum[j]) / double(spread.weight[j])));
+    }
+    static bool usable(const texel_state& s, int j) noexcept { return s.sigma[std::size_t(j)] >= 0.0f; }
+    /// The clusters that took weight, as bits (the vector paths' `usable`).
+    static std::uint32_t usable_mask(const texel_state& s) noexcept {
+        std::uint32_t m = 0;
+        for (int j = 0; j < K && j < 32; ++j) m |= std::uint32_t(usable(s, j)) << j;
+        return m;
+    }
+    static constexpr std::uint32_t all_usable() noexcept { return K >= 32 ? ~0u : (1u << (K % 32)) - 1u; }
+
     template <class Usable>
     static int nearest(const std::array<float, K>& centres, float depth, Usable usable) noexcept {
         int best = -1;
@@ -5426,28 +5716,24 @@ struct interpolation {
         friend bool operator==(const storage&, const storage&) = default;
     };
 
-    /// Sums the texel's fragments into its layers.
+    /// Sums the texel's fragments into its layers; `instructions` (resolved) chooses how the layers
+    /// are found (placement/assign_each.hpp), which changes no bit.
     template <class Placement, class Accumulation, class Fragment>
     static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const Fragment> fragments,
-                      storage<Placement, Accumulation>& out) {
+                      storage<Placement, Accumulation>& out, instruction_set instructions = instruction_set::scalar) {
         constexpr int L = Placement::layer_count;
         std::array<typename Accumulation::sum_type, std::size_t(L)> sums{};
-        const auto assign = detail::texel_assigner(placement, state);
-        if constexpr (std::is_same_v<Accumulation, float_accumulation> && L <= 16) {
-            // Every layer's sum takes b or +0 for every fragment: the same sums, bit for bit (x + 0 == x
-            // for the sums, which are never -0), without a store and reload of one layer's sum per
-            // fragment; the layers' adds are independent and vectorise.
-            for (const auto& f : fragments) {
-                const int k = assign(f.depth);
+        detail::for_each_layer(placement, state, fragments, instructions, [&sums](int k, const Fragment& f) {
+            if constexpr (std::is_same_v<Accumulation, float_accumulation> && L <= 16) {
+                // Every layer's sum takes b or +0 for every fragment: the same sums, bit for bit (x + 0 == x
+                // for the sums, which are never -0), without a store and reload of one layer's sum per
+                // fragment; the layers' adds are independent and vectorise.
                 const float b = fragment_optical_depth(f);
                 for (int j = 0; j < L; ++j) sums[std::size_t(j)] += detail::keep_if(k == j, b);
-            }
-        } else {
-            for (const auto& f : fragments) {
-                const int k = assign(f.depth);
+            } else {
                 if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], fragment_optical_depth(f));
             }
-        }
+        });
         finish<Placement, Accumulation>(sums, out);
     }
 

@@ -76,10 +76,11 @@ public:
             const std::size_t res = std::size_t(light.resolution());
             texels_.resize(res * res);
             const auto texel_out = [&](int x, int y) -> texel_maps& { return texels_[std::size_t(y) * res + std::size_t(x)]; };
+            const instruction_set instructions = resolve(options.instructions);
             const auto build_grouped = [&](const detail::tile_fragments& tile) {
                 const texel_rect r = tile.rect();
                 for (int y = r.y0; y < r.y1; ++y)
-                    for (int x = r.x0; x < r.x1; ++x) build_texel(tile.texel(x, y), texel_out(x, y));
+                    for (int x = r.x0; x < r.x1; ++x) build_texel(tile.texel(x, y), texel_out(x, y), instructions);
             };
             if constexpr (detail::streams_tiles<Placement, Accumulation, Reconstruction>) {
                 // Dense tiles reduce their fragments where the walk left them (methods/streamed_tile.hpp);
@@ -87,7 +88,6 @@ public:
                 auto& per_thread = streamed_.get();
                 per_thread.resize(detail::tile_slots(w));
                 for (auto& s : per_thread) s.reserve(std::size_t(options.tile_size) * std::size_t(options.tile_size));
-                const instruction_set instructions = resolve(options.instructions);
                 fragments_ = detail::for_each_tile(w, detail::tile_grouping::on_demand, [&](unsigned slot, detail::tile_fragments& tile) {
                     if (per_thread[slot].pays(tile)) return per_thread[slot].build(placement_, tile, instructions, texel_out);
                     tile.group();
@@ -116,7 +116,7 @@ public:
             placement_.prepare(extent);
             fragments_ = fragments.size();
             texels_.assign(fragments.texel_count(), texel_maps{});
-            parallel_for(texels_.size(), exec, [&](std::size_t t) { build_texel(fragments.texel(t), texels_[t]); }, 512);
+            parallel_for(texels_.size(), exec, [&](std::size_t t) { build_texel(fragments.texel(t), texels_[t], instruction_set::scalar); }, 512);
         });
     }
 
@@ -166,13 +166,17 @@ public:
     static constexpr std::size_t texel_bytes() noexcept { return sizeof(texel_maps); }
 
 private:
-    /// One texel's maps from its fragments (fragment or optical_fragment), in segment order.
+    /// One texel's maps from its fragments (fragment or optical_fragment), in segment order, with the
+    /// vector steps `instructions` (resolved) allows (placement/assign_each.hpp): the same maps.
     template <class Fragment>
-    HAIRSHADOW_ALWAYS_INLINE void build_texel(std::span<const Fragment> in, texel_maps& out) const {
+    HAIRSHADOW_ALWAYS_INLINE void build_texel(std::span<const Fragment> in, texel_maps& out, instruction_set instructions) const {
         out = texel_maps{};
         if (in.empty()) return;
-        placement_.prepare_texel(in, out.placement);
-        reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
+        detail::prepare_texel(placement_, in, out.placement, instructions);
+        if constexpr (requires { reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data, instructions); })
+            reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data, instructions);
+        else
+            reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
     }
 
     /// The light of the maps, given to a reconstruction that needs it (a fibre density's world units).

@@ -1,16 +1,23 @@
 #pragma once
 /// @file
-/// A placement's layer for each of many fragments: the streamed build's per-fragment step
-/// (methods/streamed_tile.hpp). A placement may offer assign_each_avx512, which gives assign()'s
-/// layers bit for bit sixteen fragments at a time: the same IEEE subtraction, division and
-/// comparisons in every lane, so that only the instruction count changes. The rest are assigned one
-/// at a time. Which runs follows raster_options::instructions (raster/instruction_set.hpp).
+/// A placement's per-fragment steps, sixteen fragments at a time where the placement offers it:
+/// - assign_each: the layers of fragments from many texels (the streamed build, methods/streamed_tile.hpp),
+///   through a placement's assign_each_avx512;
+/// - prepare_texel and for_each_layer: one texel's pre-pass and layers (the grouped build), through
+///   prepare_texel_avx512 and assign_texel_avx512.
+/// The vector forms give the scalar results bit for bit: the same IEEE subtraction, division and
+/// comparisons in every lane, so that only the instruction count changes. Which runs follows
+/// raster_options::instructions (raster/instruction_set.hpp).
 
+#include <hairshadow/placement/layer_position.hpp>
 #include <hairshadow/raster/instruction_set.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 
 namespace hairshadow::detail {
 
@@ -20,6 +27,19 @@ template <class Placement>
 concept assigns_each_avx512 = requires(const Placement& p, const typename Placement::texel_state* states, std::span<const std::uint32_t> texels,
                                        std::span<const float> depths, std::int32_t* layers) {
     p.assign_each_avx512(states, texels, depths, layers);
+};
+
+/// Whether `Placement` has a vector pre-pass for one texel's optical fragments.
+template <class Placement>
+concept prepares_texel_avx512 = requires(const Placement& p, std::span<const optical_fragment> fragments, typename Placement::texel_state& s) {
+    p.prepare_texel_avx512(fragments, s);
+};
+
+/// Whether `Placement` assigns one texel's optical fragments sixteen at a time.
+template <class Placement>
+concept assigns_texel_avx512 = requires(const Placement& p, const typename Placement::texel_state& s, std::span<const optical_fragment> fragments,
+                                        std::int32_t* layers) {
+    p.assign_texel_avx512(s, fragments, layers);
 };
 
 namespace avx512 {
@@ -52,6 +72,44 @@ void assign_each(const Placement& placement, std::span<const typename Placement:
 #endif
     (void)instructions;
     for (std::size_t i = 0; i < texels.size(); ++i) layers[i] = placement.assign(states[texels[i]], depths[i]);
+}
+
+/// placement.prepare_texel(fragments, state), sixteen fragments at a time where the placement can and
+/// `instructions` (resolved) is avx512.
+template <class Placement, class Fragment>
+void prepare_texel(const Placement& placement, std::span<const Fragment> fragments, typename Placement::texel_state& state,
+                   instruction_set instructions) noexcept {
+#if HAIRSHADOW_AVX512_WALK
+    if constexpr (std::is_same_v<Fragment, optical_fragment> && prepares_texel_avx512<Placement>)
+        if (instructions == instruction_set::avx512) return placement.prepare_texel_avx512(fragments, state);
+#endif
+    (void)instructions;
+    placement.prepare_texel(fragments, state);
+}
+
+/// Calls visit(layer, fragment) for each of a texel's fragments in order, with layer =
+/// placement.assign(state, fragment.depth): sixteen at a time where the placement can and
+/// `instructions` (resolved) is avx512, else through texel_assigner.
+template <class Placement, class Fragment, class Visit>
+HAIRSHADOW_ALWAYS_INLINE inline void for_each_layer(const Placement& placement, const typename Placement::texel_state& state,
+                                             std::span<const Fragment> fragments, instruction_set instructions, Visit&& visit) {
+#if HAIRSHADOW_AVX512_WALK
+    if constexpr (std::is_same_v<Fragment, optical_fragment> && assigns_texel_avx512<Placement>) {
+        if (instructions == instruction_set::avx512) {
+            constexpr std::size_t block = 64; // a block's layers stay in registers and the first-level cache
+            std::array<std::int32_t, block> layers;
+            for (std::size_t first = 0; first < fragments.size(); first += block) {
+                const auto part = fragments.subspan(first, std::min(block, fragments.size() - first));
+                placement.assign_texel_avx512(state, part, layers.data());
+                for (std::size_t i = 0; i < part.size(); ++i) visit(int(layers[i]), part[i]);
+            }
+            return;
+        }
+    }
+#endif
+    (void)instructions;
+    const auto assign = texel_assigner(placement, state);
+    for (const auto& f : fragments) visit(assign(f.depth), f);
 }
 
 } // namespace hairshadow::detail

@@ -8,6 +8,7 @@
 /// mu_j +- sqrt(3) sigma_j (a uniform distribution's width from its variance); overlapping bins meet at
 /// the midpoint of the overlap; a fragment outside every bin goes to the nearest cluster.
 
+#include <hairshadow/placement/clustered_avx512.hpp>
 #include <hairshadow/placement/layer_position.hpp>
 
 #include <array>
@@ -54,40 +55,74 @@ public:
     void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
         s.sigma.fill(-1.0f);
         if (fragments.empty()) return;
-        float lo = fragments[0].depth, hi = lo;
-        for (const auto& f : fragments) lo = std::min(lo, f.depth), hi = std::max(hi, f.depth);
-        // Initial centres: the middles of K equal parts of [nearest, furthest].
-        std::array<float, K> centre;
-        for (int j = 0; j < K; ++j) centre[std::size_t(j)] = lo + (hi - lo) * (float(j) + 0.5f) / float(K);
+        const depth_extent range = detail::depth_range_of(fragments);
+        const std::array<float, K> centre = initial_centres(range.nearest, range.furthest);
         // One k-means iteration: weighted means of the fragments nearest each centre. The sums are
         // exact integers (fixed_sum), so no order of the fragments changes them, and the GPU's compute
         // build, summing in whatever order its threads run, gets the same means bit for bit.
-        std::array<std::int64_t, K> weight{}, sum{};
+        cluster_sums sums{};
         for (const auto& f : fragments) {
             const auto j = std::size_t(nearest(centre, f.depth, [](int) { return true; }));
             const double b = fragment_optical_depth(f);
-            weight[j] += fixed_sum(b);
-            sum[j] += fixed_sum(b * double(f.depth)); // exact in double: two floats' product
+            sums.weight[j] += fixed_sum(b);
+            sums.sum[j] += fixed_sum(b * double(f.depth)); // exact in double: two floats' product
         }
-        for (std::size_t j = 0; j < std::size_t(K); ++j) {
-            s.mean[j] = weight[j] > 0 ? float(double(sum[j]) / double(weight[j])) : centre[j];
-            s.sigma[j] = weight[j] > 0 ? 0.0f : -1.0f;
-        }
+        set_means(sums, centre, s);
         // Second pass: weighted variance of each cluster's fragments around its mean.
-        std::array<std::int64_t, K> var_weight{}, var_sum{};
+        cluster_sums spread{};
         for (const auto& f : fragments) {
-            const auto j = std::size_t(nearest(s.mean, f.depth, [&](int i) { return s.sigma[std::size_t(i)] >= 0.0f; }));
+            const auto j = std::size_t(nearest(s.mean, f.depth, [&](int i) { return usable(s, i); }));
             const double b = fragment_optical_depth(f), d = double(f.depth) - s.mean[j];
-            var_weight[j] += fixed_sum(b);
-            var_sum[j] += fixed_sum(b * d * d);
+            spread.weight[j] += fixed_sum(b);
+            spread.sum[j] += fixed_sum(b * d * d);
         }
-        for (std::size_t j = 0; j < std::size_t(K); ++j)
-            if (s.sigma[j] >= 0.0f && var_weight[j] > 0) s.sigma[j] = float(std::sqrt(double(var_sum[j]) / double(var_weight[j])));
+        set_sigmas(spread, s);
     }
+
+#if HAIRSHADOW_AVX512_WALK
+    /// Fragments in a texel from which the vector paths below beat the scalar ones: below it, the
+    /// vectors' set-up and reductions cost more than they save (BENCHMARKS.md, issue 11).
+    static constexpr std::size_t vector_worthwhile = 4;
+    /// prepare_texel for a texel's optical fragments, sixteen at a time: the same state, bit for bit
+    /// (placement/clustered_avx512.hpp).
+    HAIRSHADOW_AVX512_TARGET void prepare_texel_avx512(std::span<const optical_fragment> fragments, texel_state& s) const noexcept
+        requires(K <= 16) {
+        if (fragments.size() < vector_worthwhile) return prepare_texel(fragments, s);
+        s.sigma.fill(-1.0f);
+        const depth_extent range = detail::avx512::texel_depth_range(fragments);
+        const std::array<float, K> centre = initial_centres(range.nearest, range.furthest);
+        cluster_sums sums{}, spread{};
+        if (!detail::avx512::add_cluster_sums<K, false>(fragments, centre.data(), all_usable(), sums.weight.data(), sums.sum.data()))
+            return prepare_texel(fragments, s); // a term beyond the vector's exact range: only absurd depths
+        set_means(sums, centre, s);
+        if (!detail::avx512::add_cluster_sums<K, true>(fragments, s.mean.data(), usable_mask(s), spread.weight.data(), spread.sum.data()))
+            return prepare_texel(fragments, s);
+        set_sigmas(spread, s);
+    }
+
+    /// layers[i] = assign(s, fragments[i].depth), sixteen at a time, bit for bit.
+    HAIRSHADOW_AVX512_TARGET void assign_texel_avx512(const texel_state& s, std::span<const optical_fragment> fragments,
+                                                       std::int32_t* layers) const noexcept
+        requires(K <= 16) {
+        if (fragments.size() < vector_worthwhile) {
+            const texel_assigner assign(*this, s);
+            for (std::size_t i = 0; i < fragments.size(); ++i) layers[i] = assign(fragments[i].depth);
+            return;
+        }
+        const std::array<bin, K> b = bins(s);
+        std::array<float, K> lo, hi;
+        std::uint32_t filled = 0;
+        for (std::size_t j = 0; j < std::size_t(K); ++j) {
+            lo[j] = b[j].lo, hi[j] = b[j].hi;
+            if (!b[j].empty) filled |= 1u << j;
+        }
+        detail::avx512::assign_to_bins<K>(fragments, lo.data(), hi.data(), filled, s.mean.data(), usable_mask(s), layers);
+    }
+#endif
 
     /// A k-means term in fixed point, 2^-36 (truncated toward zero): sums of up to 2^24 terms of
     /// optical depth below 7 (alpha <= HAIRSHADOW_ALPHA_MAX) times a depth within [-2, 2] stay exact.
-    static std::int64_t fixed_sum(double x) noexcept { return std::int64_t(x * 68719476736.0); }
+    static std::int64_t fixed_sum(double x) noexcept { return std::int64_t(x * detail::cluster_fixed_scale); }
 
     /// The bins of a texel in depth order; adjacent overlapping bins meet at the overlap's midpoint.
     std::array<bin, K> bins(const texel_state& s) const noexcept {
@@ -122,7 +157,7 @@ public:
                 const auto& x = bins_[std::size_t(j)];
                 if (!x.empty && depth >= x.lo && (depth < x.hi || (x.lo == x.hi && depth == x.lo))) return j;
             }
-            return nearest(state_->mean, depth, [&](int i) { return state_->sigma[std::size_t(i)] >= 0.0f; });
+            return nearest(state_->mean, depth, [&](int i) { return usable(*state_, i); });
         }
 
     private:
@@ -152,6 +187,38 @@ public:
     static constexpr std::size_t global_bytes() noexcept { return 0; }
 
 private:
+    /// A k-means pass's sums per cluster, in fixed point (fixed_sum).
+    struct cluster_sums {
+        std::array<std::int64_t, K> weight, sum;
+    };
+    /// Initial centres: the middles of K equal parts of [lo, hi].
+    static std::array<float, K> initial_centres(float lo, float hi) noexcept {
+        std::array<float, K> centre;
+        for (int j = 0; j < K; ++j) centre[std::size_t(j)] = lo + (hi - lo) * (float(j) + 0.5f) / float(K);
+        return centre;
+    }
+    /// The k-means step's result: each cluster's weighted mean, or its centre where it took nothing;
+    /// sigma 0 marks a cluster that took weight, -1 one that did not.
+    static void set_means(const cluster_sums& sums, const std::array<float, K>& centre, texel_state& s) noexcept {
+        for (std::size_t j = 0; j < std::size_t(K); ++j) {
+            s.mean[j] = sums.weight[j] > 0 ? float(double(sums.sum[j]) / double(sums.weight[j])) : centre[j];
+            s.sigma[j] = sums.weight[j] > 0 ? 0.0f : -1.0f;
+        }
+    }
+    /// Each used cluster's weighted standard deviation from its variance sums.
+    static void set_sigmas(const cluster_sums& spread, texel_state& s) noexcept {
+        for (std::size_t j = 0; j < std::size_t(K); ++j)
+            if (s.sigma[j] >= 0.0f && spread.weight[j] > 0) s.sigma[j] = float(std::sqrt(double(spread.sum[j]) / double(spread.weight[j])));
+    }
+    static bool usable(const texel_state& s, int j) noexcept { return s.sigma[std::size_t(j)] >= 0.0f; }
+    /// The clusters that took weight, as bits (the vector paths' `usable`).
+    static std::uint32_t usable_mask(const texel_state& s) noexcept {
+        std::uint32_t m = 0;
+        for (int j = 0; j < K && j < 32; ++j) m |= std::uint32_t(usable(s, j)) << j;
+        return m;
+    }
+    static constexpr std::uint32_t all_usable() noexcept { return K >= 32 ? ~0u : (1u << (K % 32)) - 1u; }
+
     template <class Usable>
     static int nearest(const std::array<float, K>& centres, float depth, Usable usable) noexcept {
         int best = -1;

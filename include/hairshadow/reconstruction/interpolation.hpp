@@ -6,6 +6,7 @@
 /// 3.2: piecewise-constant density, piecewise-linear optical depth).
 
 #include <hairshadow/accumulation/float_accumulation.hpp>
+#include <hairshadow/placement/assign_each.hpp>
 #include <hairshadow/placement/layer_position.hpp>
 
 #include <array>
@@ -34,28 +35,24 @@ struct interpolation {
         friend bool operator==(const storage&, const storage&) = default;
     };
 
-    /// Sums the texel's fragments into its layers.
+    /// Sums the texel's fragments into its layers; `instructions` (resolved) chooses how the layers
+    /// are found (placement/assign_each.hpp), which changes no bit.
     template <class Placement, class Accumulation, class Fragment>
     static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const Fragment> fragments,
-                      storage<Placement, Accumulation>& out) {
+                      storage<Placement, Accumulation>& out, instruction_set instructions = instruction_set::scalar) {
         constexpr int L = Placement::layer_count;
         std::array<typename Accumulation::sum_type, std::size_t(L)> sums{};
-        const auto assign = detail::texel_assigner(placement, state);
-        if constexpr (std::is_same_v<Accumulation, float_accumulation> && L <= 16) {
-            // Every layer's sum takes b or +0 for every fragment: the same sums, bit for bit (x + 0 == x
-            // for the sums, which are never -0), without a store and reload of one layer's sum per
-            // fragment; the layers' adds are independent and vectorise.
-            for (const auto& f : fragments) {
-                const int k = assign(f.depth);
+        detail::for_each_layer(placement, state, fragments, instructions, [&sums](int k, const Fragment& f) {
+            if constexpr (std::is_same_v<Accumulation, float_accumulation> && L <= 16) {
+                // Every layer's sum takes b or +0 for every fragment: the same sums, bit for bit (x + 0 == x
+                // for the sums, which are never -0), without a store and reload of one layer's sum per
+                // fragment; the layers' adds are independent and vectorise.
                 const float b = fragment_optical_depth(f);
                 for (int j = 0; j < L; ++j) sums[std::size_t(j)] += detail::keep_if(k == j, b);
-            }
-        } else {
-            for (const auto& f : fragments) {
-                const int k = assign(f.depth);
+            } else {
                 if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], fragment_optical_depth(f));
             }
-        }
+        });
         finish<Placement, Accumulation>(sums, out);
     }
 
