@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cstring>
 #include <random>
+#include <set>
 #include <thread>
 
 using namespace hairshadow;
@@ -234,9 +235,57 @@ TEST_CASE("the tiled line walk keeps exactly the line rule's fragments", "[tiled
             CHECK(expected == walked);
             return;
         }
+        // segment_bins' bound on a tile's fragments rests on this: at most one fragment per column of
+        // an x-major line (row of a y-major one), within a texel of the segment's span.
+        const bool x_major = std::abs(b.x - a.x) >= std::abs(b.y - a.y);
+        const std::int64_t lo = x_major ? std::min(a.x, b.x) : std::min(a.y, b.y), hi = x_major ? std::max(a.x, b.x) : std::max(a.y, b.y);
+        std::set<int> lines;
+        for (const auto& [x, y] : expected) {
+            const int line = x_major ? x : y;
+            if (!lines.insert(line).second || line < (lo >> HAIRSHADOW_SUBPIXEL_BITS) - 1 || line > (hi >> HAIRSHADOW_SUBPIXEL_BITS) + 1) {
+                CAPTURE(a.x, a.y, b.x, b.y, clip.x0, clip.y0, clip.x1, clip.y1, x, y);
+                FAIL("two fragments in one line along the major axis, or one beyond the segment's span");
+            }
+        }
         checked += !expected.empty();
     }
     CHECK(checked > 5000);
+}
+
+TEST_CASE("no tile holds more fragments than segment_bins bounds it by, and the bound is near", "[tiled][raster]") {
+    std::size_t tiles_checked = 0;
+    for (const std::string name : {"sintel", "curly"})
+        for (const int res : {256, 1024})
+            for (const int tile : {8, 37, 64, 200})
+                for (const bool point_light : {false, true}) {
+                    CAPTURE(name, res, tile, point_light);
+                    const auto& model = test_model(name);
+                    const light_spec spec = point_light ? light_spec::point(model.bounds().center() + glm::vec3(0.0f, model.bounds().diagonal(), 0.0f))
+                                                        : light_spec::directional({0.3f, -1.0f, 0.2f});
+                    raster_options options;
+                    options.tile_size = tile;
+                    detail::segment_bins bins;
+                    bins.prepare(model, light_space::fit(spec, model.bounds(), res), options);
+                    detail::tile_fragments store;
+                    std::size_t over = 0, largest = 0;
+                    for (std::size_t t = 0; t < bins.tile_count(); ++t) {
+                        store.gather(bins, t, instruction_set::automatic);
+                        over += store.size() > bins.tile_fragment_bound(t);
+                        largest = std::max(largest, store.size());
+                    }
+                    tiles_checked += bins.tile_count();
+                    CHECK(over == 0);
+                    CHECK(largest > 0);
+                    CHECK(bins.largest_tile_fragment_bound() >= largest);
+                    CHECK(bins.largest_tile_fragment_bound() <= 4 * largest + std::size_t(tile)); // not vacuous (short segments in small tiles: up to 3.3x)
+                }
+    CHECK(tiles_checked > 1000);
+    // Wide lines have no such bound.
+    raster_options wide;
+    wide.wide_line_width = 2.0f;
+    detail::segment_bins bins;
+    bins.prepare(test_model("sintel"), light_space::fit(light_spec::directional({0, -1, 0}), test_model("sintel").bounds(), 128), wide);
+    CHECK(bins.largest_tile_fragment_bound() == 0);
 }
 
 TEST_CASE("the AVX-512 walk stores the scalar walk's fragments, in its order, tile by tile", "[tiled][raster]") {

@@ -2487,17 +2487,21 @@ inline instruction_set resolve(instruction_set requested) {
 
 namespace hairshadow::detail {
 
-/// A segment ready for the line rule, in 32 bytes: a map of millions of segments is read from memory
-/// once per tile pass, so its size is time.
-struct prepared_segment {
+/// Where a segment lies for the line rule, in 24 bytes: what segment_bins keeps of every segment of a
+/// map (millions, read from memory once per tile pass, so their size is time and memory).
+struct segment_geometry {
     std::int32_t ax, ay, bx, by; ///< snapped window coordinates (1/subpixel_scale texels), inside the guard band
     float depth_a, depth_b;      ///< linear depth
-    float inv_w_a, inv_w_b;      ///< 1/w, for perspective-correct interpolation (1 for orthographic lights)
 
     fixed_point a() const noexcept { return {ax, ay}; }
     fixed_point b() const noexcept { return {bx, by}; }
     /// Nothing to draw: clipped away, or of zero length.
     bool empty() const noexcept { return ax == bx && ay == by; }
+};
+
+/// A segment ready for the line rule and its fragments' shading.
+struct prepared_segment : segment_geometry {
+    float inv_w_a, inv_w_b; ///< 1/w, for perspective-correct interpolation (1 for orthographic lights)
 };
 
 /// Thickness and opacity at a segment's two ends.
@@ -2593,7 +2597,7 @@ HAIRSHADOW_ALWAYS_INLINE inline bool prepare_segment(const light_space& ls, glm:
     if (!(std::abs(a.window.x) <= guard_band && std::abs(a.window.y) <= guard_band && std::abs(b.window.x) <= guard_band &&
           std::abs(b.window.y) <= guard_band && std::abs(a.depth) <= 2.0f && std::abs(b.depth) <= 2.0f && a.w > 0.0f && b.w > 0.0f))
         return false;
-    out = {snap(a.window.x), snap(a.window.y), snap(b.window.x), snap(b.window.y), a.depth, b.depth, 1.0f / a.w, 1.0f / b.w};
+    out = {{snap(a.window.x), snap(a.window.y), snap(b.window.x), snap(b.window.y), a.depth, b.depth}, 1.0f / a.w, 1.0f / b.w};
     return !out.empty();
 }
 
@@ -2710,11 +2714,14 @@ namespace hairshadow::detail {
 class segment_bins {
 public:
     /// Projects, snaps and bins every segment of `model` for `light`'s map, in tiles of
-    /// options.tile_size texels. Throws argument_error for bad options.
-    void prepare(const hair_model& model, const light_space& light, const raster_options& options) {
+    /// options.tile_size texels, and bounds each tile's fragments where `bound_tiles` (a first build,
+    /// whose tile stores are still to be sized; a rebuild skips the work). Throws argument_error for
+    /// bad options.
+    void prepare(const hair_model& model, const light_space& light, const raster_options& options, bool bound_tiles = true) {
         options.check();
         opt_ = options;
         light_ = light;
+        bounded_ = bound_tiles && opt_.wide_line_width == 0.0f;
         project_and_bin(model, light, light.resolution());
     }
 
@@ -2728,6 +2735,14 @@ public:
     /// Tiles from the most segments to the fewest: handing out the largest first balances threads.
     const std::vector<std::uint32_t>& tiles_by_load() const noexcept { return by_load_; }
     std::size_t tile_load(std::size_t t) const noexcept { return std::size_t(tile_begin_[t + 1] - tile_begin_[t]); }
+    /// At most this many fragments fall in tile t, for thin lines (0 for wide ones, which have no
+    /// such bound, and where prepare was not asked for it): a thin line makes at most one fragment per column where it is x-major (per row
+    /// where y-major), so each segment gives a tile at most its length in texels plus 2, and at most
+    /// the number of those columns (rows) in the tile that its span reaches (segment_fragment_bound,
+    /// count_tiles). Lets the tile stores be sized before any walk; tests check it holds.
+    std::size_t tile_fragment_bound(std::size_t t) const noexcept { return bounded_ ? std::size_t(tile_bound_[t]) : 0; }
+    /// The largest tile_fragment_bound of the map's tiles.
+    std::size_t largest_tile_fragment_bound() const noexcept { return bounded_ ? std::size_t(largest_bound_) : 0; }
 
     /// The whole-map pre-pass: nearest and furthest end of every segment whose box meets the map
     /// (meets_map). Each fragment's depth lies between its segment's end depths, so this range holds
@@ -2745,16 +2760,31 @@ public:
     std::span<const std::uint32_t> tile_segments(std::size_t t) const noexcept {
         return {binned_.data() + tile_begin_[t], std::size_t(tile_begin_[t + 1] - tile_begin_[t])};
     }
-    const prepared_segment& segment(std::size_t i) const noexcept { return segments_[i]; }
+    /// Segment i, prepared. 1/w is kept only for a perspective light: an orthographic one's is 1.
+    prepared_segment segment(std::size_t i) const noexcept {
+        const std::array<float, 2> inv_w = inv_w_.empty() ? std::array<float, 2>{1.0f, 1.0f} : inv_w_[i];
+        return {segments_[i], inv_w[0], inv_w[1]};
+    }
+    /// Fetches segment i into the cache ahead of its use: both of its ends, since a quarter of the
+    /// 24-byte records straddle two cache lines.
+    void prefetch_segment(std::size_t i) const noexcept {
+#if defined(__GNUC__)
+        const char* first = reinterpret_cast<const char*>(&segments_[i]);
+        __builtin_prefetch(first);
+        __builtin_prefetch(first + sizeof(segment_geometry) - 1);
+#else
+        (void)i;
+#endif
+    }
     /// Every segment has the same thickness and opacity at both ends (uniform_attributes()).
     bool uniform_attributes() const noexcept { return attributes_.empty(); }
     /// A segment of the same alpha at every fragment: constant attributes (uniform_attributes()) and a
     /// footprint that does not change with depth, or a fixed alpha. Then its alpha is this shader's.
-    segment_shader uniform_shader() const noexcept { return {light_, opt_, prepared_segment{0, 0, 1, 0, 0.0f, 0.0f, 1.0f, 1.0f}, uniform_}; }
+    segment_shader uniform_shader() const noexcept { return {light_, opt_, prepared_segment{{0, 0, 1, 0, 0.0f, 0.0f}, 1.0f, 1.0f}, uniform_}; }
 
     /// The shading of segment i's fragments.
     segment_shader shader(std::size_t i) const noexcept {
-        return {light_, opt_, segments_[i], attributes_.empty() ? uniform_ : attributes_[i]};
+        return {light_, opt_, segment(i), attributes_.empty() ? uniform_ : attributes_[i]};
     }
 
     /// Calls visit(shader) for each of tile t's segments, in segment order.
@@ -2764,7 +2794,7 @@ public:
         const std::uint64_t end = tile_begin_[t + 1];
         for (std::uint64_t i = tile_begin_[t]; i < end; ++i) {
 #if defined(__GNUC__)
-            if (i + lookahead < end) __builtin_prefetch(&segments_[binned_[i + lookahead]]);
+            if (i + lookahead < end) prefetch_segment(binned_[i + lookahead]);
 #endif
             visit(shader(binned_[i]));
         }
@@ -2786,9 +2816,10 @@ public:
 
     /// Bytes of working memory held.
     std::size_t memory_bytes() const noexcept {
-        return segments_.capacity() * sizeof(prepared_segment) + attributes_.capacity() * sizeof(segment_attributes) +
+        return segments_.capacity() * sizeof(segment_geometry) + inv_w_.capacity() * sizeof(inv_w_[0]) + attributes_.capacity() * sizeof(segment_attributes) +
                (first_segment_.capacity() + chunk_strand_.capacity()) * sizeof(std::size_t) + first_tile_.capacity() * sizeof(std::uint32_t) + (cursor_.capacity() + tile_begin_.capacity()) * sizeof(std::uint64_t) +
-               (binned_.capacity() + by_load_.capacity()) * sizeof(std::uint32_t) + chunk_extent_.capacity() * sizeof(depth_extent);
+               (binned_.capacity() + by_load_.capacity()) * sizeof(std::uint32_t) + chunk_extent_.capacity() * sizeof(depth_extent) +
+               (bound_.capacity() + tile_bound_.capacity()) * sizeof(std::uint64_t);
     }
 
 private:
@@ -2830,6 +2861,7 @@ private:
         const std::size_t count = first_segment_.back();
         if (count > std::numeric_limits<std::uint32_t>::max()) throw argument_error("more than 2^32 segments");
         segments_.resize(count);
+        inv_w_.resize(light.perspective() ? count : 0);
         first_tile_.resize(count);
         const bool per_point = !model.thickness.empty() || !model.transparency.empty();
         const float t = model.default_thickness, o = 1.0f - model.default_transparency;
@@ -2842,6 +2874,7 @@ private:
             chunk_strand_[c] = std::size_t(std::lower_bound(first_segment_.begin(), first_segment_.end() - 1, c * count / chunks) - first_segment_.begin());
         chunk_strand_[chunks] = model.strand_count();
         cursor_.assign(chunks * tiles, 0);
+        bound_.assign(bounded_ ? chunks * tiles : 0, 0);
         chunk_extent_.assign(chunks, depth_extent{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()});
         const auto reach = this->reach();
         // The vector projection covers segments of one thickness and opacity, in tiles whose side is
@@ -2850,10 +2883,12 @@ private:
         (void)vector;
         parallel_for(chunks, opt_.exec, [&](std::size_t c) {
             // Raw pointers: stores through a member vector would make the compiler reload its data pointer.
-            prepared_segment* out = segments_.data();
+            segment_geometry* out = segments_.data();
+            std::array<float, 2>* out_inv_w = inv_w_.empty() ? nullptr : inv_w_.data();
             std::uint32_t* first_tile = first_tile_.data();
             segment_attributes* out_attributes = per_point ? attributes_.data() : nullptr;
             std::uint64_t* counts = cursor_.data() + c * tiles;
+            std::uint64_t* bounds = bounded_ ? bound_.data() + c * tiles : nullptr;
             const segment_attributes uniform = uniform_;
             depth_extent e = chunk_extent_[c];
             for (std::size_t strand = chunk_strand_[c]; strand < chunk_strand_[c + 1]; ++strand) {
@@ -2862,7 +2897,7 @@ private:
                 const glm::vec3* points = model.points.data() + p0;
 #if HAIRSHADOW_AVX512_WALK
                 if (vector) {
-                    project_strand_avx512(points, n, first_segment_[strand], counts, e, reach);
+                    project_strand_avx512(points, n, first_segment_[strand], counts, bounds, e, reach);
                     continue;
                 }
 #endif
@@ -2873,11 +2908,13 @@ private:
                     segment_attributes at = uniform;
                     if (out_attributes)
                         at = {model.thickness_at(p), model.thickness_at(p + 1), 1.0f - model.transparency_at(p), 1.0f - model.transparency_at(p + 1)};
-                    prepared_segment& s = out[seg];
+                    prepared_segment s;
                     prepare_segment(light, points[i], points[i + 1], from, to, at, s);
+                    out[seg] = s;
+                    if (out_inv_w) out_inv_w[seg] = {s.inv_w_a, s.inv_w_b};
                     if (out_attributes) out_attributes[seg] = at;
                     from = to;
-                    first_tile[seg] = count_tiles(s, reach, counts, e);
+                    first_tile[seg] = count_tiles(s, reach, counts, bounds, e);
                 }
             }
             chunk_extent_[c] = e;
@@ -2886,14 +2923,18 @@ private:
         for (const auto& e : chunk_extent_) extent_.nearest = std::min(extent_.nearest, e.nearest), extent_.furthest = std::max(extent_.furthest, e.furthest);
         if (!(extent_.nearest <= extent_.furthest)) extent_ = {}; // nothing reaches the map: {0, 0}, as extent_of an empty buffer
         tile_begin_.resize(tiles + 1);
+        tile_bound_.assign(bounded_ ? tiles : 0, 0);
         std::uint64_t total = 0;
+        largest_bound_ = 0;
         for (std::size_t tile = 0; tile < tiles; ++tile) {
             tile_begin_[tile] = total;
             for (std::size_t c = 0; c < chunks; ++c) {
                 const std::uint64_t k = cursor_[c * tiles + tile];
                 cursor_[c * tiles + tile] = total;
                 total += k;
+                if (bounded_) tile_bound_[tile] += bound_[c * tiles + tile];
             }
+            if (bounded_) largest_bound_ = std::max(largest_bound_, tile_bound_[tile]);
         }
         tile_begin_[tiles] = total;
         if (total > std::numeric_limits<std::uint32_t>::max()) throw argument_error("more than 2^32 segment-tile pairs");
@@ -2908,7 +2949,7 @@ private:
                 if (first == no_tile) continue;
                 const auto put = [&](std::size_t tile) HAIRSHADOW_ALWAYS_INLINE { binned[cursor[tile]++] = std::uint32_t(seg); };
                 if (first & more_tiles) {
-                    visit_tiles(segments_[seg], reach, put);
+                    visit_tiles(segments_[seg], reach, [&](std::size_t tile, int, int) HAIRSHADOW_ALWAYS_INLINE { put(tile); });
                     continue;
                 }
                 const std::size_t tile = first & tile_bits, below = tile + std::size_t(tiles_x_);
@@ -2928,16 +2969,36 @@ private:
         });
     }
 
+    /// Fragments a thin segment can give one tile: its length in texels along its major axis plus 2
+    /// (one texel centre a column, or row, and the ends), at most the tile's side plus 1.
+    HAIRSHADOW_ALWAYS_INLINE std::uint64_t segment_fragment_bound(const segment_geometry& s) const noexcept {
+        const std::int64_t major = std::max(std::abs(std::int64_t(s.bx) - s.ax), std::abs(std::int64_t(s.by) - s.ay));
+        return std::uint64_t(std::min<std::int64_t>((major >> HAIRSHADOW_SUBPIXEL_BITS) + 2, opt_.tile_size + 1));
+    }
+
     /// Counts segment s in each tile it reaches and returns its entry in first_tile_ (its first tile
     /// and which others it reaches), or no_tile; widens e by its ends when its box meets the map.
-    HAIRSHADOW_ALWAYS_INLINE std::uint32_t count_tiles(const prepared_segment& s, std::int64_t reach, std::uint64_t* counts, depth_extent& e) const noexcept {
+    /// Adds its bound on each tile's fragments to `bounds`, unless null.
+    HAIRSHADOW_ALWAYS_INLINE std::uint32_t count_tiles(const segment_geometry& s, std::int64_t reach, std::uint64_t* counts, std::uint64_t* bounds,
+                                                       depth_extent& e) const noexcept {
         if (s.empty() || !meets_map(s, reach)) return no_tile;
         e.nearest = std::min({e.nearest, s.depth_a, s.depth_b});
         e.furthest = std::max({e.furthest, s.depth_a, s.depth_b});
         std::size_t visited = 0;
         std::array<std::size_t, 4> tiles{}; // the first four it reaches
-        visit_tiles(s, reach, [&](std::size_t tile) HAIRSHADOW_ALWAYS_INLINE {
+        const std::uint64_t bound = segment_fragment_bound(s);
+        // The columns (rows, for a y-major segment) whose texel centres it may pass: from the one
+        // before its first end's texel to the one after its last's.
+        const bool x_major = std::abs(std::int64_t(s.bx) - s.ax) >= std::abs(std::int64_t(s.by) - s.ay);
+        const std::int64_t lo = x_major ? std::min(s.ax, s.bx) : std::min(s.ay, s.by), hi = x_major ? std::max(s.ax, s.bx) : std::max(s.ay, s.by);
+        const std::int64_t first_line = (lo >> HAIRSHADOW_SUBPIXEL_BITS) - 1, last_line = (hi >> HAIRSHADOW_SUBPIXEL_BITS) + 1;
+        visit_tiles(s, reach, [&](std::size_t tile, int tx, int ty) HAIRSHADOW_ALWAYS_INLINE {
             ++counts[tile];
+            if (bounds) { // at most one fragment in each of those lines that lies in the tile
+                const std::int64_t tile_line = std::int64_t(x_major ? tx : ty) * opt_.tile_size;
+                const std::int64_t lines = std::min(last_line, tile_line + opt_.tile_size - 1) - std::max(first_line, tile_line) + 1;
+                bounds[tile] += std::min(bound, std::uint64_t(std::max<std::int64_t>(lines, 0)));
+            }
             if (visited < tiles.size()) tiles[visited] = tile;
             ++visited;
         });
@@ -2952,6 +3013,12 @@ private:
         return std::uint32_t(first) | more_tiles;
     }
 
+    /// Keeps prepared segment s as segment seg (its 1/w only for a perspective light).
+    void store(std::size_t seg, const prepared_segment& s) noexcept {
+        segments_[seg] = s;
+        if (!inv_w_.empty()) inv_w_[seg] = {s.inv_w_a, s.inv_w_b};
+    }
+
     /// One segment of project_strand_avx512 that the vector code leaves alone, prepared and counted
     /// by the scalar code, compiled apart from the AVX-512 function: inlined there, the compiler could
     /// fuse its multiplications and additions and prepare or bin the segment differently.
@@ -2959,18 +3026,20 @@ private:
     __attribute__((noinline))
 #endif
     std::uint32_t prepare_and_count(const glm::vec3& p0, const glm::vec3& p1, bool prepared, std::size_t seg, std::int64_t reach,
-                                    std::uint64_t* counts, depth_extent& e) {
+                                    std::uint64_t* counts, std::uint64_t* bounds, depth_extent& e) {
         if (!prepared) {
             segment_attributes at = uniform_;
-            prepare_segment(light_, p0, p1, project_point(light_, p0), project_point(light_, p1), at, segments_[seg]);
+            prepared_segment s;
+            prepare_segment(light_, p0, p1, project_point(light_, p0), project_point(light_, p1), at, s);
+            store(seg, s);
         }
-        return count_tiles(segments_[seg], reach, counts, e);
+        return count_tiles(segments_[seg], reach, counts, bounds, e);
     }
 
 #if HAIRSHADOW_AVX512_WALK
     /// project_and_bin's loop over one strand of n points, whose first segment is first_seg, in
     /// AVX-512 (raster/segment_project_avx512.hpp).
-    void project_strand_avx512(const glm::vec3* points, std::size_t n, std::size_t first_seg, std::uint64_t* counts, depth_extent& e,
+    void project_strand_avx512(const glm::vec3* points, std::size_t n, std::size_t first_seg, std::uint64_t* counts, std::uint64_t* bounds, depth_extent& e,
                                std::int64_t reach);
 #endif
 
@@ -2985,7 +3054,7 @@ private:
 
     /// Does the segment's bounding box, widened by `reach`, meet the map? The whole-map extent counts
     /// the segments that do, whatever the tiles.
-    HAIRSHADOW_ALWAYS_INLINE bool meets_map(const prepared_segment& s, std::int64_t reach) const noexcept {
+    HAIRSHADOW_ALWAYS_INLINE bool meets_map(const segment_geometry& s, std::int64_t reach) const noexcept {
         const std::int64_t hi_x = (std::max<std::int64_t>(s.ax, s.bx) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
         const std::int64_t hi_y = (std::max<std::int64_t>(s.ay, s.by) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
         const std::int64_t lo_x = (std::min<std::int64_t>(s.ax, s.bx) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
@@ -2993,11 +3062,11 @@ private:
         return !(hi_x < 0 || hi_y < 0 || lo_x >= res_ || lo_y >= res_);
     }
 
-    /// Calls visit(tile) for each tile within `reach` (sub-pixel units) of the segment; a long diagonal
+    /// Calls visit(tile, tx, ty) (the tile's index and column and row of tiles) for each tile within `reach` (sub-pixel units) of the segment; a long diagonal
     /// segment visits O(its length) tiles rather than its whole bounding box. Integer arithmetic only,
     /// so that the counting and the writing pass, wherever the compiler puts them, visit the same tiles.
     template <class Visit>
-    HAIRSHADOW_ALWAYS_INLINE void visit_tiles(const prepared_segment& s, std::int64_t reach, Visit&& visit) const {
+    HAIRSHADOW_ALWAYS_INLINE void visit_tiles(const segment_geometry& s, std::int64_t reach, Visit&& visit) const {
         if (!meets_map(s, reach)) return;
         // Texel bounds of the segment plus its reach; arithmetic shifts floor negative values.
         const std::int64_t lo_x = (std::min<std::int64_t>(s.ax, s.bx) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
@@ -3008,7 +3077,7 @@ private:
         const int ty0 = tile_of(std::max<std::int64_t>(lo_y, 0)), ty1 = tile_of(std::min<std::int64_t>(hi_y, res_ - 1));
         if (ty0 == ty1 || tx0 == tx1) { // most hair segments: one row or column of tiles, as the box says
             for (int ty = ty0; ty <= ty1; ++ty)
-                for (int tx = tx0; tx <= tx1; ++tx) visit(std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx));
+                for (int tx = tx0; tx <= tx1; ++tx) visit(std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx), tx, ty);
             return;
         }
         // A segment across several rows and columns: per row of tiles, only the columns that the
@@ -3028,7 +3097,7 @@ private:
             const std::int64_t x_lo = std::min(x_at(band_lo, false), x_at(band_hi, false)) - reach;
             const std::int64_t x_hi = std::max(x_at(band_lo, true), x_at(band_hi, true)) + reach;
             const int c0 = int(std::max<std::int64_t>(tx0, floor_div(x_lo, side))), c1 = int(std::min<std::int64_t>(tx1, floor_div(x_hi, side)));
-            for (int tx = c0; tx <= c1; ++tx) visit(std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx));
+            for (int tx = c0; tx <= c1; ++tx) visit(std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx), tx, ty);
         }
     }
 
@@ -3036,7 +3105,12 @@ private:
     light_space light_;
     int res_ = 0, tiles_x_ = 0;
     std::uint64_t tile_magic_ = 0;
-    std::vector<prepared_segment, huge_page_allocator<prepared_segment>> segments_;
+    std::vector<segment_geometry, huge_page_allocator<segment_geometry>> segments_;
+    std::vector<std::array<float, 2>, huge_page_allocator<std::array<float, 2>>> inv_w_; ///< per segment, for a perspective light only
+    std::vector<std::uint64_t> bound_;      ///< per chunk and tile: the sum of its segments' segment_fragment_bound
+    std::vector<std::uint64_t> tile_bound_; ///< per tile: the chunks' sums
+    std::uint64_t largest_bound_ = 0;
+    bool bounded_ = false; ///< prepare was asked for the tiles' bounds
     std::vector<segment_attributes> attributes_; ///< per segment, only when the model has per-point thickness or transparency
     segment_attributes uniform_{};
     std::vector<std::size_t> first_segment_, chunk_strand_;
@@ -3107,7 +3181,8 @@ HAIRSHADOW_AVX512_TARGET inline __m512 gather_floats(const float* from, __m512i 
 } // namespace avx512
 
 HAIRSHADOW_AVX512_TARGET inline void segment_bins::project_strand_avx512(const glm::vec3* points, std::size_t n, std::size_t first_seg,
-                                                                         std::uint64_t* counts, depth_extent& e, std::int64_t reach) {
+                                                                         std::uint64_t* counts, std::uint64_t* bounds, depth_extent& e,
+                                                                         std::int64_t reach) {
     using namespace avx512;
     const light_space& ls = light_;
     const auto vp_x = ls.row_coefficients(ls.view_projection(), 0), vp_y = ls.row_coefficients(ls.view_projection(), 1);
@@ -3121,7 +3196,8 @@ HAIRSHADOW_AVX512_TARGET inline void segment_bins::project_strand_avx512(const g
     const int tile_shift = std::countr_zero(unsigned(opt_.tile_size));
     const __m512i tiles_x = _mm512_set1_epi32(tiles_x_), zero_i = _mm512_setzero_si512();
     __m512 nearest = _mm512_set1_ps(e.nearest), furthest = _mm512_set1_ps(e.furthest);
-    alignas(64) std::int32_t ax[16], ay[16], bx[16], by[16], tile[16];
+    alignas(64) std::int32_t ax[16], ay[16], bx[16], by[16], tile[16], bound[16];
+    const __m512i most_bound = _mm512_set1_epi32(opt_.tile_size + 1), two_i = _mm512_set1_epi32(2);
     alignas(64) float depth_a[16], depth_b[16], inv_w_a[16], inv_w_b[16];
     const std::size_t segments = n - 1;
     for (std::size_t base = 0; base < segments; base += 16) {
@@ -3168,6 +3244,9 @@ HAIRSHADOW_AVX512_TARGET inline void segment_bins::project_strand_avx512(const g
         const __mmask16 one_tile = simple & __mmask16(~empty) & in_map & _mm512_cmpeq_epi32_mask(tx0, tx1) & _mm512_cmpeq_epi32_mask(ty0, ty1);
         const __mmask16 off_map = simple & __mmask16(~empty) & __mmask16(~in_map);
         _mm512_store_si512(tile, _mm512_add_epi32(_mm512_mullo_epi32(ty0, tiles_x), tx0));
+        // segment_fragment_bound; within the guard band the differences fit in 32 bits.
+        const __m512i major = _mm512_max_epi32(_mm512_abs_epi32(_mm512_sub_epi32(sbx, sax)), _mm512_abs_epi32(_mm512_sub_epi32(sby, say)));
+        _mm512_store_si512(bound, _mm512_min_epi32(_mm512_add_epi32(_mm512_srai_epi32(major, HAIRSHADOW_SUBPIXEL_BITS), two_i), most_bound));
         const __mmask16 meets_map = simple & __mmask16(~empty) & in_map; // the extent counts these (segment_bins::meets_map)
         nearest = _mm512_mask_min_ps(nearest, meets_map, nearest, _mm512_min_ps(dep0, dep1));
         furthest = _mm512_mask_max_ps(furthest, meets_map, furthest, _mm512_max_ps(dep0, dep1));
@@ -3175,9 +3254,10 @@ HAIRSHADOW_AVX512_TARGET inline void segment_bins::project_strand_avx512(const g
             const std::size_t i = base + std::size_t(l), seg = first_seg + i;
             const std::uint32_t bit = 1u << l;
             if (simple & bit) {
-                segments_[seg] = {ax[l], ay[l], bx[l], by[l], depth_a[l], depth_b[l], inv_w_a[l], inv_w_b[l]};
+                store(seg, {{ax[l], ay[l], bx[l], by[l], depth_a[l], depth_b[l]}, inv_w_a[l], inv_w_b[l]});
                 if (one_tile & bit) {
                     ++counts[tile[l]];
+                    if (bounds) bounds[tile[l]] += std::uint64_t(bound[l]);
                     first_tile_[seg] = std::uint32_t(tile[l]);
                     continue;
                 }
@@ -3186,7 +3266,7 @@ HAIRSHADOW_AVX512_TARGET inline void segment_bins::project_strand_avx512(const g
                     continue;
                 }
             }
-            first_tile_[seg] = prepare_and_count(points[i], points[i + 1], (simple & bit) != 0, seg, reach, counts, e);
+            first_tile_[seg] = prepare_and_count(points[i], points[i + 1], (simple & bit) != 0, seg, reach, counts, bounds, e);
         }
     }
     e.nearest = std::min(e.nearest, _mm512_reduce_min_ps(nearest));
@@ -3708,12 +3788,23 @@ public:
     std::size_t size() const noexcept { return n_; }
     /// Fragments it walks without allocating.
     std::size_t capacity() const noexcept { return where_.size(); }
-    /// Makes room for `fragments` fragments in tiles of `tile_texels` texels, walked (and grouped, when
-    /// `grouped`), so that tiles up to that size allocate nothing.
-    void reserve(std::size_t fragments, std::size_t tile_texels, bool grouped) {
+    /// Room to walk a tile of `fragments` fragments and group `grouped` of them without growing,
+    /// allocated afresh where the store is smaller: nothing it held is copied.
+    void reserve_fresh(std::size_t fragments, std::size_t grouped) {
+        if (where_.size() < fragments) {
+            where_ = decltype(where_)(), depth_ = decltype(depth_)(), optical_ = decltype(optical_)();
+            where_.resize(fragments), depth_.resize(fragments), optical_.resize(fragments);
+        }
+        if (grouped_.size() < grouped) grouped_ = decltype(grouped_)(), grouped_.resize(grouped);
+    }
+    /// Fragments it groups without allocating.
+    std::size_t grouped_capacity() const noexcept { return grouped_.size(); }
+    /// Makes room to walk `fragments` fragments and group `grouped` of them, in tiles of `tile_texels`
+    /// texels, so that tiles up to those sizes allocate nothing.
+    void reserve(std::size_t fragments, std::size_t grouped, std::size_t tile_texels) {
         if (where_.size() < fragments) where_.resize(fragments), depth_.resize(fragments), optical_.resize(fragments);
-        if (!grouped) return;
-        if (grouped_.size() < fragments) grouped_.resize(fragments);
+        if (grouped == 0) return;
+        if (grouped_.size() < grouped) grouped_.resize(grouped);
         offsets_.reserve(tile_texels + 2);
     }
     std::size_t memory_bytes() const noexcept {
@@ -3795,7 +3886,8 @@ public:
         const std::uint32_t* where = where_.data();
         for (std::size_t i = 0; i < n_; ++i) ++counts[where[i]];
         for (std::size_t k = 2; k < offsets_.size(); ++k) offsets_[k] += offsets_[k - 1];
-        if (grouped_.size() < n_) grouped_.resize(std::max(n_, where_.size()));
+        // Only as large as the tiles grouped (the streamed build groups only sparse ones), grown by half.
+        if (grouped_.size() < n_) grouped_.resize(std::max(n_, grouped_.size() + grouped_.size() / 2));
         std::uint32_t* cursor = offsets_.data() + 1;
         optical_fragment* grouped = grouped_.data();
         const float* depth = depth_.data();
@@ -4127,9 +4219,9 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
         for (int l = 0; l < 16; ++l) {
             if (l < lanes) {
 #if defined(__GNUC__)
-                if (base + std::size_t(l) + 16 < list.size()) __builtin_prefetch(&bins.segment(list[base + std::size_t(l) + 16]));
+                if (base + std::size_t(l) + 16 < list.size()) bins.prefetch_segment(list[base + std::size_t(l) + 16]);
 #endif
-                const prepared_segment& s = bins.segment(list[base + std::size_t(l)]);
+                const prepared_segment s = bins.segment(list[base + std::size_t(l)]);
                 const std::int64_t ax = s.ax - ox, ay = s.ay - oy, bx = s.bx - ox, by = s.by - oy;
                 const bool fits = s.inv_w_a == s.inv_w_b && std::abs(bx - ax) < most_length && std::abs(by - ay) < most_length &&
                                   std::max({std::abs(ax), std::abs(ay), std::abs(bx), std::abs(by)}) < most_coordinate;
@@ -4430,8 +4522,14 @@ std::size_t for_each_tile(tiled_workspace& w, tile_grouping grouping, OnTile&& o
     const execution& exec = w.bins.options().exec;
     const instruction_set instructions = resolve(w.bins.options().instructions);
     const unsigned slots = tile_slots(w);
+    const auto side = std::size_t(w.bins.options().tile_size);
     w.tiles.resize(slots);
     w.fragments.assign(slots, 0);
+    // Room for the largest tile before any walk (segment_bins::tile_fragment_bound, thin lines): no
+    // store grows in the middle of a tile, holding its old and new memory at once, or overshoots.
+    // The walk adds a segment only where a tile's side and 1 more fit.
+    if (const std::size_t most = w.bins.largest_tile_fragment_bound(); most > 0)
+        for (auto& tile : w.tiles) tile.reserve_fresh(most + side + 1, grouping == tile_grouping::grouped ? most : 0);
     parallel_for_slots(order.size(), exec, [&](unsigned slot, std::size_t i) {
         tile_fragments& tile = w.tiles[slot];
         tile.gather(w.bins, order[i], instructions);
@@ -4441,10 +4539,9 @@ std::size_t for_each_tile(tiled_workspace& w, tile_grouping grouping, OnTile&& o
     });
     // Every thread's store as large as the largest: the tiles go to other threads in the next build,
     // which then allocates nothing.
-    std::size_t largest = 0;
-    for (const auto& tile : w.tiles) largest = std::max(largest, tile.capacity());
-    const auto side = std::size_t(w.bins.options().tile_size);
-    for (auto& tile : w.tiles) tile.reserve(largest, side * side, grouping != tile_grouping::walk_order);
+    std::size_t largest = 0, largest_grouped = 0;
+    for (const auto& tile : w.tiles) largest = std::max(largest, tile.capacity()), largest_grouped = std::max(largest_grouped, tile.grouped_capacity());
+    for (auto& tile : w.tiles) tile.reserve(largest, largest_grouped, side * side);
     std::size_t total = 0;
     for (const std::size_t n : w.fragments) total += n;
     return total;
@@ -4472,7 +4569,7 @@ namespace hairshadow {
 /// tile by tile without one.
 inline std::size_t count_fragments(const hair_model& model, const light_space& light, const raster_options& options = {}) {
     detail::tiled_workspace w;
-    w.bins.prepare(model, light, options);
+    w.bins.prepare(model, light, options, true);
     return detail::for_each_tile(w, detail::tile_grouping::walk_order, [](unsigned, const detail::tile_fragments&) {});
 }
 
@@ -4531,7 +4628,9 @@ public:
     /// build(rasterize(model, light, options), light, map_extent()).
     void build(const hair_model& model, const light_space& light, const raster_options& options = {}) {
         auto& w = workspace_.get();
-        w.bins.prepare(model, light, options); // bins first: the placement needs the extent before any tile
+        // Bins first: the placement needs the extent before any tile. A first build (no tile stores
+        // yet) bounds the tiles' fragments, to size the stores once; a rebuild reuses them.
+        w.bins.prepare(model, light, options, w.tiles.empty());
         built_or_reset([&] {
             set_light(light);
             extent_ = w.bins.extent();

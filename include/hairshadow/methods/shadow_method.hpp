@@ -68,7 +68,9 @@ public:
     /// build(rasterize(model, light, options), light, map_extent()).
     void build(const hair_model& model, const light_space& light, const raster_options& options = {}) {
         auto& w = workspace_.get();
-        w.bins.prepare(model, light, options); // bins first: the placement needs the extent before any tile
+        // Bins first: the placement needs the extent before any tile. A first build (no tile stores
+        // yet) bounds the tiles' fragments, to size the stores once; a rebuild reuses them.
+        w.bins.prepare(model, light, options, w.tiles.empty());
         built_or_reset([&] {
             set_light(light);
             extent_ = w.bins.extent();

@@ -67,8 +67,14 @@ std::size_t for_each_tile(tiled_workspace& w, tile_grouping grouping, OnTile&& o
     const execution& exec = w.bins.options().exec;
     const instruction_set instructions = resolve(w.bins.options().instructions);
     const unsigned slots = tile_slots(w);
+    const auto side = std::size_t(w.bins.options().tile_size);
     w.tiles.resize(slots);
     w.fragments.assign(slots, 0);
+    // Room for the largest tile before any walk (segment_bins::tile_fragment_bound, thin lines): no
+    // store grows in the middle of a tile, holding its old and new memory at once, or overshoots.
+    // The walk adds a segment only where a tile's side and 1 more fit.
+    if (const std::size_t most = w.bins.largest_tile_fragment_bound(); most > 0)
+        for (auto& tile : w.tiles) tile.reserve_fresh(most + side + 1, grouping == tile_grouping::grouped ? most : 0);
     parallel_for_slots(order.size(), exec, [&](unsigned slot, std::size_t i) {
         tile_fragments& tile = w.tiles[slot];
         tile.gather(w.bins, order[i], instructions);
@@ -78,10 +84,9 @@ std::size_t for_each_tile(tiled_workspace& w, tile_grouping grouping, OnTile&& o
     });
     // Every thread's store as large as the largest: the tiles go to other threads in the next build,
     // which then allocates nothing.
-    std::size_t largest = 0;
-    for (const auto& tile : w.tiles) largest = std::max(largest, tile.capacity());
-    const auto side = std::size_t(w.bins.options().tile_size);
-    for (auto& tile : w.tiles) tile.reserve(largest, side * side, grouping != tile_grouping::walk_order);
+    std::size_t largest = 0, largest_grouped = 0;
+    for (const auto& tile : w.tiles) largest = std::max(largest, tile.capacity()), largest_grouped = std::max(largest_grouped, tile.grouped_capacity());
+    for (auto& tile : w.tiles) tile.reserve(largest, largest_grouped, side * side);
     std::size_t total = 0;
     for (const std::size_t n : w.fragments) total += n;
     return total;
@@ -109,7 +114,7 @@ namespace hairshadow {
 /// tile by tile without one.
 inline std::size_t count_fragments(const hair_model& model, const light_space& light, const raster_options& options = {}) {
     detail::tiled_workspace w;
-    w.bins.prepare(model, light, options);
+    w.bins.prepare(model, light, options, true);
     return detail::for_each_tile(w, detail::tile_grouping::walk_order, [](unsigned, const detail::tile_fragments&) {});
 }
 

@@ -16,17 +16,21 @@
 
 namespace hairshadow::detail {
 
-/// A segment ready for the line rule, in 32 bytes: a map of millions of segments is read from memory
-/// once per tile pass, so its size is time.
-struct prepared_segment {
+/// Where a segment lies for the line rule, in 24 bytes: what segment_bins keeps of every segment of a
+/// map (millions, read from memory once per tile pass, so their size is time and memory).
+struct segment_geometry {
     std::int32_t ax, ay, bx, by; ///< snapped window coordinates (1/subpixel_scale texels), inside the guard band
     float depth_a, depth_b;      ///< linear depth
-    float inv_w_a, inv_w_b;      ///< 1/w, for perspective-correct interpolation (1 for orthographic lights)
 
     fixed_point a() const noexcept { return {ax, ay}; }
     fixed_point b() const noexcept { return {bx, by}; }
     /// Nothing to draw: clipped away, or of zero length.
     bool empty() const noexcept { return ax == bx && ay == by; }
+};
+
+/// A segment ready for the line rule and its fragments' shading.
+struct prepared_segment : segment_geometry {
+    float inv_w_a, inv_w_b; ///< 1/w, for perspective-correct interpolation (1 for orthographic lights)
 };
 
 /// Thickness and opacity at a segment's two ends.
@@ -122,7 +126,7 @@ HAIRSHADOW_ALWAYS_INLINE inline bool prepare_segment(const light_space& ls, glm:
     if (!(std::abs(a.window.x) <= guard_band && std::abs(a.window.y) <= guard_band && std::abs(b.window.x) <= guard_band &&
           std::abs(b.window.y) <= guard_band && std::abs(a.depth) <= 2.0f && std::abs(b.depth) <= 2.0f && a.w > 0.0f && b.w > 0.0f))
         return false;
-    out = {snap(a.window.x), snap(a.window.y), snap(b.window.x), snap(b.window.y), a.depth, b.depth, 1.0f / a.w, 1.0f / b.w};
+    out = {{snap(a.window.x), snap(a.window.y), snap(b.window.x), snap(b.window.y), a.depth, b.depth}, 1.0f / a.w, 1.0f / b.w};
     return !out.empty();
 }
 

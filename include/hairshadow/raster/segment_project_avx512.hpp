@@ -56,7 +56,8 @@ HAIRSHADOW_AVX512_TARGET inline __m512 gather_floats(const float* from, __m512i 
 } // namespace avx512
 
 HAIRSHADOW_AVX512_TARGET inline void segment_bins::project_strand_avx512(const glm::vec3* points, std::size_t n, std::size_t first_seg,
-                                                                         std::uint64_t* counts, depth_extent& e, std::int64_t reach) {
+                                                                         std::uint64_t* counts, std::uint64_t* bounds, depth_extent& e,
+                                                                         std::int64_t reach) {
     using namespace avx512;
     const light_space& ls = light_;
     const auto vp_x = ls.row_coefficients(ls.view_projection(), 0), vp_y = ls.row_coefficients(ls.view_projection(), 1);
@@ -70,7 +71,8 @@ HAIRSHADOW_AVX512_TARGET inline void segment_bins::project_strand_avx512(const g
     const int tile_shift = std::countr_zero(unsigned(opt_.tile_size));
     const __m512i tiles_x = _mm512_set1_epi32(tiles_x_), zero_i = _mm512_setzero_si512();
     __m512 nearest = _mm512_set1_ps(e.nearest), furthest = _mm512_set1_ps(e.furthest);
-    alignas(64) std::int32_t ax[16], ay[16], bx[16], by[16], tile[16];
+    alignas(64) std::int32_t ax[16], ay[16], bx[16], by[16], tile[16], bound[16];
+    const __m512i most_bound = _mm512_set1_epi32(opt_.tile_size + 1), two_i = _mm512_set1_epi32(2);
     alignas(64) float depth_a[16], depth_b[16], inv_w_a[16], inv_w_b[16];
     const std::size_t segments = n - 1;
     for (std::size_t base = 0; base < segments; base += 16) {
@@ -117,6 +119,9 @@ HAIRSHADOW_AVX512_TARGET inline void segment_bins::project_strand_avx512(const g
         const __mmask16 one_tile = simple & __mmask16(~empty) & in_map & _mm512_cmpeq_epi32_mask(tx0, tx1) & _mm512_cmpeq_epi32_mask(ty0, ty1);
         const __mmask16 off_map = simple & __mmask16(~empty) & __mmask16(~in_map);
         _mm512_store_si512(tile, _mm512_add_epi32(_mm512_mullo_epi32(ty0, tiles_x), tx0));
+        // segment_fragment_bound; within the guard band the differences fit in 32 bits.
+        const __m512i major = _mm512_max_epi32(_mm512_abs_epi32(_mm512_sub_epi32(sbx, sax)), _mm512_abs_epi32(_mm512_sub_epi32(sby, say)));
+        _mm512_store_si512(bound, _mm512_min_epi32(_mm512_add_epi32(_mm512_srai_epi32(major, HAIRSHADOW_SUBPIXEL_BITS), two_i), most_bound));
         const __mmask16 meets_map = simple & __mmask16(~empty) & in_map; // the extent counts these (segment_bins::meets_map)
         nearest = _mm512_mask_min_ps(nearest, meets_map, nearest, _mm512_min_ps(dep0, dep1));
         furthest = _mm512_mask_max_ps(furthest, meets_map, furthest, _mm512_max_ps(dep0, dep1));
@@ -124,9 +129,10 @@ HAIRSHADOW_AVX512_TARGET inline void segment_bins::project_strand_avx512(const g
             const std::size_t i = base + std::size_t(l), seg = first_seg + i;
             const std::uint32_t bit = 1u << l;
             if (simple & bit) {
-                segments_[seg] = {ax[l], ay[l], bx[l], by[l], depth_a[l], depth_b[l], inv_w_a[l], inv_w_b[l]};
+                store(seg, {{ax[l], ay[l], bx[l], by[l], depth_a[l], depth_b[l]}, inv_w_a[l], inv_w_b[l]});
                 if (one_tile & bit) {
                     ++counts[tile[l]];
+                    if (bounds) bounds[tile[l]] += std::uint64_t(bound[l]);
                     first_tile_[seg] = std::uint32_t(tile[l]);
                     continue;
                 }
@@ -135,7 +141,7 @@ HAIRSHADOW_AVX512_TARGET inline void segment_bins::project_strand_avx512(const g
                     continue;
                 }
             }
-            first_tile_[seg] = prepare_and_count(points[i], points[i + 1], (simple & bit) != 0, seg, reach, counts, e);
+            first_tile_[seg] = prepare_and_count(points[i], points[i + 1], (simple & bit) != 0, seg, reach, counts, bounds, e);
         }
     }
     e.nearest = std::min(e.nearest, _mm512_reduce_min_ps(nearest));

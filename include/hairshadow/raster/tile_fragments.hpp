@@ -66,12 +66,23 @@ public:
     std::size_t size() const noexcept { return n_; }
     /// Fragments it walks without allocating.
     std::size_t capacity() const noexcept { return where_.size(); }
-    /// Makes room for `fragments` fragments in tiles of `tile_texels` texels, walked (and grouped, when
-    /// `grouped`), so that tiles up to that size allocate nothing.
-    void reserve(std::size_t fragments, std::size_t tile_texels, bool grouped) {
+    /// Room to walk a tile of `fragments` fragments and group `grouped` of them without growing,
+    /// allocated afresh where the store is smaller: nothing it held is copied.
+    void reserve_fresh(std::size_t fragments, std::size_t grouped) {
+        if (where_.size() < fragments) {
+            where_ = decltype(where_)(), depth_ = decltype(depth_)(), optical_ = decltype(optical_)();
+            where_.resize(fragments), depth_.resize(fragments), optical_.resize(fragments);
+        }
+        if (grouped_.size() < grouped) grouped_ = decltype(grouped_)(), grouped_.resize(grouped);
+    }
+    /// Fragments it groups without allocating.
+    std::size_t grouped_capacity() const noexcept { return grouped_.size(); }
+    /// Makes room to walk `fragments` fragments and group `grouped` of them, in tiles of `tile_texels`
+    /// texels, so that tiles up to those sizes allocate nothing.
+    void reserve(std::size_t fragments, std::size_t grouped, std::size_t tile_texels) {
         if (where_.size() < fragments) where_.resize(fragments), depth_.resize(fragments), optical_.resize(fragments);
-        if (!grouped) return;
-        if (grouped_.size() < fragments) grouped_.resize(fragments);
+        if (grouped == 0) return;
+        if (grouped_.size() < grouped) grouped_.resize(grouped);
         offsets_.reserve(tile_texels + 2);
     }
     std::size_t memory_bytes() const noexcept {
@@ -153,7 +164,8 @@ public:
         const std::uint32_t* where = where_.data();
         for (std::size_t i = 0; i < n_; ++i) ++counts[where[i]];
         for (std::size_t k = 2; k < offsets_.size(); ++k) offsets_[k] += offsets_[k - 1];
-        if (grouped_.size() < n_) grouped_.resize(std::max(n_, where_.size()));
+        // Only as large as the tiles grouped (the streamed build groups only sparse ones), grown by half.
+        if (grouped_.size() < n_) grouped_.resize(std::max(n_, grouped_.size() + grouped_.size() / 2));
         std::uint32_t* cursor = offsets_.data() + 1;
         optical_fragment* grouped = grouped_.data();
         const float* depth = depth_.data();

@@ -294,9 +294,9 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
         for (int l = 0; l < 16; ++l) {
             if (l < lanes) {
 #if defined(__GNUC__)
-                if (base + std::size_t(l) + 16 < list.size()) __builtin_prefetch(&bins.segment(list[base + std::size_t(l) + 16]));
+                if (base + std::size_t(l) + 16 < list.size()) bins.prefetch_segment(list[base + std::size_t(l) + 16]);
 #endif
-                const prepared_segment& s = bins.segment(list[base + std::size_t(l)]);
+                const prepared_segment s = bins.segment(list[base + std::size_t(l)]);
                 const std::int64_t ax = s.ax - ox, ay = s.ay - oy, bx = s.bx - ox, by = s.by - oy;
                 const bool fits = s.inv_w_a == s.inv_w_b && std::abs(bx - ax) < most_length && std::abs(by - ay) < most_length &&
                                   std::max({std::abs(ax), std::abs(ay), std::abs(bx), std::abs(by)}) < most_coordinate;
