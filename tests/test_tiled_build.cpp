@@ -288,6 +288,72 @@ TEST_CASE("no tile holds more fragments than segment_bins bounds it by, and the 
     CHECK(bins.largest_tile_fragment_bound() == 0);
 }
 
+TEST_CASE("the AVX-512 projection and binning give the scalar code's segments, tile lists, extent and bounds", "[tiled][raster]") {
+    if (!detail::cpu_has_avx512()) {
+        WARN("this CPU has no AVX-512: nothing to compare");
+        return;
+    }
+    // Strands of 1 to 40 points (the vector code's last batch of a strand is partial), segments
+    // clipped at the near plane and leaving the map, an orthographic and two perspective lights, and
+    // tiles from 8 texels (many segments of two or more tiles) to 256.
+    hair_model ragged;
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<float> u(-0.3f, 0.3f);
+    for (std::size_t s = 0; s < 120; ++s) {
+        const glm::vec3 root(u(rng), u(rng), u(rng));
+        for (std::size_t i = 0; i < 1 + s % 40; ++i) ragged.points.push_back(root + glm::vec3(u(rng), u(rng), u(rng)) * (0.02f * float(i)));
+        ragged.strand_offsets.push_back(std::uint32_t(ragged.points.size()));
+    }
+    const auto& sintel = test_model("sintel");
+    const auto centre = sintel.bounds().center();
+    struct scene {
+        const hair_model* model;
+        light_space light;
+    };
+    const scene scenes[] = {
+        {&test_model("curly"), light_space::fit(light_spec::directional({0.3f, -1.0f, 0.2f}), test_model("curly").bounds(), 512)},
+        {&sintel, light_space::fit(light_spec::directional({0, -1, -1}), sintel.bounds(), 300)},
+        {&sintel, light_space::fit(light_spec::spot(centre + glm::vec3(0.0f, 0.05f, 0.0f), {0.2f, -1.0f, 0.1f}, 35.0f), sintel.bounds(), 256)},
+        {&ragged, light_space::fit(light_spec::point({0.5f, 3.0f, 0.7f}), ragged.bounds(), 128)},
+    };
+    const auto bits = [](const auto& x) {
+        std::array<unsigned char, sizeof(x)> b;
+        std::memcpy(b.data(), &x, sizeof(x));
+        return b;
+    };
+    for (const auto& [model, light] : scenes)
+        for (const int tile : {8, 16, 64, 256})
+            for (const bool bound_tiles : {true, false}) {
+                CAPTURE(model->strand_count(), light.resolution(), light.perspective(), tile, bound_tiles);
+                raster_options scalar_options, vector_options;
+                scalar_options.tile_size = vector_options.tile_size = tile;
+                scalar_options.instructions = instruction_set::scalar;
+                vector_options.instructions = instruction_set::avx512;
+                detail::segment_bins scalar, vector;
+                scalar.prepare(*model, light, scalar_options, bound_tiles);
+                vector.prepare(*model, light, vector_options, bound_tiles);
+                REQUIRE(scalar.segment_count() == vector.segment_count());
+                std::size_t differing = 0, drawn = 0;
+                for (std::size_t i = 0; i < scalar.segment_count(); ++i) {
+                    differing += bits(scalar.segment(i)) != bits(vector.segment(i));
+                    drawn += !scalar.segment(i).empty();
+                }
+                CHECK(differing == 0);
+                CHECK(drawn > 100);
+                CHECK(bits(scalar.extent()) == bits(vector.extent()));
+                REQUIRE(scalar.tile_count() == vector.tile_count());
+                std::size_t lists_differing = 0, bounds_differing = 0;
+                for (std::size_t t = 0; t < scalar.tile_count(); ++t) {
+                    const auto a = scalar.tile_segments(t), b = vector.tile_segments(t);
+                    lists_differing += !std::equal(a.begin(), a.end(), b.begin(), b.end());
+                    bounds_differing += scalar.tile_fragment_bound(t) != vector.tile_fragment_bound(t);
+                }
+                CHECK(lists_differing == 0);
+                CHECK(bounds_differing == 0);
+                CHECK(scalar.tiles_by_load() == vector.tiles_by_load());
+            }
+}
+
 TEST_CASE("the AVX-512 walk stores the scalar walk's fragments, in its order, tile by tile", "[tiled][raster]") {
     if (!detail::cpu_has_avx512()) {
         WARN("this CPU has no AVX-512: nothing to compare");

@@ -292,6 +292,19 @@ private:
         return std::uint64_t(std::min<std::int64_t>((major >> HAIRSHADOW_SUBPIXEL_BITS) + 2, opt_.tile_size + 1));
     }
 
+    /// The columns (rows, for a y-major segment) whose texel centres a thin segment may pass, from the
+    /// one before its first end's texel to the one after its last's, and its segment_fragment_bound.
+    struct fragment_lines {
+        std::uint64_t bound = 0;
+        bool x_major = false;
+        std::int64_t first = 0, last = 0;
+    };
+    HAIRSHADOW_ALWAYS_INLINE fragment_lines fragment_lines_of(const segment_geometry& s) const noexcept {
+        const bool x_major = std::abs(std::int64_t(s.bx) - s.ax) >= std::abs(std::int64_t(s.by) - s.ay);
+        const std::int64_t lo = x_major ? std::min(s.ax, s.bx) : std::min(s.ay, s.by), hi = x_major ? std::max(s.ax, s.bx) : std::max(s.ay, s.by);
+        return {segment_fragment_bound(s), x_major, (lo >> HAIRSHADOW_SUBPIXEL_BITS) - 1, (hi >> HAIRSHADOW_SUBPIXEL_BITS) + 1};
+    }
+
     /// Counts segment s in each tile it reaches and returns its entry in first_tile_ (its first tile
     /// and which others it reaches), or no_tile; widens e by its ends when its box meets the map.
     /// Adds its bound on each tile's fragments to `bounds`, unless null.
@@ -302,18 +315,13 @@ private:
         e.furthest = std::max({e.furthest, s.depth_a, s.depth_b});
         std::size_t visited = 0;
         std::array<std::size_t, 4> tiles{}; // the first four it reaches
-        const std::uint64_t bound = segment_fragment_bound(s);
-        // The columns (rows, for a y-major segment) whose texel centres it may pass: from the one
-        // before its first end's texel to the one after its last's.
-        const bool x_major = std::abs(std::int64_t(s.bx) - s.ax) >= std::abs(std::int64_t(s.by) - s.ay);
-        const std::int64_t lo = x_major ? std::min(s.ax, s.bx) : std::min(s.ay, s.by), hi = x_major ? std::max(s.ax, s.bx) : std::max(s.ay, s.by);
-        const std::int64_t first_line = (lo >> HAIRSHADOW_SUBPIXEL_BITS) - 1, last_line = (hi >> HAIRSHADOW_SUBPIXEL_BITS) + 1;
+        const fragment_lines lines = bounds ? fragment_lines_of(s) : fragment_lines{}; // a rebuild bounds nothing
         visit_tiles(s, reach, [&](std::size_t tile, int tx, int ty) HAIRSHADOW_ALWAYS_INLINE {
             ++counts[tile];
             if (bounds) { // at most one fragment in each of those lines that lies in the tile
-                const std::int64_t tile_line = std::int64_t(x_major ? tx : ty) * opt_.tile_size;
-                const std::int64_t lines = std::min(last_line, tile_line + opt_.tile_size - 1) - std::max(first_line, tile_line) + 1;
-                bounds[tile] += std::min(bound, std::uint64_t(std::max<std::int64_t>(lines, 0)));
+                const std::int64_t tile_line = std::int64_t(lines.x_major ? tx : ty) * opt_.tile_size;
+                const std::int64_t in_tile = std::min(lines.last, tile_line + opt_.tile_size - 1) - std::max(lines.first, tile_line) + 1;
+                bounds[tile] += std::min(lines.bound, std::uint64_t(std::max<std::int64_t>(in_tile, 0)));
             }
             if (visited < tiles.size()) tiles[visited] = tile;
             ++visited;
