@@ -2765,6 +2765,10 @@ public:
         const std::array<float, 2> inv_w = inv_w_.empty() ? std::array<float, 2>{1.0f, 1.0f} : inv_w_[i];
         return {segments_[i], inv_w[0], inv_w[1]};
     }
+    /// The segments' records, segment after segment (segment() reads them), and their 1/w pairs (null
+    /// for an orthographic light): for the vector walk's gathers.
+    const segment_geometry* segment_data() const noexcept { return segments_.data(); }
+    const std::array<float, 2>* inv_w_data() const noexcept { return inv_w_.empty() ? nullptr : inv_w_.data(); }
     /// Fetches segment i into the cache ahead of its use: both of its ends, since a quarter of the
     /// 24-byte records straddle two cache lines.
     void prefetch_segment(std::size_t i) const noexcept {
@@ -2944,9 +2948,23 @@ private:
             std::uint32_t* binned = binned_.data();
             const std::uint32_t* first_tile = first_tile_.data();
             const std::size_t end = first_segment_[chunk_strand_[c + 1]];
+            // A run of segments in one tile (a strand's, mostly) keeps that tile's cursor in a register:
+            // through memory, each write waited on the last one's increment of the same cursor.
+            std::uint32_t run_tile = no_tile;
+            std::uint64_t run_at = 0;
+            const auto end_run = [&]() HAIRSHADOW_ALWAYS_INLINE {
+                if (run_tile != no_tile) cursor[run_tile] = run_at;
+                run_tile = no_tile;
+            };
             for (std::size_t seg = first_segment_[chunk_strand_[c]]; seg < end; ++seg) {
                 const std::uint32_t first = first_tile[seg];
                 if (first == no_tile) continue;
+                if ((first & ~tile_bits) == 0) { // one tile
+                    if (first != run_tile) end_run(), run_tile = first, run_at = cursor[first];
+                    binned[run_at++] = std::uint32_t(seg);
+                    continue;
+                }
+                end_run();
                 const auto put = [&](std::size_t tile) HAIRSHADOW_ALWAYS_INLINE { binned[cursor[tile]++] = std::uint32_t(seg); };
                 if (first & more_tiles) {
                     visit_tiles(segments_[seg], reach, [&](std::size_t tile, int, int) HAIRSHADOW_ALWAYS_INLINE { put(tile); });
@@ -2958,6 +2976,7 @@ private:
                 if (first & and_below) put(below);
                 if ((first & and_right) && (first & and_below)) put(below + 1);
             }
+            end_run();
         });
         by_load_.resize(tiles);
         std::iota(by_load_.begin(), by_load_.end(), 0u);
@@ -3136,10 +3155,12 @@ private:
 // ---- begin hairshadow/raster/segment_project_avx512.hpp
 /// @file
 /// The projection and binning of segment_bins in AVX-512F, sixteen segments of a strand at a time:
-/// both ends projected (light_space::project, product by product as it rounds them), the near and
-/// far planes and the guard band checked, the ends snapped, and the segment counted in its tile when
-/// it lies in one tile. Segments that need clipping, or that reach several tiles, go through the
-/// scalar code, lane by lane, in order; so every segment, count and first tile is the scalar one.
+/// the strand's points loaded whole and split into ends by permutations, both ends projected
+/// (light_space::project, product by product as it rounds them), the near and far planes and the
+/// guard band checked, the ends snapped, the records written sixteen at a time, and the segment
+/// counted in its tile when it lies in one tile, or (on a rebuild) in two side by side. Segments that
+/// need clipping, or that reach more tiles, go through the scalar code, lane by lane, in order; so
+/// every segment, count and first tile is the scalar one (tests/test_tiled_build.cpp checks it).
 
 
 
@@ -3999,10 +4020,25 @@ private:
     bool simd_tile(const segment_bins& bins) const noexcept {
         return bins.options().wide_line_width == 0.0f && bins.uniform_attributes() && bins.uniform_shader().constant_alpha();
     }
+    /// The store's arrays, next slot and size, held in locals through the vector walk: its vector
+    /// stores may alias anything, and through the members the compiler reloaded all of them after each.
+    struct store_cursor {
+        std::uint32_t* where;
+        float *depth, *optical;
+        std::size_t n, end;
+    };
+    store_cursor cursor() noexcept { return {where_.data(), depth_.data(), optical_.data(), n_, where_.size()}; }
+    /// make_room for a cursor, which it renews where the store grows.
+    void make_room(store_cursor& c, std::size_t extra) {
+        if (c.n + extra <= c.end) return;
+        n_ = c.n;
+        make_room(extra);
+        c = cursor();
+    }
     void walk_avx512(const segment_bins& bins, std::size_t t, float optical);
-    void walk_lane_avx512(const avx512::batch& b, int l, float optical);
-    void store_start(const avx512::batch& b, int l, float optical) noexcept;
-    HAIRSHADOW_AVX512_TARGET void store_kept(__mmask16 keep, __m512i texels, __m512 depths, __m512 optical, bool whole) noexcept;
+    void walk_lane_avx512(store_cursor& c, const avx512::batch& b, int l, float optical);
+    void store_start(store_cursor& c, const avx512::batch& b, int l, float optical) noexcept;
+    HAIRSHADOW_AVX512_TARGET void store_kept(store_cursor& c, __mmask16 keep, __m512i texels, __m512 depths, __m512 optical, bool whole) noexcept;
 #endif
 
     texel_rect rect_{};
@@ -4024,12 +4060,13 @@ private:
 // ---- begin hairshadow/raster/tile_walk_avx512.hpp
 /// @file
 /// The tiled build's line walk in AVX-512F, chosen at run time (raster_options::instructions). Sixteen
-/// segments of a tile are set up at once, one per lane: major axis, the texel centres they cross in
+/// segments of a tile are gathered and set up at once, one per lane: major axis, the texel centres they cross in
 /// the tile, the exact quotient and remainder of the minor coordinate, the end's diamond and the start
 /// fragment (the diamond-exit rule of line_rule.hpp, without a branch). Segments of at most sixteen
 /// texels in the tile are then walked in lockstep, one step of all sixteen at a time, the minor
-/// coordinate carried from step to step as an exact quotient and remainder; a register transpose turns
-/// the steps into each segment's fragments. Longer segments are walked one at a time, sixteen texels
+/// coordinate carried from step to step as an exact quotient and remainder, each start fragment put in
+/// the step after its segment's last; a register transpose turns the steps into each segment's
+/// fragments. Longer segments are walked one at a time, sixteen texels
 /// per step. Either way the fragments are compressed into the tile's store segment after segment, so
 /// that segment order, and every sum, is the scalar walk's. Every quantity is an integer, or an
 /// integer held exactly in a double, until the depth: that is a + (b - a) t, rounded as the scalar
@@ -4289,6 +4326,92 @@ HAIRSHADOW_AVX512_TARGET inline void walk_lockstep(const batch& b, int steps, in
     for (int j = steps; j < 16; ++j) where[j] = none, depth[j] = _mm512_setzero_si512();
 }
 
+/// Bounds that keep every product of the walk exact in a double and every coordinate in 32 bits: a
+/// segment longer, or further from its tile, is walked by the scalar code.
+inline constexpr std::int64_t most_length = std::int64_t(1) << 22, most_coordinate = std::int64_t(1) << 24;
+
+/// The batch's ends and depths for the first `lanes` segments of `list`, in coordinates relative to
+/// the tile's corner (ox, oy), one lane at a time. Lanes that do not fit the walk's bounds, or whose
+/// 1/w differ (perspective interpolation), are left to the scalar walk (not in b.simd) with a
+/// harmless stand-in.
+inline void fill_batch(batch& b, const segment_bins& bins, const std::uint32_t* list, int lanes, std::int64_t ox, std::int64_t oy) noexcept {
+    b.simd = 0;
+    for (int l = 0; l < 16; ++l) {
+        if (l < lanes) {
+            const prepared_segment s = bins.segment(list[l]);
+            const std::int64_t ax = s.ax - ox, ay = s.ay - oy, bx = s.bx - ox, by = s.by - oy;
+            const bool fits = s.inv_w_a == s.inv_w_b && std::abs(bx - ax) < most_length && std::abs(by - ay) < most_length &&
+                              std::max({std::abs(ax), std::abs(ay), std::abs(bx), std::abs(by)}) < most_coordinate;
+            if (fits) {
+                b.ax[l] = std::int32_t(ax), b.ay[l] = std::int32_t(ay), b.bx[l] = std::int32_t(bx), b.by[l] = std::int32_t(by);
+                b.depth_a[l] = s.depth_a;
+                b.depth_delta[l] = s.depth_b - s.depth_a;
+                b.simd = std::uint16_t(b.simd | (1u << l));
+                continue;
+            }
+        }
+        b.ax[l] = 0, b.ay[l] = 0, b.bx[l] = std::int32_t(subpixel_scale), b.by[l] = 0; // a harmless stand-in
+        b.depth_a[l] = 0.0f, b.depth_delta[l] = 0.0f;
+    }
+}
+
+/// fill_batch, sixteen lanes at once: the records gathered by word offsets (segment_count() below
+/// 2^28), the same values and the same b.simd. Coordinates inside the guard band (2^28 sub-pixels)
+/// less a tile corner below 2^24 fit in 32 bits, and so do their differences.
+HAIRSHADOW_AVX512_TARGET inline void gather_batch(batch& b, const segment_bins& bins, const std::uint32_t* list, int lanes, std::int32_t ox,
+                                                 std::int32_t oy) noexcept {
+    static_assert(sizeof(segment_geometry) == 6 * sizeof(std::int32_t));
+    const auto valid = __mmask16((1u << lanes) - 1u);
+    const __m512i zero = _mm512_setzero_si512();
+    const __m512i words = _mm512_mullo_epi32(_mm512_maskz_loadu_epi32(valid, list), _mm512_set1_epi32(6));
+    const void* records = bins.segment_data();
+    __m512i field[6];
+    for (int k = 0; k < 6; ++k) field[k] = _mm512_add_epi32(words, _mm512_set1_epi32(k));
+    const __m512i ax = _mm512_sub_epi32(_mm512_mask_i32gather_epi32(zero, valid, field[0], records, 4), _mm512_set1_epi32(ox));
+    const __m512i ay = _mm512_sub_epi32(_mm512_mask_i32gather_epi32(zero, valid, field[1], records, 4), _mm512_set1_epi32(oy));
+    const __m512i bx = _mm512_sub_epi32(_mm512_mask_i32gather_epi32(zero, valid, field[2], records, 4), _mm512_set1_epi32(ox));
+    const __m512i by = _mm512_sub_epi32(_mm512_mask_i32gather_epi32(zero, valid, field[3], records, 4), _mm512_set1_epi32(oy));
+    const __m512 depth_a = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), valid, field[4], records, 4);
+    const __m512 depth_b = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), valid, field[5], records, 4);
+    __mmask16 fits = valid;
+    if (const auto* inv_w = bins.inv_w_data()) {
+        const __m512i pairs = _mm512_slli_epi32(_mm512_maskz_loadu_epi32(valid, list), 1);
+        const __m512 inv_w_a = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), valid, pairs, inv_w, 4);
+        const __m512 inv_w_b = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), valid, _mm512_add_epi32(pairs, _mm512_set1_epi32(1)), inv_w, 4);
+        fits &= _mm512_cmp_ps_mask(inv_w_a, inv_w_b, _CMP_EQ_OQ);
+    }
+    const __m512i length = _mm512_set1_epi32(std::int32_t(most_length)), coordinate = _mm512_set1_epi32(std::int32_t(most_coordinate));
+    fits &= __mmask16(_mm512_cmplt_epi32_mask(_mm512_abs_epi32(_mm512_sub_epi32(bx, ax)), length) &
+                      _mm512_cmplt_epi32_mask(_mm512_abs_epi32(_mm512_sub_epi32(by, ay)), length));
+    const __m512i farthest = _mm512_max_epi32(_mm512_max_epi32(_mm512_abs_epi32(ax), _mm512_abs_epi32(ay)), _mm512_max_epi32(_mm512_abs_epi32(bx), _mm512_abs_epi32(by)));
+    fits &= _mm512_cmplt_epi32_mask(farthest, coordinate);
+    _mm512_store_si512(b.ax, _mm512_maskz_mov_epi32(fits, ax));
+    _mm512_store_si512(b.ay, _mm512_maskz_mov_epi32(fits, ay));
+    _mm512_store_si512(b.bx, _mm512_mask_mov_epi32(_mm512_set1_epi32(std::int32_t(subpixel_scale)), fits, bx));
+    _mm512_store_si512(b.by, _mm512_maskz_mov_epi32(fits, by));
+    _mm512_store_ps(b.depth_a, _mm512_maskz_mov_ps(fits, depth_a));
+    _mm512_store_ps(b.depth_delta, _mm512_maskz_mov_ps(fits, _mm512_sub_ps(depth_b, depth_a)));
+    b.simd = fits;
+}
+
+/// Puts the start fragment of each of `lanes` (a lockstep block's, before its transpose) in the row
+/// after the lane's last step, where its walk leaves no fragment, so that it is stored with them, after
+/// them, as the scalar walk stores it. Returns the lanes so placed: those with a start fragment and
+/// fewer than sixteen steps; the others' start is stored apart.
+HAIRSHADOW_AVX512_TARGET inline __mmask16 place_starts(const batch& b, __mmask16 lanes, int w, __m512i where[16], __m512i depth[16]) noexcept {
+    const __m512i counts = _mm512_load_si512(b.count);
+    const __mmask16 in_row = lanes & b.start & _mm512_cmplt_epi32_mask(counts, _mm512_set1_epi32(16));
+    if (in_row == 0) return 0;
+    const __m512i texel = _mm512_add_epi32(_mm512_mullo_epi32(_mm512_load_si512(b.start_y), _mm512_set1_epi32(w)), _mm512_load_si512(b.start_x));
+    const __m512i start_depth = _mm512_castps_si512(_mm512_load_ps(b.start_depth));
+    for (int j = 0; j < 16; ++j) {
+        const __mmask16 here = in_row & _mm512_cmpeq_epi32_mask(counts, _mm512_set1_epi32(j));
+        where[j] = _mm512_mask_mov_epi32(where[j], here, texel);
+        depth[j] = _mm512_mask_mov_epi32(depth[j], here, start_depth);
+    }
+    return in_row;
+}
+
 } // namespace hairshadow::detail::avx512
 
 namespace hairshadow::detail {
@@ -4301,38 +4424,24 @@ namespace hairshadow::detail {
 HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_bins& bins, std::size_t t, float optical) {
     using namespace avx512;
     constexpr int bits = HAIRSHADOW_SUBPIXEL_BITS;
-    // Bounds that keep every product exact in a double and every coordinate in 32 bits.
-    constexpr std::int64_t most_length = std::int64_t(1) << 22, most_coordinate = std::int64_t(1) << 24;
     const int w = width_;
     const std::int64_t ox = std::int64_t(rect_.x0) << bits, oy = std::int64_t(rect_.y0) << bits;
     const auto list = bins.tile_segments(t);
     const __m512i none = _mm512_set1_epi32(std::int32_t(no_texel)), sixteen = _mm512_set1_epi32(16);
     const __m512 optical_depth = _mm512_set1_ps(optical);
+    // Sixteen records gathered at once, by 32-bit word offsets (six words a record).
+    const bool gathered = bins.segment_count() < (std::size_t(1) << 28);
     batch b;
     __m512i where[16], depth[16]; // a block of lockstep steps, then of segments
+    store_cursor c = cursor();
     for (std::size_t base = 0; base < list.size(); base += 16) {
         const int lanes = int(std::min<std::size_t>(16, list.size() - base));
-        b.simd = 0;
-        for (int l = 0; l < 16; ++l) {
-            if (l < lanes) {
 #if defined(__GNUC__)
-                if (base + std::size_t(l) + 16 < list.size()) bins.prefetch_segment(list[base + std::size_t(l) + 16]);
+        // The next batch's segments, fetched while this one is walked.
+        for (std::size_t i = base + 16; i < std::min(base + 32, list.size()); ++i) bins.prefetch_segment(list[i]);
 #endif
-                const prepared_segment s = bins.segment(list[base + std::size_t(l)]);
-                const std::int64_t ax = s.ax - ox, ay = s.ay - oy, bx = s.bx - ox, by = s.by - oy;
-                const bool fits = s.inv_w_a == s.inv_w_b && std::abs(bx - ax) < most_length && std::abs(by - ay) < most_length &&
-                                  std::max({std::abs(ax), std::abs(ay), std::abs(bx), std::abs(by)}) < most_coordinate;
-                if (fits) {
-                    b.ax[l] = std::int32_t(ax), b.ay[l] = std::int32_t(ay), b.bx[l] = std::int32_t(bx), b.by[l] = std::int32_t(by);
-                    b.depth_a[l] = s.depth_a;
-                    b.depth_delta[l] = s.depth_b - s.depth_a;
-                    b.simd = std::uint16_t(b.simd | (1u << l));
-                    continue;
-                }
-            }
-            b.ax[l] = 0, b.ay[l] = 0, b.bx[l] = std::int32_t(subpixel_scale), b.by[l] = 0; // a harmless stand-in
-            b.depth_a[l] = 0.0f, b.depth_delta[l] = 0.0f;
-        }
+        if (gathered) gather_batch(b, bins, list.data() + base, lanes, std::int32_t(ox), std::int32_t(oy));
+        else fill_batch(b, bins, list.data() + base, lanes, ox, oy);
         set_up(b, w, rect_.y1 - rect_.y0);
         const __m512i counts = _mm512_load_si512(b.count);
         auto lockstep = __mmask16(b.simd & _mm512_cmple_epi32_mask(counts, sixteen));
@@ -4342,63 +4451,69 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
         // alone. The rule was chosen by measuring on this project's benchmark machine (BENCHMARKS.md,
         // issue 11); it chooses a path, never a fragment.
         if (2 * __builtin_popcount(lockstep) < steps + 16) lockstep = 0;
+        __mmask16 start_in_row = 0;
         if (lockstep) {
             walk_lockstep(b, steps, w, where, depth);
+            start_in_row = place_starts(b, lockstep, w, where, depth);
             transpose(where);
             transpose(depth);
         }
         for (int l = 0; l < lanes; ++l) {
             if (!((b.simd >> l) & 1u)) {
+                n_ = c.n;
                 walk_segment_apart(bins, list[base + std::size_t(l)]);
+                c = cursor();
                 continue;
             }
             if (!((lockstep >> l) & 1u)) {
-                walk_lane_avx512(b, l, optical);
+                walk_lane_avx512(c, b, l, optical);
                 continue;
             }
-            make_room(std::size_t(b.count[l]) + 1);
-            store_kept(_mm512_cmpneq_epi32_mask(where[l], none), where[l], _mm512_castsi512_ps(depth[l]), optical_depth, n_ + 16 <= where_.size());
-            store_start(b, l, optical);
+            make_room(c, std::size_t(b.count[l]) + 1);
+            store_kept(c, _mm512_cmpneq_epi32_mask(where[l], none), where[l], _mm512_castsi512_ps(depth[l]), optical_depth, c.n + 16 <= c.end);
+            if ((unsigned(b.start & ~start_in_row) >> l) & 1u) store_start(c, b, l, optical);
         }
     }
+    n_ = c.n;
 }
 
-/// Stores the `keep` lanes of texels and depths at n_, in lane order, and advances n_. Whole vectors,
-/// compressed in registers, where `whole` says 16 slots past n_ are there (a compress straight to
+/// Stores the `keep` lanes of texels and depths at c.n, in lane order, and advances it. Whole vectors,
+/// compressed in registers, where `whole` says 16 slots past c.n are there (a compress straight to
 /// memory measured 1.3x slower on this machine's CPU); near the store's end, compressed to memory, so
 /// that the store grows exactly as the scalar walk's does.
-HAIRSHADOW_AVX512_TARGET inline void tile_fragments::store_kept(__mmask16 keep, __m512i texels, __m512 depths, __m512 optical, bool whole) noexcept {
+HAIRSHADOW_AVX512_TARGET inline void tile_fragments::store_kept(store_cursor& c, __mmask16 keep, __m512i texels, __m512 depths, __m512 optical,
+                                                                bool whole) noexcept {
     if (whole) {
-        _mm512_storeu_si512(where_.data() + n_, _mm512_maskz_compress_epi32(keep, texels));
-        _mm512_storeu_ps(depth_.data() + n_, _mm512_maskz_compress_ps(keep, depths));
-        _mm512_storeu_ps(optical_.data() + n_, optical);
+        _mm512_storeu_si512(c.where + c.n, _mm512_maskz_compress_epi32(keep, texels));
+        _mm512_storeu_ps(c.depth + c.n, _mm512_maskz_compress_ps(keep, depths));
+        _mm512_storeu_ps(c.optical + c.n, optical);
     } else {
-        _mm512_mask_compressstoreu_epi32(where_.data() + n_, keep, texels);
-        _mm512_mask_compressstoreu_ps(depth_.data() + n_, keep, depths);
-        _mm512_mask_compressstoreu_ps(optical_.data() + n_, keep, optical);
+        _mm512_mask_compressstoreu_epi32(c.where + c.n, keep, texels);
+        _mm512_mask_compressstoreu_ps(c.depth + c.n, keep, depths);
+        _mm512_mask_compressstoreu_ps(c.optical + c.n, keep, optical);
     }
-    n_ += std::size_t(__builtin_popcount(keep));
+    c.n += std::size_t(__builtin_popcount(keep));
 }
 
 /// The start fragment of lane l, as walk_line emits it, after the walk; stored always and kept when
 /// there is one, since whether there is one is anybody's guess.
-HAIRSHADOW_AVX512_TARGET inline void tile_fragments::store_start(const avx512::batch& b, int l, float optical) noexcept {
-    where_[n_] = std::uint32_t(b.start_y[l] * width_ + b.start_x[l]);
-    depth_[n_] = b.start_depth[l];
-    optical_[n_] = optical;
-    n_ += (b.start >> l) & 1u;
+HAIRSHADOW_AVX512_TARGET inline void tile_fragments::store_start(store_cursor& c, const avx512::batch& b, int l, float optical) noexcept {
+    c.where[c.n] = std::uint32_t(b.start_y[l] * width_ + b.start_x[l]);
+    c.depth[c.n] = b.start_depth[l];
+    c.optical[c.n] = optical;
+    c.n += (b.start >> l) & 1u;
 }
 
 /// Lane l of b walked alone, sixteen texels per step: for segments of more than sixteen texels in the
 /// tile, and for every segment of a batch that does not walk in lockstep.
-HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_lane_avx512(const avx512::batch& b, int l, float optical) {
+HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline void tile_fragments::walk_lane_avx512(store_cursor& c, const avx512::batch& b, int l, float optical) {
     using namespace avx512;
     const int w = width_;
     const __m512i iota = _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
     const __m512i none = _mm512_set1_epi32(std::int32_t(no_texel));
     const int count = b.count[l];
-    make_room(std::size_t(count) + 1);
-    const bool whole_vectors = n_ + std::size_t(count) + 16 <= where_.size(); // store_kept
+    make_room(c, std::size_t(count) + 1);
+    const bool whole_vectors = c.n + std::size_t(count) + 16 <= c.end; // store_kept
     const __mmask16 along_x = (b.x_major >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
     const __mmask16 tie = (b.tie >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
     const __m512i m_begin = _mm512_set1_epi32(b.m_begin[l]), counts = _mm512_set1_epi32(count);
@@ -4421,16 +4536,16 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_lane_avx512(const avx5
         minor_at.q_step = _mm512_broadcast_i64x4(_mm512_cvttpd_epi32(part[0]));
         minor_at.r_step = _mm512_broadcast_i64x4(_mm512_cvttpd_epi32(part[1]));
     }
-    for (int c = 0; c < count; c += 16) {
-        const __m512i i = _mm512_add_epi32(iota, _mm512_set1_epi32(c));
+    for (int first = 0; first < count; first += 16) {
+        const __m512i i = _mm512_add_epi32(iota, _mm512_set1_epi32(first));
         const __m512i minor = minor_at.minor(tie);
         minor_at.advance();
         __m512i x, y;
         const __m512i texels = step_texels(_mm512_add_epi32(i, m_begin), minor, _mm512_cmplt_epi32_mask(i, counts), along_x, end_major, end_minor,
                                            minor_extent, width, none, x, y);
-        store_kept(_mm512_cmpneq_epi32_mask(texels, none), texels, along.at(x, y), optical_depth, whole_vectors);
+        store_kept(c, _mm512_cmpneq_epi32_mask(texels, none), texels, along.at(x, y), optical_depth, whole_vectors);
     }
-    store_start(b, l, optical);
+    store_start(c, b, l, optical);
 }
 
 } // namespace hairshadow::detail

@@ -81,6 +81,10 @@ public:
         const std::array<float, 2> inv_w = inv_w_.empty() ? std::array<float, 2>{1.0f, 1.0f} : inv_w_[i];
         return {segments_[i], inv_w[0], inv_w[1]};
     }
+    /// The segments' records, segment after segment (segment() reads them), and their 1/w pairs (null
+    /// for an orthographic light): for the vector walk's gathers.
+    const segment_geometry* segment_data() const noexcept { return segments_.data(); }
+    const std::array<float, 2>* inv_w_data() const noexcept { return inv_w_.empty() ? nullptr : inv_w_.data(); }
     /// Fetches segment i into the cache ahead of its use: both of its ends, since a quarter of the
     /// 24-byte records straddle two cache lines.
     void prefetch_segment(std::size_t i) const noexcept {
@@ -260,9 +264,23 @@ private:
             std::uint32_t* binned = binned_.data();
             const std::uint32_t* first_tile = first_tile_.data();
             const std::size_t end = first_segment_[chunk_strand_[c + 1]];
+            // A run of segments in one tile (a strand's, mostly) keeps that tile's cursor in a register:
+            // through memory, each write waited on the last one's increment of the same cursor.
+            std::uint32_t run_tile = no_tile;
+            std::uint64_t run_at = 0;
+            const auto end_run = [&]() HAIRSHADOW_ALWAYS_INLINE {
+                if (run_tile != no_tile) cursor[run_tile] = run_at;
+                run_tile = no_tile;
+            };
             for (std::size_t seg = first_segment_[chunk_strand_[c]]; seg < end; ++seg) {
                 const std::uint32_t first = first_tile[seg];
                 if (first == no_tile) continue;
+                if ((first & ~tile_bits) == 0) { // one tile
+                    if (first != run_tile) end_run(), run_tile = first, run_at = cursor[first];
+                    binned[run_at++] = std::uint32_t(seg);
+                    continue;
+                }
+                end_run();
                 const auto put = [&](std::size_t tile) HAIRSHADOW_ALWAYS_INLINE { binned[cursor[tile]++] = std::uint32_t(seg); };
                 if (first & more_tiles) {
                     visit_tiles(segments_[seg], reach, [&](std::size_t tile, int, int) HAIRSHADOW_ALWAYS_INLINE { put(tile); });
@@ -274,6 +292,7 @@ private:
                 if (first & and_below) put(below);
                 if ((first & and_right) && (first & and_below)) put(below + 1);
             }
+            end_run();
         });
         by_load_.resize(tiles);
         std::iota(by_load_.begin(), by_load_.end(), 0u);

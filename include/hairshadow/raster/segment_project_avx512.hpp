@@ -1,10 +1,12 @@
 #pragma once
 /// @file
 /// The projection and binning of segment_bins in AVX-512F, sixteen segments of a strand at a time:
-/// both ends projected (light_space::project, product by product as it rounds them), the near and
-/// far planes and the guard band checked, the ends snapped, and the segment counted in its tile when
-/// it lies in one tile. Segments that need clipping, or that reach several tiles, go through the
-/// scalar code, lane by lane, in order; so every segment, count and first tile is the scalar one.
+/// the strand's points loaded whole and split into ends by permutations, both ends projected
+/// (light_space::project, product by product as it rounds them), the near and far planes and the
+/// guard band checked, the ends snapped, the records written sixteen at a time, and the segment
+/// counted in its tile when it lies in one tile, or (on a rebuild) in two side by side. Segments that
+/// need clipping, or that reach more tiles, go through the scalar code, lane by lane, in order; so
+/// every segment, count and first tile is the scalar one (tests/test_tiled_build.cpp checks it).
 
 #include <hairshadow/raster/segment_bins.hpp>
 

@@ -180,10 +180,25 @@ private:
     bool simd_tile(const segment_bins& bins) const noexcept {
         return bins.options().wide_line_width == 0.0f && bins.uniform_attributes() && bins.uniform_shader().constant_alpha();
     }
+    /// The store's arrays, next slot and size, held in locals through the vector walk: its vector
+    /// stores may alias anything, and through the members the compiler reloaded all of them after each.
+    struct store_cursor {
+        std::uint32_t* where;
+        float *depth, *optical;
+        std::size_t n, end;
+    };
+    store_cursor cursor() noexcept { return {where_.data(), depth_.data(), optical_.data(), n_, where_.size()}; }
+    /// make_room for a cursor, which it renews where the store grows.
+    void make_room(store_cursor& c, std::size_t extra) {
+        if (c.n + extra <= c.end) return;
+        n_ = c.n;
+        make_room(extra);
+        c = cursor();
+    }
     void walk_avx512(const segment_bins& bins, std::size_t t, float optical);
-    void walk_lane_avx512(const avx512::batch& b, int l, float optical);
-    void store_start(const avx512::batch& b, int l, float optical) noexcept;
-    HAIRSHADOW_AVX512_TARGET void store_kept(__mmask16 keep, __m512i texels, __m512 depths, __m512 optical, bool whole) noexcept;
+    void walk_lane_avx512(store_cursor& c, const avx512::batch& b, int l, float optical);
+    void store_start(store_cursor& c, const avx512::batch& b, int l, float optical) noexcept;
+    HAIRSHADOW_AVX512_TARGET void store_kept(store_cursor& c, __mmask16 keep, __m512i texels, __m512 depths, __m512 optical, bool whole) noexcept;
 #endif
 
     texel_rect rect_{};
