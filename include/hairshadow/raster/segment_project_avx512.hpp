@@ -94,11 +94,13 @@ HAIRSHADOW_AVX512_TARGET inline void store_records(segment_geometry* out, int la
     static_assert(sizeof(segment_geometry) == 6 * sizeof(std::int32_t) && std::is_standard_layout_v<segment_geometry>);
     auto* words = reinterpret_cast<std::int32_t*>(out);
     const int total = 6 * lanes;
+    // [field 0 | field 1], [field 2 | field 3], [field 4 | field 5] of each half's eight lanes.
+    const __m512i pairs[2][3] = {{_mm512_shuffle_i64x2(field[0], field[1], 0x44), _mm512_shuffle_i64x2(field[2], field[3], 0x44),
+                                  _mm512_shuffle_i64x2(field[4], field[5], 0x44)},
+                                 {_mm512_shuffle_i64x2(field[0], field[1], 0xEE), _mm512_shuffle_i64x2(field[2], field[3], 0xEE),
+                                  _mm512_shuffle_i64x2(field[4], field[5], 0xEE)}};
     for (int half = 0; half < 2; ++half) {
-        // [field 0 | field 1], [field 2 | field 3], [field 4 | field 5] of this half's eight lanes.
-        const int pick = half == 0 ? 0x44 : 0xEE;
-        const __m512i f01 = _mm512_shuffle_i64x2(field[0], field[1], pick), f23 = _mm512_shuffle_i64x2(field[2], field[3], pick);
-        const __m512i f45 = _mm512_shuffle_i64x2(field[4], field[5], pick);
+        const __m512i f01 = pairs[half][0], f23 = pairs[half][1], f45 = pairs[half][2];
         for (int v = 3 * half; v < 3 * half + 3 && 16 * v < total; ++v) {
             const auto u = std::size_t(v);
             __m512i words_v = _mm512_permutex2var_epi32(f01, _mm512_loadu_si512(record_layout_table.pair_index[u].data()), f23);
