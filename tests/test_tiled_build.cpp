@@ -354,6 +354,71 @@ TEST_CASE("the AVX-512 projection and binning give the scalar code's segments, t
             }
 }
 
+#if HAIRSHADOW_AVX512_WALK
+TEST_CASE("the walk's gathered batch set-up gives the lane-by-lane one, bounds and stand-ins included", "[tiled][raster]") {
+    if (!detail::cpu_has_avx512()) {
+        WARN("this CPU has no AVX-512: nothing to compare");
+        return;
+    }
+    // fill_batch serves models of 2^28 segments or more, too large to test by a build: it is checked
+    // here against gather_batch, batch by batch. The spot light inside the hair leaves segments far
+    // outside its map (beyond the walk's bounds: stand-ins) and has 1/w per segment.
+    // Sintel with 64 strands from inside its box to points 200 box widths to the side: segments far
+    // longer than the walk takes (stand-ins) under a light fitted to Sintel alone.
+    hair_model sintel = test_model("sintel");
+    const auto box = sintel.bounds();
+    const auto centre = box.center();
+    const float width = box.max.x - box.min.x;
+    for (int i = 0; i < 64; ++i) {
+        const float angle = 0.1f * float(i);
+        sintel.points.push_back(centre + glm::vec3(0.001f * float(i), 0.0f, 0.0f));
+        sintel.points.push_back(centre + 200.0f * width * glm::vec3(std::cos(angle), 0.0f, std::sin(angle)));
+        sintel.strand_offsets.push_back(std::uint32_t(sintel.points.size()));
+    }
+    const light_space lights[] = {
+        light_space::fit(light_spec::directional({0.0f, -1.0f, 0.0f}), box, 512),
+        light_space::fit(light_spec::spot(centre + glm::vec3(0.0f, 0.05f, 0.0f), {0.2f, -1.0f, 0.1f}, 35.0f), box, 256),
+    };
+    const auto fields = [](const detail::avx512::batch& b) {
+        std::array<unsigned char, 6 * 64 + 2> bytes;
+        unsigned char* at = bytes.data();
+        for (const void* field : {static_cast<const void*>(b.ax), static_cast<const void*>(b.ay), static_cast<const void*>(b.bx),
+                                  static_cast<const void*>(b.by), static_cast<const void*>(b.depth_a), static_cast<const void*>(b.depth_delta)})
+            std::memcpy(at, field, 64), at += 64;
+        std::memcpy(at, &b.simd, 2);
+        return bytes;
+    };
+    std::size_t batches = 0, differing = 0, stand_ins = 0, too_long = 0;
+    for (const auto& light : lights)
+        for (const int tile : {16, 64}) {
+            raster_options o;
+            o.tile_size = tile;
+            o.depth_weighting = false;
+            detail::segment_bins bins;
+            bins.prepare(sintel, light, o);
+            for (std::size_t t = 0; t < bins.tile_count(); ++t) {
+                const auto list = bins.tile_segments(t);
+                const texel_rect r = bins.tile_rect(t);
+                const std::int64_t ox = std::int64_t(r.x0) << HAIRSHADOW_SUBPIXEL_BITS, oy = std::int64_t(r.y0) << HAIRSHADOW_SUBPIXEL_BITS;
+                for (std::size_t base = 0; base < list.size(); base += 16) {
+                    const int lanes = int(std::min<std::size_t>(16, list.size() - base));
+                    detail::avx512::batch filled, gathered;
+                    detail::avx512::fill_batch(filled, bins, list.data() + base, lanes, ox, oy);
+                    detail::avx512::gather_batch(gathered, bins, list.data() + base, lanes, std::int32_t(ox), std::int32_t(oy));
+                    ++batches;
+                    differing += fields(filled) != fields(gathered);
+                    stand_ins += std::size_t(lanes - std::popcount(unsigned(filled.simd)));
+                    if (!light.perspective()) too_long += std::size_t(lanes - std::popcount(unsigned(filled.simd))); // 1/w is 1: the bounds
+                }
+            }
+        }
+    CHECK(batches > 1000);
+    CHECK(differing == 0);
+    CHECK(stand_ins > 0);
+    CHECK(too_long > 0);
+}
+#endif
+
 TEST_CASE("the AVX-512 walk stores the scalar walk's fragments, in its order, tile by tile", "[tiled][raster]") {
     if (!detail::cpu_has_avx512()) {
         WARN("this CPU has no AVX-512: nothing to compare");
