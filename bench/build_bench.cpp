@@ -116,7 +116,7 @@ const int registered = [] {
     for (const std::string name : {"curly1.5M", "sintel"})
         for (int res : {512, 2048})
             for (unsigned threads : {0u, 1u})
-                for (const std::string spec : {"dom:3", "occ:128:4", "osm:16", "dc:4", "docc:128:4", "dom:3:8bit"})
+                for (const std::string spec : {"dom:3", "occ:128:4", "osm:16", "osm:64", "dc:4", "docc:128:4", "dom:3:8bit"})
                     for (const auto& [how, label] : paths) {
                         if (threads == 1 && how == path::tiled_cold) continue;
                         const std::string bench_name = std::string(label) + "/" + spec + "/" + name + "/" + std::to_string(res) + "/" +

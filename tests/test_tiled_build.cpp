@@ -87,7 +87,8 @@ TEMPLATE_TEST_CASE("the tiled build gives the fragment-buffer build's maps, bit 
                    (opacity_shadow_maps<16, gamma_spacing>), deep_opacity_maps<3>, density_clustering<4>, (occupancy_maps<128, 4>),
                    deep_opacity_maps_8bit<3>, (deep_occupancy_maps<128, 4>), range_opacity_maps<16>,
                    (shadow_method<per_pixel_depth<4, layer_sizes::uniform, beyond_last_layer::ignore>, float_accumulation, interpolation>),
-                   (opacity_shadow_maps<64, uniform_spacing, emulated_8bit>), (occupancy_maps<32, 1, emulated_8bit>),
+                   (opacity_shadow_maps<64, uniform_spacing, emulated_8bit>), (opacity_shadow_maps<37, gamma_spacing>),
+                   (shadow_method<uniform_slices<64>, float_accumulation, occupancy_bitcount<2>>), (occupancy_maps<32, 1, emulated_8bit>),
                    (shadow_method<depth_range<24>, float_accumulation, interpolation>),
                    (shadow_method<per_pixel_depth<4, layer_sizes::uniform, beyond_last_layer::extend>, float_accumulation, interpolation>)) {
     const std::string name = GENERATE("sintel", "curly");

@@ -44,7 +44,7 @@ public:
 
     /// Room for tiles of `texels` texels, so that no tile allocates.
     void reserve(std::size_t texels) {
-        ranges_.reserve(texels), states_.reserve(texels), sums_.reserve(texels);
+        ranges_.reserve(texels), states_.reserve(texels), sums_.reserve(texels), touched_.reserve(texels), filled_.reserve(texels);
     }
 
     /// Whether streaming `tile` beats grouping it. Always without per-texel state (nothing but the
@@ -69,7 +69,15 @@ public:
         const auto optical = tile.walk_optical_depths();
         const std::size_t n = where.size();
         states_.resize(texels); // read only where a fragment fell, and then written first
-        sums_.assign(texels, accumulator{});
+        if constexpr (finish_later) {
+            // The accumulators are left zero after every tile (each filled one is reset once finished),
+            // so a tile clears none: with many layers, clearing them all cost more than the tile's adds.
+            if (!sums_zero_) sums_.assign(sums_.size(), accumulator{});
+            if (sums_.size() < texels) sums_.resize(texels);
+            sums_zero_ = false;
+        } else {
+            sums_.assign(texels, accumulator{});
+        }
         // The depth pass (depth_range_of, fragment by fragment), without a branch: every range starts
         // empty, [+inf, -inf], so that the first fragment's min and max give {d, d}, as depth_range_of
         // starts, and the later ones the same results in the same order. The depths are finite (the
@@ -92,22 +100,69 @@ public:
             for (std::size_t i = 0; i < count; ++i)
                 Reconstruction::template accumulate<Placement, Accumulation>(sums_[where[first + i]], layers[i], optical[first + i]);
         }
+        // Which texels took a fragment: those whose depth range is not empty, or, without a depth
+        // pass, those the walk names.
+        if constexpr (!stateful) {
+            touched_.assign(texels, 0);
+            for (std::size_t i = 0; i < n; ++i) touched_[where[i]] = 1;
+        }
+        // A texel without fragments gets the maps of empty sums, as finish gives them.
+        using texel_maps = std::remove_reference_t<decltype(texel_out(r.x0, r.y0))>;
+        texel_maps blank{};
+        if constexpr (!stateful) Reconstruction::template finish<Placement, Accumulation>(accumulator{}, blank.data);
+        filled_.clear();
         for (int y = r.y0; y < r.y1; ++y)
             for (int x = r.x0; x < r.x1; ++x) {
                 const std::size_t k = std::size_t(y - r.y0) * std::size_t(width) + std::size_t(x - r.x0);
                 auto& out = texel_out(x, y);
-                out = {};
-                if (stateful && empty(ranges_[k])) continue;
+                const bool filled = stateful ? !empty(ranges_[k]) : touched_[k] != 0;
+                out = blank;
+                if (!filled) continue;
                 out.placement = states_[k];
-                Reconstruction::template finish<Placement, Accumulation>(sums_[k], out.data);
+                if constexpr (finish_later) filled_.push_back({std::uint32_t(k), &out.data});
+                else Reconstruction::template finish<Placement, Accumulation>(sums_[k], out.data);
             }
+        if constexpr (finish_later) {
+            finish_filled();
+            sums_zero_ = true;
+        }
     }
 
     std::size_t memory_bytes() const noexcept {
-        return ranges_.capacity() * sizeof(depth_extent) + states_.capacity() * sizeof(state) + sums_.capacity() * sizeof(accumulator);
+        return ranges_.capacity() * sizeof(depth_extent) + states_.capacity() * sizeof(state) + sums_.capacity() * sizeof(accumulator) +
+               touched_.capacity() + filled_.capacity() * sizeof(filled_texel);
     }
 
 private:
+    using storage = typename Reconstruction::template storage<Placement, Accumulation>;
+    /// A texel that took fragments: its index in the tile and its maps' stored layers.
+    struct filled_texel {
+        std::uint32_t k;
+        storage* out;
+    };
+    static constexpr std::size_t together = 8;
+    /// Whether the filled texels are finished after the tile's texels are walked, eight at a time: where
+    /// the reconstruction finishes several in one call (interpolation's cumulative layers, a chain of
+    /// dependent adds per texel) and the chains are long. With few layers, finishing each texel in
+    /// place measured faster.
+    static constexpr bool finish_later = Placement::layer_count > 16 && requires(std::array<const accumulator*, together> in,
+                                                                                 std::array<storage*, together> out) {
+        Reconstruction::template finish_several<Placement, Accumulation>(in, out);
+    };
+    /// Finishes every filled texel's accumulator into its maps, eight at a time so that their chains
+    /// overlap, and resets the accumulator.
+    void finish_filled() noexcept {
+        std::size_t i = 0;
+        for (; i + together <= filled_.size(); i += together) {
+            std::array<const accumulator*, together> in;
+            std::array<storage*, together> out;
+            for (std::size_t j = 0; j < together; ++j) in[j] = &sums_[filled_[i + j].k], out[j] = filled_[i + j].out;
+            Reconstruction::template finish_several<Placement, Accumulation>(in, out);
+        }
+        for (; i < filled_.size(); ++i) Reconstruction::template finish<Placement, Accumulation>(sums_[filled_[i].k], *filled_[i].out);
+        for (const filled_texel& t : filled_) sums_[t.k] = accumulator{};
+    }
+
     /// Fragments whose layers are chosen at a time: a block's layers stay in the first-level cache.
     static constexpr std::size_t block = 512;
     static bool empty(const depth_extent& range) noexcept { return !(range.nearest <= range.furthest); }
@@ -115,6 +170,9 @@ private:
     std::vector<depth_extent> ranges_;
     std::vector<state> states_;
     std::vector<accumulator> sums_;
+    bool sums_zero_ = true;             ///< every accumulator zero (false only while a tile builds)
+    std::vector<std::uint8_t> touched_; ///< per texel, whether the walk named it (without a depth pass)
+    std::vector<filled_texel> filled_;
 };
 
 /// Stands in for streamed_tile in a composition that does not stream.

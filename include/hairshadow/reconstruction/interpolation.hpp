@@ -78,6 +78,20 @@ struct interpolation {
             }
         }
     }
+    /// finish for several texels, the same values: their running sums advance layer by layer side by
+    /// side, so that each texel's chain of dependent adds overlaps the others' (64 opacity maps: a
+    /// chain of 64 adds per texel, which finished one texel at a time took most of the tile's build).
+    template <class Placement, class Accumulation, std::size_t N>
+        requires(Placement::cumulative)
+    static void finish_several(const std::array<const accumulator<Placement, Accumulation>*, N>& sums,
+                               const std::array<storage<Placement, Accumulation>*, N>& out) noexcept {
+        std::array<typename Accumulation::sum_type, N> running{};
+        for (std::size_t k = 0; k < std::size_t(Placement::layer_count); ++k)
+            for (std::size_t t = 0; t < N; ++t) {
+                running[t] = Accumulation::combine(running[t], (*sums[t])[k]);
+                out[t]->layers[k] = Accumulation::store(running[t]);
+            }
+    }
 
     /// Optical depth in front of the end of layer k.
     template <class Placement, class Accumulation>
