@@ -8,7 +8,8 @@
 /// still meets its own fragments in segment order, so the maps are the grouped build's, bit for bit;
 /// what it saves is the counting sort, whose scattered writes miss the cache on a dense tile. The
 /// layers are chosen a block of fragments at a time (placement/assign_each.hpp: sixteen a step with
-/// AVX-512), then added one by one, in walk order.
+/// AVX-512), then added one by one, in walk order. Only the texels that took fragments are finished;
+/// with many layers, eight at a time (finish_several).
 
 #include <hairshadow/placement/assign_each.hpp>
 #include <hairshadow/placement/layer_position.hpp>
@@ -82,8 +83,7 @@ public:
         // empty, [+inf, -inf], so that the first fragment's min and max give {d, d}, as depth_range_of
         // starts, and the later ones the same results in the same order. The depths are finite (the
         // model's points are), so a texel is empty where its range still is. A placement without
-        // per-texel state needs no depth pass: an empty texel's sums are zero, and finish stores the
-        // empty texel's maps.
+        // per-texel state needs no depth pass: the texels the walk names are marked instead (below).
         constexpr bool stateful = !std::is_empty_v<state>;
         constexpr float inf = std::numeric_limits<float>::infinity();
         if constexpr (stateful) {
