@@ -517,6 +517,10 @@ TEMPLATE_TEST_CASE("density clustering's vector pre-pass and bin assignment give
         // Repeated depths (ties between centres), few distinct values, and clusters that take nothing.
         for (auto& f : t) f.depth = 0.25f + 0.125f * float(int(f.depth * 8.0f) % 3);
         texels.push_back(t);
+        // One optical depth throughout (a model of one alpha): the vector passes count the fragments
+        // each cluster takes instead of adding their weights.
+        for (auto& f : t) f = {random.uniform(0.2f, 0.8f), 0.7f};
+        texels.push_back(t);
     }
     texels.push_back(std::vector<optical_fragment>(23, {0.5f, 0.3f}));                       // one depth: bins of no width
     texels.push_back({{0.0f, 0.1f}, {-0.0f, 0.2f}, {0.5f, 0.1f}, {-0.0f, 0.4f}});            // a zero of either sign at the front
@@ -525,6 +529,12 @@ TEMPLATE_TEST_CASE("density clustering's vector pre-pass and bin assignment give
     // scalar's (2^27).
     texels.push_back({{0.4f, 0.5f}, {1000.0f, 1.5f}, {0.7f, 0.25f}, {0.41f, 0.5f}, {0.9f, 1.0f}});
     texels.push_back(std::vector<optical_fragment>(5, {20000.0f, 2.0f}));
+    texels.push_back({{0.4f, 0.5f}, {1000.0f, 0.5f}, {0.7f, 0.5f}, {0.41f, 0.5f}, {0.9f, 0.5f}}); // one b, past the range in the second pass
+    texels.push_back({{0.4f, 0.0f}, {0.6f, -0.0f}, {0.7f, 0.0f}, {0.3f, -0.0f}, {0.2f, 0.0f}});  // b of zero, either sign: one b
+    std::vector<optical_fragment> last_differs(40, {0.3f, 1.25f});
+    for (std::size_t i = 0; i < last_differs.size(); ++i) last_differs[i].depth += 0.01f * float(i);
+    last_differs.back().optical_depth = 1.5f; // one b but in the last, partial step
+    texels.push_back(last_differs);
     std::vector<optical_fragment> spread;
     for (int i = 0; i < 200; ++i) spread.push_back({i % 2 ? -1.5f + 0.01f * float(i) : 1.9f - 0.005f * float(i), 6.5f});
     texels.push_back(spread); // the whole range of depths and the largest optical depth

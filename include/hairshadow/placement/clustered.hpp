@@ -89,15 +89,10 @@ public:
         requires(K <= 16) {
         if (fragments.size() < vector_worthwhile) return prepare_texel(fragments, s);
         s.sigma.fill(-1.0f);
-        const depth_extent range = detail::avx512::texel_depth_range(fragments);
-        const std::array<float, K> centre = initial_centres(range.nearest, range.furthest);
-        cluster_sums sums{}, spread{};
-        if (!detail::avx512::add_cluster_sums<K, false>(fragments, centre.data(), all_usable(), sums.weight.data(), sums.sum.data()))
-            return prepare_texel(fragments, s); // a term beyond the vector's exact range: only absurd depths
-        set_means(sums, centre, s);
-        if (!detail::avx512::add_cluster_sums<K, true>(fragments, s.mean.data(), usable_mask(s), spread.weight.data(), spread.sum.data()))
-            return prepare_texel(fragments, s);
-        set_sigmas(spread, s);
+        const detail::avx512::texel_scan scan = detail::avx512::texel_scan_of(fragments);
+        const std::array<float, K> centre = initial_centres(scan.range.nearest, scan.range.furthest);
+        const bool done = scan.one_optical_depth ? vector_k_means<true>(fragments, centre, s) : vector_k_means<false>(fragments, centre, s);
+        if (!done) prepare_texel(fragments, s); // a term beyond the vector's exact range: only absurd depths
     }
 
     /// layers[i] = assign(s, fragments[i].depth), sixteen at a time, bit for bit.
@@ -218,6 +213,23 @@ private:
         return m;
     }
     static constexpr std::uint32_t all_usable() noexcept { return K >= 32 ? ~0u : (1u << (K % 32)) - 1u; }
+
+#if HAIRSHADOW_AVX512_WALK
+    /// prepare_texel_avx512's two k-means passes from the initial centres; false where a term is beyond
+    /// the vector's exact range, and then `s` is unfinished.
+    template <bool OneOpticalDepth>
+    HAIRSHADOW_AVX512_TARGET static bool vector_k_means(std::span<const optical_fragment> fragments, const std::array<float, K>& centre,
+                                                        texel_state& s) noexcept requires(K <= 16) {
+        cluster_sums sums{}, spread{};
+        if (!detail::avx512::add_cluster_sums<K, false, OneOpticalDepth>(fragments, centre.data(), all_usable(), sums.weight.data(), sums.sum.data()))
+            return false;
+        set_means(sums, centre, s);
+        if (!detail::avx512::add_cluster_sums<K, true, OneOpticalDepth>(fragments, s.mean.data(), usable_mask(s), spread.weight.data(), spread.sum.data()))
+            return false;
+        set_sigmas(spread, s);
+        return true;
+    }
+#endif
 
     template <class Usable>
     static int nearest(const std::array<float, K>& centres, float depth, Usable usable) noexcept {
