@@ -3792,6 +3792,29 @@ HAIRSHADOW_AVX512_TARGET inline __m512i boundaries_reached(__m512 x, const float
         reached = _mm512_mask_add_epi32(reached, _mm512_cmp_ps_mask(x, _mm512_set1_ps(boundaries[i]), _CMP_GE_OQ), reached, one);
     return reached;
 }
+
+/// settle_layer (placement/layer_position.hpp) in the `lanes` of k: each lane's estimate moved down
+/// while k > 0 and x < boundary(k), then up while k < last and x >= boundary(k + 1), one step at a
+/// time while any lane still moves. boundary(k, movable) gives boundary k of each movable lane.
+template <class Boundary>
+HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __m512i settle_layers(__m512i k, __m512 x, __mmask16 lanes, int last,
+                                                                             Boundary&& boundary) noexcept {
+    const __m512i one = _mm512_set1_epi32(1);
+    for (;;) {
+        const __mmask16 movable = _mm512_mask_cmpgt_epi32_mask(lanes, k, _mm512_setzero_si512());
+        const __mmask16 down = _mm512_mask_cmp_ps_mask(movable, x, boundary(k, movable), _CMP_LT_OQ);
+        if (!down) break;
+        k = _mm512_mask_sub_epi32(k, down, k, one);
+    }
+    for (;;) {
+        const __m512i next = _mm512_add_epi32(k, one);
+        const __mmask16 movable = _mm512_mask_cmplt_epi32_mask(lanes, k, _mm512_set1_epi32(last));
+        const __mmask16 up = _mm512_mask_cmp_ps_mask(movable, x, boundary(next, movable), _CMP_GE_OQ);
+        if (!up) break;
+        k = _mm512_mask_mov_epi32(k, up, next);
+    }
+    return k;
+}
 } // namespace avx512
 #endif
 
@@ -5571,7 +5594,6 @@ public:
         static_assert(sizeof(texel_state) == 2 * sizeof(float) && offsetof(texel_state, furthest) == sizeof(float));
         const float* ranges = reinterpret_cast<const float*>(states);
         const __m512 slices = _mm512_set1_ps(float(S));
-        const __m512i one = _mm512_set1_epi32(1), last = _mm512_set1_epi32(S);
         for (std::size_t i = 0; i < texels.size(); i += 16) {
             const __mmask16 lanes = detail::avx512::first_lanes(texels.size() - i);
             const __m512i texel = _mm512_maskz_loadu_epi32(lanes, texels.data() + i);
@@ -5584,19 +5606,9 @@ public:
             const __m512 estimate = _mm512_mul_ps(_mm512_div_ps(_mm512_sub_ps(depth, nearest), span), slices);
             const __mmask16 positive = _mm512_mask_cmp_ps_mask(ranged, estimate, _mm512_setzero_ps(), _CMP_GT_OQ);
             __m512i k = _mm512_maskz_cvttps_epi32(positive, _mm512_min_ps(estimate, slices));
-            for (;;) { // down while k > 0 and depth < boundary(k)
-                const __mmask16 movable = _mm512_mask_cmpgt_epi32_mask(ranged, k, _mm512_setzero_si512());
-                const __mmask16 down = _mm512_mask_cmp_ps_mask(movable, depth, boundary_avx512(nearest, span, k), _CMP_LT_OQ);
-                if (!down) break;
-                k = _mm512_mask_sub_epi32(k, down, k, one);
-            }
-            for (;;) { // up while k < S and depth >= boundary(k + 1)
-                const __m512i next = _mm512_add_epi32(k, one);
-                const __mmask16 movable = _mm512_mask_cmplt_epi32_mask(ranged, k, last);
-                const __mmask16 up = _mm512_mask_cmp_ps_mask(movable, depth, boundary_avx512(nearest, span, next), _CMP_GE_OQ);
-                if (!up) break;
-                k = _mm512_mask_mov_epi32(k, up, next);
-            }
+            k = detail::avx512::settle_layers(k, depth, ranged, S, [=, this](__m512i j, __mmask16) HAIRSHADOW_AVX512_TARGET {
+                return boundary_avx512(nearest, span, j);
+            });
             k = _mm512_min_epi32(k, _mm512_set1_epi32(S - 1)); // never negative: it starts at 0 or above and stops there
             _mm512_mask_storeu_epi32(layers + i, lanes, k);
         }
@@ -5800,7 +5812,6 @@ private:
     /// k with d_k <= rel < d_k+1, settled from the closed-form estimate one step at a time.
     HAIRSHADOW_AVX512_TARGET static __m512i settled_layer_avx512(__m512 rel, __mmask16 lanes) noexcept {
         const __m512 last = _mm512_set1_ps(float(K - 1));
-        const __m512i one = _mm512_set1_epi32(1);
         const float* d = relative_boundaries.data();
         const __mmask16 inside = _mm512_mask_cmp_ps_mask(_mm512_mask_cmp_ps_mask(lanes, rel, _mm512_setzero_ps(), _CMP_GE_OQ), rel,
                                                          _mm512_set1_ps(1.0f), _CMP_LT_OQ);
@@ -5813,19 +5824,9 @@ private:
         }
         const __mmask16 positive = _mm512_mask_cmp_ps_mask(inside, estimate, _mm512_setzero_ps(), _CMP_GT_OQ);
         __m512i k = _mm512_maskz_cvttps_epi32(positive, _mm512_min_ps(estimate, last));
-        for (;;) { // down while k > 0 and rel < d_k
-            const __mmask16 movable = _mm512_mask_cmpgt_epi32_mask(inside, k, _mm512_setzero_si512());
-            const __mmask16 down = _mm512_mask_cmp_ps_mask(movable, rel, _mm512_mask_i32gather_ps(rel, movable, k, d, 4), _CMP_LT_OQ);
-            if (!down) break;
-            k = _mm512_mask_sub_epi32(k, down, k, one);
-        }
-        for (;;) { // up while k < K - 1 and rel >= d_k+1
-            const __m512i next = _mm512_add_epi32(k, one);
-            const __mmask16 movable = _mm512_mask_cmplt_epi32_mask(inside, k, _mm512_set1_epi32(K - 1));
-            const __mmask16 up = _mm512_mask_cmp_ps_mask(movable, rel, _mm512_mask_i32gather_ps(rel, movable, next, d, 4), _CMP_GE_OQ);
-            if (!up) break;
-            k = _mm512_mask_mov_epi32(k, up, next);
-        }
+        k = detail::avx512::settle_layers(k, rel, inside, K - 1, [=](__m512i j, __mmask16 movable) HAIRSHADOW_AVX512_TARGET {
+            return _mm512_mask_i32gather_ps(rel, movable, j, d, 4);
+        });
         // Beyond the last boundary (rel >= 1): K; in front or NaN: 0, as assign maps locate's -1.
         const __mmask16 beyond = _mm512_mask_cmp_ps_mask(lanes, rel, _mm512_set1_ps(1.0f), _CMP_GE_OQ);
         return _mm512_mask_mov_epi32(_mm512_maskz_mov_epi32(inside, k), beyond, _mm512_set1_epi32(K));

@@ -58,6 +58,29 @@ HAIRSHADOW_AVX512_TARGET inline __m512i boundaries_reached(__m512 x, const float
         reached = _mm512_mask_add_epi32(reached, _mm512_cmp_ps_mask(x, _mm512_set1_ps(boundaries[i]), _CMP_GE_OQ), reached, one);
     return reached;
 }
+
+/// settle_layer (placement/layer_position.hpp) in the `lanes` of k: each lane's estimate moved down
+/// while k > 0 and x < boundary(k), then up while k < last and x >= boundary(k + 1), one step at a
+/// time while any lane still moves. boundary(k, movable) gives boundary k of each movable lane.
+template <class Boundary>
+HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __m512i settle_layers(__m512i k, __m512 x, __mmask16 lanes, int last,
+                                                                             Boundary&& boundary) noexcept {
+    const __m512i one = _mm512_set1_epi32(1);
+    for (;;) {
+        const __mmask16 movable = _mm512_mask_cmpgt_epi32_mask(lanes, k, _mm512_setzero_si512());
+        const __mmask16 down = _mm512_mask_cmp_ps_mask(movable, x, boundary(k, movable), _CMP_LT_OQ);
+        if (!down) break;
+        k = _mm512_mask_sub_epi32(k, down, k, one);
+    }
+    for (;;) {
+        const __m512i next = _mm512_add_epi32(k, one);
+        const __mmask16 movable = _mm512_mask_cmplt_epi32_mask(lanes, k, _mm512_set1_epi32(last));
+        const __mmask16 up = _mm512_mask_cmp_ps_mask(movable, x, boundary(next, movable), _CMP_GE_OQ);
+        if (!up) break;
+        k = _mm512_mask_mov_epi32(k, up, next);
+    }
+    return k;
+}
 } // namespace avx512
 #endif
 

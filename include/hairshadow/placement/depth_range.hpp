@@ -63,7 +63,6 @@ public:
         static_assert(sizeof(texel_state) == 2 * sizeof(float) && offsetof(texel_state, furthest) == sizeof(float));
         const float* ranges = reinterpret_cast<const float*>(states);
         const __m512 slices = _mm512_set1_ps(float(S));
-        const __m512i one = _mm512_set1_epi32(1), last = _mm512_set1_epi32(S);
         for (std::size_t i = 0; i < texels.size(); i += 16) {
             const __mmask16 lanes = detail::avx512::first_lanes(texels.size() - i);
             const __m512i texel = _mm512_maskz_loadu_epi32(lanes, texels.data() + i);
@@ -76,19 +75,9 @@ public:
             const __m512 estimate = _mm512_mul_ps(_mm512_div_ps(_mm512_sub_ps(depth, nearest), span), slices);
             const __mmask16 positive = _mm512_mask_cmp_ps_mask(ranged, estimate, _mm512_setzero_ps(), _CMP_GT_OQ);
             __m512i k = _mm512_maskz_cvttps_epi32(positive, _mm512_min_ps(estimate, slices));
-            for (;;) { // down while k > 0 and depth < boundary(k)
-                const __mmask16 movable = _mm512_mask_cmpgt_epi32_mask(ranged, k, _mm512_setzero_si512());
-                const __mmask16 down = _mm512_mask_cmp_ps_mask(movable, depth, boundary_avx512(nearest, span, k), _CMP_LT_OQ);
-                if (!down) break;
-                k = _mm512_mask_sub_epi32(k, down, k, one);
-            }
-            for (;;) { // up while k < S and depth >= boundary(k + 1)
-                const __m512i next = _mm512_add_epi32(k, one);
-                const __mmask16 movable = _mm512_mask_cmplt_epi32_mask(ranged, k, last);
-                const __mmask16 up = _mm512_mask_cmp_ps_mask(movable, depth, boundary_avx512(nearest, span, next), _CMP_GE_OQ);
-                if (!up) break;
-                k = _mm512_mask_mov_epi32(k, up, next);
-            }
+            k = detail::avx512::settle_layers(k, depth, ranged, S, [=, this](__m512i j, __mmask16) HAIRSHADOW_AVX512_TARGET {
+                return boundary_avx512(nearest, span, j);
+            });
             k = _mm512_min_epi32(k, _mm512_set1_epi32(S - 1)); // never negative: it starts at 0 or above and stops there
             _mm512_mask_storeu_epi32(layers + i, lanes, k);
         }

@@ -172,7 +172,6 @@ private:
     /// k with d_k <= rel < d_k+1, settled from the closed-form estimate one step at a time.
     HAIRSHADOW_AVX512_TARGET static __m512i settled_layer_avx512(__m512 rel, __mmask16 lanes) noexcept {
         const __m512 last = _mm512_set1_ps(float(K - 1));
-        const __m512i one = _mm512_set1_epi32(1);
         const float* d = relative_boundaries.data();
         const __mmask16 inside = _mm512_mask_cmp_ps_mask(_mm512_mask_cmp_ps_mask(lanes, rel, _mm512_setzero_ps(), _CMP_GE_OQ), rel,
                                                          _mm512_set1_ps(1.0f), _CMP_LT_OQ);
@@ -185,19 +184,9 @@ private:
         }
         const __mmask16 positive = _mm512_mask_cmp_ps_mask(inside, estimate, _mm512_setzero_ps(), _CMP_GT_OQ);
         __m512i k = _mm512_maskz_cvttps_epi32(positive, _mm512_min_ps(estimate, last));
-        for (;;) { // down while k > 0 and rel < d_k
-            const __mmask16 movable = _mm512_mask_cmpgt_epi32_mask(inside, k, _mm512_setzero_si512());
-            const __mmask16 down = _mm512_mask_cmp_ps_mask(movable, rel, _mm512_mask_i32gather_ps(rel, movable, k, d, 4), _CMP_LT_OQ);
-            if (!down) break;
-            k = _mm512_mask_sub_epi32(k, down, k, one);
-        }
-        for (;;) { // up while k < K - 1 and rel >= d_k+1
-            const __m512i next = _mm512_add_epi32(k, one);
-            const __mmask16 movable = _mm512_mask_cmplt_epi32_mask(inside, k, _mm512_set1_epi32(K - 1));
-            const __mmask16 up = _mm512_mask_cmp_ps_mask(movable, rel, _mm512_mask_i32gather_ps(rel, movable, next, d, 4), _CMP_GE_OQ);
-            if (!up) break;
-            k = _mm512_mask_mov_epi32(k, up, next);
-        }
+        k = detail::avx512::settle_layers(k, rel, inside, K - 1, [=](__m512i j, __mmask16 movable) HAIRSHADOW_AVX512_TARGET {
+            return _mm512_mask_i32gather_ps(rel, movable, j, d, 4);
+        });
         // Beyond the last boundary (rel >= 1): K; in front or NaN: 0, as assign maps locate's -1.
         const __mmask16 beyond = _mm512_mask_cmp_ps_mask(lanes, rel, _mm512_set1_ps(1.0f), _CMP_GE_OQ);
         return _mm512_mask_mov_epi32(_mm512_maskz_mov_epi32(inside, k), beyond, _mm512_set1_epi32(K));
