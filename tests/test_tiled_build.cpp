@@ -7,6 +7,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cstring>
 #include <random>
@@ -541,11 +542,15 @@ TEMPLATE_TEST_CASE("density clustering's vector pre-pass and bin assignment give
     std::vector<optical_fragment> zeros(20, {0.5f, 1.0f});
     zeros[3].depth = 0.0f, zeros[17].depth = -0.0f; // in order +0 comes first; in lanes, -0 (lane 1)
     texels.push_back(zeros);
-    std::size_t differing_states = 0, differing_layers = 0, differing_ranges = 0, fragments = 0;
+    std::size_t differing_states = 0, differing_layers = 0, differing_ranges = 0, differing_one_b = 0, texels_of_one_b = 0, fragments = 0;
     for (const auto& t : texels) {
         const std::span<const optical_fragment> in(t);
-        const depth_extent range = detail::depth_range_of(in), vector_range = detail::avx512::texel_depth_range(in);
-        differing_ranges += std::memcmp(&range, &vector_range, sizeof(range)) != 0;
+        const depth_extent range = detail::depth_range_of(in);
+        const detail::avx512::texel_scan scan = detail::avx512::texel_scan_of(in);
+        differing_ranges += std::memcmp(&range, &scan.range, sizeof(range)) != 0;
+        const bool one_b = std::all_of(t.begin(), t.end(), [&](const optical_fragment& f) { return f.optical_depth == t[0].optical_depth; });
+        differing_one_b += scan.one_optical_depth != one_b;
+        texels_of_one_b += one_b;
         state scalar, vector;
         placement.prepare_texel(in, scalar);
         placement.prepare_texel_avx512(in, vector);
@@ -563,6 +568,8 @@ TEMPLATE_TEST_CASE("density clustering's vector pre-pass and bin assignment give
     }
     CHECK(fragments > 2000);
     CHECK(differing_ranges == 0);
+    CHECK(differing_one_b == 0);
+    CHECK(texels_of_one_b > 70);
     CHECK(differing_states == 0);
     CHECK(differing_layers == 0);
 }

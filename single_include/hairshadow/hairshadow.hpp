@@ -5147,11 +5147,6 @@ HAIRSHADOW_AVX512_TARGET inline texel_scan texel_scan_of(std::span<const optical
     return {range, other_optical == 0};
 }
 
-/// detail::depth_range_of, bit for bit (texel_scan_of).
-HAIRSHADOW_AVX512_TARGET inline depth_extent texel_depth_range(std::span<const optical_fragment> fragments) noexcept {
-    return texel_scan_of(fragments).range;
-}
-
 /// Per lane, the nearest of the `usable` centres by |depth - centre| in float, the first of equals:
 /// clustered::nearest (the first usable one for a NaN depth, 0 where none is usable). The running
 /// least distance is a vminps, which keeps its second operand unless the first is less, as the scalar
@@ -5192,8 +5187,8 @@ HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __m512d widen_half(__m5
 }
 
 /// Lane j: the sum of v[j]'s eight lanes, for eight vectors at once. Three rounds of pairing halve the
-/// lanes per vector; eight separate reductions took three times the instructions, as many as a texel's
-/// k-means pass over a few dozen fragments.
+/// lanes per vector; eight separate reductions take about three times the instructions (counted), as
+/// many as a texel's k-means pass over a few dozen fragments.
 HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __m512i lane_sums(const __m512i* v) noexcept {
     // 128-bit block b of pair[i]: v[2i]'s and v[2i+1]'s lanes 2b and 2b + 1, summed.
     __m512i pair[4];
