@@ -75,7 +75,7 @@ public:
             const __m512 estimate = _mm512_mul_ps(_mm512_div_ps(_mm512_sub_ps(depth, nearest), span), slices);
             const __mmask16 positive = _mm512_mask_cmp_ps_mask(ranged, estimate, _mm512_setzero_ps(), _CMP_GT_OQ);
             __m512i k = _mm512_maskz_cvttps_epi32(positive, _mm512_min_ps(estimate, slices));
-            k = detail::avx512::settle_layers(k, depth, ranged, S, [=, this](__m512i j, __mmask16) HAIRSHADOW_AVX512_TARGET {
+            k = detail::avx512::settle_layers(k, depth, ranged, S, [=](__m512i j, __mmask16) HAIRSHADOW_AVX512_TARGET {
                 return boundary_avx512(nearest, span, j);
             });
             k = _mm512_min_epi32(k, _mm512_set1_epi32(S - 1)); // never negative: it starts at 0 or above and stops there
