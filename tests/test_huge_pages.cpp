@@ -68,8 +68,10 @@ TEST_CASE("huge_page_allocator: a block holds no more resident memory than it us
         WARN("no /proc/self/statm: resident memory not checked");
         return;
     }
-    // Whatever huge pages the system grants: at most the block, and a little for the test's own.
-    CHECK(*resident_after - *resident_before <= bytes + 256 * 1024);
+    // Whatever huge pages the system grants: at most the block, its shadow under AddressSanitizer (a
+    // byte for every eight, which memset touches there) and a little for the test's own. Advising
+    // the last huge page whole makes it 8 MiB, more than this.
+    CHECK(*resident_after - *resident_before <= bytes + bytes / 8 + 512 * 1024);
     if (huge_before && huge_after) CHECK(*huge_after - *huge_before <= 6 * mib);
 }
 
