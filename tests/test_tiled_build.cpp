@@ -452,6 +452,38 @@ TEST_CASE("the AVX-512 walk stores the scalar walk's fragments, in its order, ti
             }
 }
 
+TEST_CASE("the streamed depth pass gives add_to_depth_range's ranges, signed zeros and ties included, on both paths", "[tiled][placement]") {
+    // Texels whose nearest or furthest depth is a zero met with both signs (which sign stays depends on
+    // the comparisons' order and strictness), whose bounds tie, and random depths over many texels.
+    // The ranges' bits must be the reference's.
+    std::vector<std::uint32_t> texels;
+    std::vector<float> depths;
+    const std::vector<std::vector<float>> values = {{0.0f, -0.0f}, {0.0f, -0.0f, 0.5f, 0.5f}, {-0.0f, 0.0f, -0.5f, -2.0f}, {1.0f, 1.0f}};
+    std::mt19937 random(11);
+    for (std::uint32_t k = 0; k < 8; ++k)
+        for (int i = 0; i < 40; ++i) texels.push_back(k), depths.push_back(values[k % 4][random() % values[k % 4].size()]);
+    std::uniform_real_distribution<float> anywhere(-3.0f, 3.0f);
+    for (int i = 0; i < 5000; ++i) texels.push_back(8 + std::uint32_t(random() % 200)), depths.push_back(anywhere(random));
+    std::shuffle(texels.begin() + 320, texels.end(), random);
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    std::vector<depth_extent> expected(208, depth_extent{inf, -inf});
+    for (std::size_t i = 0; i < texels.size(); ++i) detail::add_to_depth_range(expected[texels[i]], depths[i]);
+    for (const instruction_set path : {instruction_set::scalar, instruction_set::avx512}) {
+        if (path == instruction_set::avx512 && !detail::cpu_has_avx512()) continue;
+        std::vector<detail::negated_range> ranges(expected.size(), detail::negated_range{inf, inf});
+        detail::add_depths(ranges.data(), texels.data(), depths.data(), texels.size(), path);
+        std::size_t differing = 0;
+        for (std::size_t k = 0; k < ranges.size(); ++k) {
+            const float furthest = -ranges[k].neg_furthest;
+            differing += std::memcmp(&ranges[k].nearest, &expected[k].nearest, sizeof(float)) != 0 ||
+                         std::memcmp(&furthest, &expected[k].furthest, sizeof(float)) != 0;
+            CHECK_FALSE(detail::empty_range(ranges[k]));
+        }
+        INFO("path " << int(path));
+        CHECK(differing == 0);
+    }
+}
+
 TEMPLATE_TEST_CASE("assign_each gives assign's layers sixteen at a time, at and beside every boundary", "[tiled][placement]",
                    per_pixel_depth<3>, (per_pixel_depth<4, layer_sizes::uniform, beyond_last_layer::ignore>),
                    (per_pixel_depth<4, layer_sizes::uniform, beyond_last_layer::extend>), per_pixel_depth<8>, uniform_slices<16>,
