@@ -129,6 +129,19 @@ TEST_CASE("bench prints one row per method with its rebuild times and memory", "
     CHECK(test::run_cli("bench procedural:curly:strands=30 --res 0").status == 2);
 }
 
+TEST_CASE("bench builds in tiles of the size asked for, and refuses sizes the build cannot use", "[cli][tiled]") {
+    const auto r = test::run_cli("bench procedural:curly:strands=300:segments=16 --res 128 --methods dom:3 --repeat 1 --tile 32");
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.out, Catch::Contains("tiles of 32 texels"));
+    CHECK_THAT(test::run_cli("bench procedural:curly:strands=300:segments=16 --res 128 --methods dom:3 --repeat 1").out,
+               Catch::Contains("tiles of 64 texels"));
+    for (const char* tile : {"7", "1025", "0", "-64", "x"}) {
+        const auto bad = test::run_cli(std::string("bench procedural:curly:strands=30 --repeat 1 --tile ") + tile);
+        CHECK(bad.status == 2);
+        CHECK_THAT(bad.err, Catch::Contains("error: "));
+    }
+}
+
 TEST_CASE("render writes the stored maps for inspection", "[cli][methods]") {
     test::temp_dir dir("cli_maps");
     const auto r = test::run_cli("render procedural:straight:strands=200:segments=8 --view light --res 32 --method dom:3 --out " + dir.file("t.png") +

@@ -108,7 +108,9 @@ int run_bench(const hair_model& model, const light_space& light, const bench_opt
     std::printf("Model `%s` (%zu strands, %zu segments), light `%s`, %dx%d, %u threads, ", o.model_name.c_str(), model.strand_count(),
                 model.segment_count(), o.light_name.c_str(), light.resolution(), light.resolution(), o.raster.exec.resolved());
     if (gl) std::printf("built on %s. ", gl->description().c_str());
-    else std::printf("built on the CPU, tile by tile (%s line walk). ", resolve(o.raster.instructions) == instruction_set::avx512 ? "AVX-512" : "scalar");
+    else
+        std::printf("built on the CPU, tile by tile (tiles of %d texels, %s line walk). ", o.raster.tile_size,
+                    resolve(o.raster.instructions) == instruction_set::avx512 ? "AVX-512" : "scalar");
     std::printf("A rebuild is a full build from the model (rasterise and build), the maps and working memory already in place; "
                 "the cold build is the first, which also allocates them%s. Times over %d rebuilds; peak memory is the process's resident "
                 "high-water mark while building%s",

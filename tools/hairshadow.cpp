@@ -432,7 +432,7 @@ int run_compare(const map_options& o, const std::string& methods, const std::str
     return 0;
 }
 
-int run_bench(const map_options& o, const std::string& methods, int repeat) {
+int run_bench(const map_options& o, const std::string& methods, int repeat, int tile) {
     cli::bench_options b;
     for (auto part : detail::split(methods, ',')) b.specs.push_back(parse_method_for(std::string(part), o));
     auto s = prepare_scene(o, false);
@@ -440,6 +440,7 @@ int run_bench(const map_options& o, const std::string& methods, int repeat) {
     b.light_name = o.light;
     b.repeat = repeat;
     b.raster = s.raster;
+    b.raster.tile_size = tile;
     return cli::run_bench(s.model, s.light, b, s.gl.get());
 }
 
@@ -533,7 +534,7 @@ int main(int argc, char** argv) {
     compare->add_option("--out", out_dir, "also write compare.md and compare.csv into this folder");
 
     std::string bench_methods = "osm:16,osm:64,dom:3,dc:4,occ:128:4,adsm,adsm:auto,dsm";
-    int repeat = 10;
+    int repeat = 10, tile = raster_options{}.tile_size;
     auto* bench = app.add_subcommand("bench", "time full rebuilds (rasterise and build) of each method's maps on a model: a Markdown table");
     add_model(bench, o);
     add_map_options(bench, o, false);
@@ -541,6 +542,10 @@ int main(int argc, char** argv) {
     bench->add_option("--methods", bench_methods, "comma-separated method specs");
     bench->add_option("--repeat", repeat, "rebuilds timed after the cold one, 1 to 10000")->check(CLI::Range(1, 10000));
     bench->add_option("--threads", o.threads, "worker threads; 0 = all cores");
+    bench->add_option("--tile", tile,
+                      "side of the CPU build's tiles, 8 to 1024 texels: larger tiles split fewer segments but hold more fragments at once "
+                      "(raster_options::tile_size)")
+        ->check(CLI::Range(8, 1024));
 
     cli::animate_options anim;
     std::string motion = "both";
@@ -595,7 +600,7 @@ int main(int argc, char** argv) {
         if (*render) return run_render(o, view, out_path, maps_dir);
         if (*memory) return run_memory(o);
         if (*compare) return run_compare(o, methods, out_dir);
-        if (*bench) return run_bench(o, bench_methods, repeat);
+        if (*bench) return run_bench(o, bench_methods, repeat, tile);
         if (*animate) {
             try { // everything a usage error can be, before any work
                 check_resolution(anim.resolution);
