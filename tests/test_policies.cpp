@@ -258,3 +258,75 @@ TEST_CASE("a method queried before it is built sees no shadow", "[policy]") {
     const deep_opacity_maps<3> dom;
     CHECK(dom.transmittance(glm::vec3(0, 0, 0)) == 1.0f);
 }
+
+namespace {
+
+/// interpolation::build of texels whose fragments share one optical depth (counted, then summed from a
+/// table) against the same fragments added one by one in order, as the build does with mixed ones.
+/// Returns the texels whose maps differ; `counted` is how many took the counted path.
+template <class Placement, class Accumulation>
+std::size_t differing_counted_builds(std::size_t& counted) {
+    Placement placement;
+    placement.prepare(depth_extent{0.1f, 0.9f});
+    random_stream random(11);
+    std::vector<std::vector<optical_fragment>> texels;
+    for (const int n : {1, 2, 5, 16, 17, 47, 64, 65, 200, 1500}) {
+        for (const float b : {0.1f, 0.0123f, 1.7f, 0.0f, -0.0f}) {
+            std::vector<optical_fragment> t;
+            for (int i = 0; i < n; ++i) t.push_back({random.uniform(0.1f, 0.9f), b});
+            texels.push_back(t);
+        }
+        std::vector<optical_fragment> mixed = texels.back();
+        for (auto& f : mixed) f.optical_depth = random.uniform(0.0f, 1.0f);
+        texels.push_back(mixed);
+        if (n > 1) { // one b but the last: the per-fragment path
+            std::vector<optical_fragment> last_differs = texels[texels.size() - 6];
+            last_differs.back().optical_depth = 0.2f;
+            texels.push_back(last_differs);
+        }
+    }
+    std::vector<instruction_set> paths{instruction_set::scalar};
+    if (detail::cpu_has_avx512()) paths.push_back(instruction_set::avx512);
+    std::size_t differing = 0;
+    counted = 0;
+    for (const auto path : paths)
+        for (const auto& t : texels) {
+            const std::span<const optical_fragment> in(t);
+            typename Placement::texel_state state;
+            placement.prepare_texel(in, state);
+            interpolation::storage<Placement, Accumulation> built, expected;
+            interpolation::build<Placement, Accumulation>(placement, state, in, built, path);
+            interpolation::accumulator<Placement, Accumulation> sums{};
+            for (const auto& f : t) interpolation::accumulate<Placement, Accumulation>(sums, placement.assign(state, f.depth), f.optical_depth);
+            interpolation::finish<Placement, Accumulation>(sums, expected);
+            differing += !(built == expected);
+            counted += std::all_of(t.begin(), t.end(), [&](const optical_fragment& f) {
+                return std::bit_cast<std::uint32_t>(f.optical_depth) == std::bit_cast<std::uint32_t>(t[0].optical_depth);
+            });
+        }
+    return differing;
+}
+
+} // namespace
+
+TEST_CASE("a texel of one optical depth sums its layers from their counts, bit for bit", "[policy][reconstruction]") {
+    std::size_t counted = 0;
+    CHECK(differing_counted_builds<clustered<4>, float_accumulation>(counted) == 0);
+    CHECK(counted > 80);
+    CHECK(differing_counted_builds<clustered<4>, emulated_8bit>(counted) == 0);
+    CHECK(differing_counted_builds<clustered<16>, float_accumulation>(counted) == 0);
+    CHECK(differing_counted_builds<per_pixel_depth<3>, float_accumulation>(counted) == 0);
+    CHECK(differing_counted_builds<per_pixel_depth<3>, emulated_8bit>(counted) == 0);
+    CHECK(differing_counted_builds<planar_slices<16>, float_accumulation>(counted) == 0);
+    CHECK(differing_counted_builds<planar_slices<64>, float_accumulation>(counted) == 0); // many layers: counted one by one
+    // A sum of n equal adds is not n times b: the table adds them one by one.
+    float sum = 0.0f;
+    for (int i = 0; i < 1500; ++i) sum += 0.0123f;
+    CHECK(sum != 1500.0f * 0.0123f);
+    detail::repeated_sums<float_accumulation> table;
+    table.use(0.0123f);
+    CHECK(table(1500) == sum);
+    CHECK(table(0) == 0.0f);
+    table.use(0.5f); // another b starts afresh
+    CHECK(table(3) == 1.5f);
+}

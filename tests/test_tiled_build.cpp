@@ -531,7 +531,7 @@ TEMPLATE_TEST_CASE("assign_each gives assign's layers sixteen at a time, at and 
 }
 
 #if HAIRSHADOW_AVX512_WALK // the vector members exist only where the vector paths are compiled
-TEMPLATE_TEST_CASE("density clustering's vector pre-pass and bin assignment give the scalar state and layers, bit for bit", "[tiled][placement]",
+TEMPLATE_TEST_CASE("density clustering's vector pre-pass, bin assignment and bin counts give the scalar state, layers and counts, bit for bit", "[tiled][placement]",
                    clustered<1>, clustered<3>, clustered<4>, clustered<8>, clustered<16>) {
     if (!detail::cpu_has_avx512()) {
         WARN("this CPU has no AVX-512: nothing to compare");
@@ -574,7 +574,8 @@ TEMPLATE_TEST_CASE("density clustering's vector pre-pass and bin assignment give
     std::vector<optical_fragment> zeros(20, {0.5f, 1.0f});
     zeros[3].depth = 0.0f, zeros[17].depth = -0.0f; // in order +0 comes first; in lanes, -0 (lane 1)
     texels.push_back(zeros);
-    std::size_t differing_states = 0, differing_layers = 0, differing_ranges = 0, differing_one_b = 0, texels_of_one_b = 0, fragments = 0;
+    std::size_t differing_states = 0, differing_layers = 0, differing_counts = 0, differing_ranges = 0, differing_one_b = 0, texels_of_one_b = 0,
+                fragments = 0;
     for (const auto& t : texels) {
         const std::span<const optical_fragment> in(t);
         const depth_extent range = detail::depth_range_of(in);
@@ -597,8 +598,18 @@ TEMPLATE_TEST_CASE("density clustering's vector pre-pass and bin assignment give
         std::vector<int> visited;
         detail::for_each_layer(placement, scalar, in, instruction_set::avx512, [&](int k, const optical_fragment&) { visited.push_back(k); });
         for (std::size_t i = 0; i < t.size(); ++i) differing_layers += visited[i] != layers[i];
+        // The layers' counts (interpolation's build for a texel of one b), vector and dispatched.
+        constexpr std::size_t K = std::size_t(TestType::layer_count);
+        std::array<std::uint32_t, K> expected{}, counted{};
+        for (const std::int32_t k : layers)
+            if (k >= 0) ++expected[std::size_t(k)];
+        placement.count_texel_avx512(scalar, in, counted);
+        differing_counts += counted != expected;
+        differing_counts += detail::layer_counts(placement, scalar, in, instruction_set::avx512) != expected;
+        differing_counts += detail::layer_counts(placement, scalar, in, instruction_set::scalar) != expected;
     }
     CHECK(fragments > 2000);
+    CHECK(differing_counts == 0);
     CHECK(differing_ranges == 0);
     CHECK(differing_one_b == 0);
     CHECK(texels_of_one_b > 70);

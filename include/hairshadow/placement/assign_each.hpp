@@ -42,6 +42,13 @@ concept assigns_texel_avx512 = requires(const Placement& p, const typename Place
     p.assign_texel_avx512(s, fragments, layers);
 };
 
+/// Whether `Placement` counts one texel's optical fragments in its layers sixteen at a time.
+template <class Placement>
+concept counts_texel_avx512 = requires(const Placement& p, const typename Placement::texel_state& s, std::span<const optical_fragment> fragments,
+                                       std::array<std::uint32_t, std::size_t(Placement::layer_count)>& counts) {
+    p.count_texel_avx512(s, fragments, counts);
+};
+
 namespace avx512 {
 /// The first `remaining` of sixteen lanes (all of them from 16 on).
 inline __mmask16 first_lanes(std::size_t remaining) noexcept {
@@ -133,6 +140,58 @@ HAIRSHADOW_ALWAYS_INLINE inline void for_each_layer(const Placement& placement, 
     (void)instructions;
     const auto assign = texel_assigner(placement, state);
     for (const auto& f : fragments) visit(assign(f.depth), f);
+}
+
+
+/// counts[k] += the fragments of layers[0..n) in layer k (k in [0, L)); layer -1 counts nowhere. With
+/// few layers, one pass per layer (comparisons that vectorise); with many, one increment per fragment.
+template <std::size_t L>
+HAIRSHADOW_ALWAYS_INLINE inline void add_layer_counts(const std::int32_t* layers, std::size_t n, std::array<std::uint32_t, L>& counts) noexcept {
+    if constexpr (L <= 16) {
+        for (std::size_t j = 0; j < L; ++j) {
+            std::uint32_t c = 0;
+            for (std::size_t i = 0; i < n; ++i) c += std::uint32_t(layers[i] == std::int32_t(j));
+            counts[j] += c;
+        }
+    } else {
+        for (std::size_t i = 0; i < n; ++i)
+            if (layers[i] >= 0) ++counts[std::size_t(layers[i])];
+    }
+}
+
+/// How many of a texel's fragments fall in each layer (placement.assign), through for_each_layer's
+/// vector path where it runs.
+template <class Placement, class Fragment, std::size_t L = std::size_t(Placement::layer_count)>
+HAIRSHADOW_ALWAYS_INLINE inline std::array<std::uint32_t, L> layer_counts(const Placement& placement, const typename Placement::texel_state& state,
+                                                                     std::span<const Fragment> fragments, instruction_set instructions) {
+    std::array<std::uint32_t, L> counts{};
+    constexpr std::size_t block = 64;
+    std::array<std::int32_t, block> layers;
+#if HAIRSHADOW_AVX512_WALK
+    if constexpr (std::is_same_v<Fragment, optical_fragment> && counts_texel_avx512<Placement>) {
+        if (instructions == instruction_set::avx512) {
+            placement.count_texel_avx512(state, fragments, counts);
+            return counts;
+        }
+    } else if constexpr (std::is_same_v<Fragment, optical_fragment> && assigns_texel_avx512<Placement>) {
+        if (instructions == instruction_set::avx512) {
+            for (std::size_t first = 0; first < fragments.size(); first += block) {
+                const auto part = fragments.subspan(first, std::min(block, fragments.size() - first));
+                placement.assign_texel_avx512(state, part, layers.data());
+                add_layer_counts(layers.data(), part.size(), counts);
+            }
+            return counts;
+        }
+    }
+#endif
+    (void)instructions;
+    const auto assign = texel_assigner(placement, state);
+    for (std::size_t first = 0; first < fragments.size(); first += block) {
+        const std::size_t n = std::min(block, fragments.size() - first);
+        for (std::size_t i = 0; i < n; ++i) layers[i] = std::int32_t(assign(fragments[first + i].depth));
+        add_layer_counts(layers.data(), n, counts);
+    }
+    return counts;
 }
 
 } // namespace hairshadow::detail

@@ -104,14 +104,17 @@ public:
             for (std::size_t i = 0; i < fragments.size(); ++i) layers[i] = assign(fragments[i].depth);
             return;
         }
-        const std::array<bin, K> b = bins(s);
-        std::array<float, K> lo, hi;
-        std::uint32_t filled = 0;
-        for (std::size_t j = 0; j < std::size_t(K); ++j) {
-            lo[j] = b[j].lo, hi[j] = b[j].hi;
-            if (!b[j].empty) filled |= 1u << j;
-        }
-        detail::avx512::assign_to_bins<K>(fragments, lo.data(), hi.data(), filled, s.mean.data(), usable_mask(s), layers);
+        const vector_bins v(*this, s);
+        detail::avx512::assign_to_bins<K>(fragments, v.lo.data(), v.hi.data(), v.filled, s.mean.data(), usable_mask(s), layers);
+    }
+
+    /// counts[j] += the fragments assign(s, depth) puts in bin j, sixteen at a time: assign_texel_avx512's
+    /// layers, counted.
+    HAIRSHADOW_AVX512_TARGET void count_texel_avx512(const texel_state& s, std::span<const optical_fragment> fragments,
+                                                      std::array<std::uint32_t, std::size_t(K)>& counts) const noexcept
+        requires(K <= 16) {
+        const vector_bins v(*this, s);
+        detail::avx512::count_in_bins<K>(fragments, v.lo.data(), v.hi.data(), v.filled, s.mean.data(), usable_mask(s), counts.data());
     }
 #endif
 
@@ -215,6 +218,18 @@ private:
     static constexpr std::uint32_t all_usable() noexcept { return K >= 32 ? ~0u : (1u << (K % 32)) - 1u; }
 
 #if HAIRSHADOW_AVX512_WALK
+    /// A texel's bins as the vector paths take them: bounds apart, and the bins that are not empty as bits.
+    struct vector_bins {
+        std::array<float, K> lo, hi;
+        std::uint32_t filled = 0;
+        vector_bins(const clustered& placement, const texel_state& s) noexcept {
+            const std::array<bin, K> b = placement.bins(s);
+            for (std::size_t j = 0; j < std::size_t(K); ++j) {
+                lo[j] = b[j].lo, hi[j] = b[j].hi;
+                if (!b[j].empty) filled |= 1u << j;
+            }
+        }
+    };
     /// prepare_texel_avx512's two k-means passes from the initial centres; false where a term is beyond
     /// the vector's exact range, and then `s` is unfinished.
     template <bool OneOpticalDepth>

@@ -185,24 +185,44 @@ HAIRSHADOW_AVX512_TARGET inline bool add_cluster_sums(std::span<const optical_fr
     return too_large == 0;
 }
 
-/// clustered::texel_assigner for every fragment: the first `filled` bin [lo, hi) holding the depth
+/// clustered::texel_assigner for sixteen depths: the first `filled` bin [lo, hi) holding the depth
 /// (or equal to a bin of no width), else the nearest usable mean.
+template <int K>
+HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __m512i bins_of(__m512 depth, const float* lo, const float* hi, std::uint32_t filled,
+                                                                          const float* means, std::uint32_t usable) noexcept {
+    __m512i layer = nearest_centre<K>(depth, means, usable);
+    for (int j = K - 1; j >= 0; --j) { // the first bin holding the depth is the last to write
+        if (!(filled >> j & 1u)) continue;
+        const __m512 low = _mm512_set1_ps(lo[j]);
+        __mmask16 inside = _mm512_cmp_ps_mask(depth, _mm512_set1_ps(hi[j]), _CMP_LT_OQ);
+        if (lo[j] == hi[j]) inside |= _mm512_cmp_ps_mask(depth, low, _CMP_EQ_OQ);
+        inside &= _mm512_cmp_ps_mask(depth, low, _CMP_GE_OQ);
+        layer = _mm512_mask_mov_epi32(layer, inside, _mm512_set1_epi32(j));
+    }
+    return layer;
+}
+
+/// layers[i] = bins_of(fragments[i].depth) for every fragment.
 template <int K>
 HAIRSHADOW_AVX512_TARGET inline void assign_to_bins(std::span<const optical_fragment> fragments, const float* lo, const float* hi, std::uint32_t filled,
                                                     const float* means, std::uint32_t usable, std::int32_t* layers) noexcept {
     for (std::size_t i = 0; i < fragments.size(); i += 16) {
         __m512 depth, optical;
         const __mmask16 lanes = load_fragments(fragments.data() + i, fragments.size() - i, depth, optical);
-        __m512i layer = nearest_centre<K>(depth, means, usable);
-        for (int j = K - 1; j >= 0; --j) { // the first bin holding the depth is the last to write
-            if (!(filled >> j & 1u)) continue;
-            const __m512 low = _mm512_set1_ps(lo[j]);
-            __mmask16 inside = _mm512_cmp_ps_mask(depth, _mm512_set1_ps(hi[j]), _CMP_LT_OQ);
-            if (lo[j] == hi[j]) inside |= _mm512_cmp_ps_mask(depth, low, _CMP_EQ_OQ);
-            inside &= _mm512_cmp_ps_mask(depth, low, _CMP_GE_OQ);
-            layer = _mm512_mask_mov_epi32(layer, inside, _mm512_set1_epi32(j));
-        }
-        _mm512_mask_storeu_epi32(layers + i, lanes, layer);
+        _mm512_mask_storeu_epi32(layers + i, lanes, bins_of<K>(depth, lo, hi, filled, means, usable));
+    }
+}
+
+/// counts[j] += the fragments whose bins_of is j: assign_to_bins's layers, counted by their masks.
+template <int K>
+HAIRSHADOW_AVX512_TARGET inline void count_in_bins(std::span<const optical_fragment> fragments, const float* lo, const float* hi, std::uint32_t filled,
+                                                   const float* means, std::uint32_t usable, std::uint32_t* counts) noexcept {
+    for (std::size_t i = 0; i < fragments.size(); i += 16) {
+        __m512 depth, optical;
+        const __mmask16 lanes = load_fragments(fragments.data() + i, fragments.size() - i, depth, optical);
+        const __m512i layer = bins_of<K>(depth, lo, hi, filled, means, usable);
+        for (int j = 0; j < K; ++j)
+            counts[j] += std::uint32_t(std::popcount(unsigned(_mm512_mask_cmpeq_epi32_mask(lanes, layer, _mm512_set1_epi32(j)))));
     }
 }
 
