@@ -6315,48 +6315,51 @@ private:
 /// value, bit for bit, as adding them in any order, since every add is the same.
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstddef>
 #include <cstdint>
-#include <vector>
 
 namespace hairshadow::detail {
 
-/// table(n) = Accumulation::add applied n times to b from a zero sum. Grown as counts need it;
-/// reset when b changes.
+/// sums(n) = Accumulation::add applied n times to b from a zero sum. The first `tabled` are kept,
+/// filled as counts reach them and started afresh when b changes; larger counts go on adding from the
+/// last. A fixed array: a build that uses it allocates nothing.
 template <class Accumulation>
 class repeated_sums {
 public:
     using sum_type = typename Accumulation::sum_type;
+    static constexpr std::size_t tabled = 1024;
 
     /// Uses b (bit for bit) from now on.
-    void use(float b) {
-        if (!sums_.empty() && std::bit_cast<std::uint32_t>(b) == b_bits_) return;
+    void use(float b) noexcept {
+        if (filled_ > 0 && std::bit_cast<std::uint32_t>(b) == b_bits_) return;
         b_ = b, b_bits_ = std::bit_cast<std::uint32_t>(b);
-        sums_.assign(1, sum_type{});
+        sums_[0] = sum_type{};
+        filled_ = 1;
     }
     /// n fragments of b, added one by one.
-    sum_type operator()(std::size_t n) {
-        if (n >= sums_.size()) grow(n);
-        return sums_[n];
+    sum_type operator()(std::size_t n) noexcept {
+        if (n < filled_) return sums_[n];
+        const std::size_t last = std::min(n, tabled - 1);
+        for (; filled_ <= last; ++filled_) sums_[filled_] = Accumulation::add(sums_[filled_ - 1], b_);
+        sum_type sum = sums_[last];
+        for (std::size_t i = last; i < n; ++i) sum = Accumulation::add(sum, b_);
+        return sum;
     }
-    std::size_t memory_bytes() const noexcept { return sums_.capacity() * sizeof(sum_type); }
 
 private:
-    void grow(std::size_t n) {
-        sums_.reserve(std::max(n + 1, 2 * sums_.size()));
-        while (sums_.size() <= n) sums_.push_back(Accumulation::add(sums_.back(), b_));
-    }
-    std::vector<sum_type> sums_;
+    std::array<sum_type, tabled> sums_;
+    std::size_t filled_ = 0; ///< sums_[0, filled_) hold the sums for b_
     float b_ = 0.0f;
     std::uint32_t b_bits_ = 0;
 };
 
 /// This thread's repeated_sums for Accumulation, set to b. A cache of a pure function, one per thread
-/// so that builds on any number of threads share nothing and give the same sums; it holds as many
-/// sums as the most fragments one layer of a texel has taken.
+/// so that builds on any number of threads share nothing and give the same sums, and held in the
+/// thread's own storage so that no build allocates for it.
 template <class Accumulation>
-repeated_sums<Accumulation>& repeated_sums_of(float b) {
+repeated_sums<Accumulation>& repeated_sums_of(float b) noexcept {
     thread_local repeated_sums<Accumulation> sums;
     sums.use(b);
     return sums;
