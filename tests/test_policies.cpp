@@ -2,7 +2,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 using namespace hairshadow;
 
@@ -262,47 +264,51 @@ TEST_CASE("a method queried before it is built sees no shadow", "[policy]") {
 namespace {
 
 /// interpolation::build of texels whose fragments share one optical depth (counted, then summed from a
-/// table) against the same fragments added one by one in order, as the build does with mixed ones.
-/// Returns the texels whose maps differ; `counted` is how many took the counted path.
-template <class Placement, class Accumulation>
-std::size_t differing_counted_builds(std::size_t& counted) {
+/// table) against the same fragments added one by one in order, as the build does with mixed ones, on
+/// each instruction path; with `Fragment` = fragment, from alphas. Returns the texels whose maps
+/// differ; `one_b` is how many of a path's texels share one optical depth.
+template <class Placement, class Accumulation, class Fragment = optical_fragment>
+std::size_t differing_counted_builds(std::size_t& one_b) {
     Placement placement;
     placement.prepare(depth_extent{0.1f, 0.9f});
     random_stream random(11);
-    std::vector<std::vector<optical_fragment>> texels;
+    const auto make = [](float depth, float b) {
+        if constexpr (std::is_same_v<Fragment, fragment>) return fragment{depth, float(1.0 - std::exp(-double(b)))};
+        else return optical_fragment{depth, b};
+    };
+    std::vector<std::vector<Fragment>> texels;
     for (const int n : {1, 2, 5, 16, 17, 47, 64, 65, 200, 1500}) {
         for (const float b : {0.1f, 0.0123f, 1.7f, 0.0f, -0.0f}) {
-            std::vector<optical_fragment> t;
-            for (int i = 0; i < n; ++i) t.push_back({random.uniform(0.1f, 0.9f), b});
+            std::vector<Fragment> t;
+            for (int i = 0; i < n; ++i) t.push_back(make(random.uniform(0.1f, 0.9f), b));
             texels.push_back(t);
         }
-        std::vector<optical_fragment> mixed = texels.back();
-        for (auto& f : mixed) f.optical_depth = random.uniform(0.0f, 1.0f);
+        std::vector<Fragment> mixed;
+        for (int i = 0; i < n; ++i) mixed.push_back(make(random.uniform(0.1f, 0.9f), random.uniform(0.0f, 1.0f)));
         texels.push_back(mixed);
         if (n > 1) { // one b but the last: the per-fragment path
-            std::vector<optical_fragment> last_differs = texels[texels.size() - 6];
-            last_differs.back().optical_depth = 0.2f;
+            std::vector<Fragment> last_differs = texels[texels.size() - 6];
+            last_differs.back() = make(last_differs.back().depth, 0.2f);
             texels.push_back(last_differs);
         }
     }
     std::vector<instruction_set> paths{instruction_set::scalar};
     if (detail::cpu_has_avx512()) paths.push_back(instruction_set::avx512);
     std::size_t differing = 0;
-    counted = 0;
+    one_b = 0;
+    for (const auto& t : texels)
+        one_b += std::all_of(t.begin(), t.end(), [&](const Fragment& f) { return fragment_optical_depth(f) == fragment_optical_depth(t[0]); });
     for (const auto path : paths)
         for (const auto& t : texels) {
-            const std::span<const optical_fragment> in(t);
+            const std::span<const Fragment> in(t);
             typename Placement::texel_state state;
             placement.prepare_texel(in, state);
             interpolation::storage<Placement, Accumulation> built, expected;
             interpolation::build<Placement, Accumulation>(placement, state, in, built, path);
             interpolation::accumulator<Placement, Accumulation> sums{};
-            for (const auto& f : t) interpolation::accumulate<Placement, Accumulation>(sums, placement.assign(state, f.depth), f.optical_depth);
+            for (const auto& f : t) interpolation::accumulate<Placement, Accumulation>(sums, placement.assign(state, f.depth), fragment_optical_depth(f));
             interpolation::finish<Placement, Accumulation>(sums, expected);
             differing += !(built == expected);
-            counted += std::all_of(t.begin(), t.end(), [&](const optical_fragment& f) {
-                return std::bit_cast<std::uint32_t>(f.optical_depth) == std::bit_cast<std::uint32_t>(t[0].optical_depth);
-            });
         }
     return differing;
 }
@@ -310,15 +316,18 @@ std::size_t differing_counted_builds(std::size_t& counted) {
 } // namespace
 
 TEST_CASE("a texel of one optical depth sums its layers from their counts, bit for bit", "[policy][reconstruction]") {
-    std::size_t counted = 0;
-    CHECK(differing_counted_builds<clustered<4>, float_accumulation>(counted) == 0);
-    CHECK(counted > 80);
-    CHECK(differing_counted_builds<clustered<4>, emulated_8bit>(counted) == 0);
-    CHECK(differing_counted_builds<clustered<16>, float_accumulation>(counted) == 0);
-    CHECK(differing_counted_builds<per_pixel_depth<3>, float_accumulation>(counted) == 0);
-    CHECK(differing_counted_builds<per_pixel_depth<3>, emulated_8bit>(counted) == 0);
-    CHECK(differing_counted_builds<planar_slices<16>, float_accumulation>(counted) == 0);
-    CHECK(differing_counted_builds<planar_slices<64>, float_accumulation>(counted) == 0); // many layers: counted one by one
+    std::size_t one_b = 0;
+    CHECK(differing_counted_builds<clustered<4>, float_accumulation>(one_b) == 0);
+    CHECK(one_b == 51); // ten sizes, five b each, and the mixed texel of one fragment
+    CHECK(differing_counted_builds<clustered<4>, emulated_8bit>(one_b) == 0);
+    CHECK(differing_counted_builds<clustered<4>, float_accumulation, fragment>(one_b) == 0); // from alphas
+    CHECK(differing_counted_builds<clustered<16>, float_accumulation>(one_b) == 0);
+    CHECK(differing_counted_builds<per_pixel_depth<3>, float_accumulation>(one_b) == 0);
+    CHECK(differing_counted_builds<per_pixel_depth<3>, emulated_8bit>(one_b) == 0);
+    // Fragments past the last layer go in none (layer -1).
+    CHECK(differing_counted_builds<per_pixel_depth<3, layer_sizes::linear, beyond_last_layer::ignore>, float_accumulation>(one_b) == 0);
+    CHECK(differing_counted_builds<planar_slices<16>, float_accumulation>(one_b) == 0);
+    CHECK(differing_counted_builds<planar_slices<64>, float_accumulation>(one_b) == 0); // many layers: counted one by one
     // A sum of n equal adds is not n times b: the table adds them one by one.
     float sum = 0.0f;
     for (int i = 0; i < 1500; ++i) sum += 0.0123f;
@@ -329,4 +338,6 @@ TEST_CASE("a texel of one optical depth sums its layers from their counts, bit f
     CHECK(table(0) == 0.0f);
     table.use(0.5f); // another b starts afresh
     CHECK(table(3) == 1.5f);
+    table.use(0.0123f); // and the first again, past the table's end
+    CHECK(table(1500) == sum);
 }

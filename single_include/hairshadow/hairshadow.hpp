@@ -3904,8 +3904,9 @@ HAIRSHADOW_ALWAYS_INLINE inline void for_each_layer(const Placement& placement, 
 }
 
 
-/// counts[k] += the fragments of layers[0..n) in layer k (k in [0, L)); layer -1 counts nowhere. With
-/// few layers, one pass per layer (comparisons that vectorise); with many, one increment per fragment.
+/// counts[k] += the fragments of layers[0..n) in layer k. Layers are in [-1, L), as placements assign
+/// them; -1 (no layer) counts nowhere. With few layers, one pass per layer (comparisons that
+/// vectorise); with many, one increment per fragment.
 template <std::size_t L>
 HAIRSHADOW_ALWAYS_INLINE inline void add_layer_counts(const std::int32_t* layers, std::size_t n, std::array<std::uint32_t, L>& counts) noexcept {
     if constexpr (L <= 16) {
@@ -3920,8 +3921,8 @@ HAIRSHADOW_ALWAYS_INLINE inline void add_layer_counts(const std::int32_t* layers
     }
 }
 
-/// How many of a texel's fragments fall in each layer (placement.assign), through for_each_layer's
-/// vector path where it runs.
+/// How many of a texel's fragments fall in each layer (placement.assign): sixteen at a time where the
+/// placement counts in vectors (count_texel_avx512) and `instructions` (resolved) is avx512.
 template <class Placement, class Fragment, std::size_t L = std::size_t(Placement::layer_count)>
 HAIRSHADOW_ALWAYS_INLINE inline std::array<std::uint32_t, L> layer_counts(const Placement& placement, const typename Placement::texel_state& state,
                                                                      std::span<const Fragment> fragments, instruction_set instructions) {
@@ -3932,15 +3933,6 @@ HAIRSHADOW_ALWAYS_INLINE inline std::array<std::uint32_t, L> layer_counts(const 
     if constexpr (std::is_same_v<Fragment, optical_fragment> && counts_texel_avx512<Placement>) {
         if (instructions == instruction_set::avx512) {
             placement.count_texel_avx512(state, fragments, counts);
-            return counts;
-        }
-    } else if constexpr (std::is_same_v<Fragment, optical_fragment> && assigns_texel_avx512<Placement>) {
-        if (instructions == instruction_set::avx512) {
-            for (std::size_t first = 0; first < fragments.size(); first += block) {
-                const auto part = fragments.subspan(first, std::min(block, fragments.size() - first));
-                placement.assign_texel_avx512(state, part, layers.data());
-                add_layer_counts(layers.data(), part.size(), counts);
-            }
             return counts;
         }
     }
@@ -6311,8 +6303,9 @@ private:
 /// @file
 /// The sum of n fragments of one optical depth b, as an accumulation adds them one by one: a pure
 /// function of n, kept in a table. A texel whose fragments all share b (a model of one alpha, the
-/// common case) then sums each layer from its count, with no chain of dependent adds: the same
-/// value, bit for bit, as adding them in any order, since every add is the same.
+/// common case) then sums each layer from its count, with no chain of dependent adds per texel once
+/// the table holds its counts: the same value, bit for bit, as adding them in order, since every add
+/// is the same.
 
 #include <algorithm>
 #include <array>
@@ -6322,7 +6315,7 @@ private:
 
 namespace hairshadow::detail {
 
-/// sums(n) = Accumulation::add applied n times to b from a zero sum. The first `tabled` are kept,
+/// sums(n) = b added n times to a zero sum by Accumulation::add. The first `tabled` are kept,
 /// filled as counts reach them and started afresh when b changes; larger counts go on adding from the
 /// last. A fixed array: a build that uses it allocates nothing.
 template <class Accumulation>
@@ -6405,8 +6398,8 @@ struct interpolation {
         std::array<typename Accumulation::sum_type, std::size_t(L)> sums{};
         if (!fragments.empty() && one_optical_depth(fragments)) {
             // Every fragment adds the same b, so a layer's sum is a function of how many it took: counted
-            // (sixteen at a time where the placement can), then read from repeated_sums, with no chain
-            // of dependent adds per fragment. The same sums, bit for bit: dc:4 on curly 1.5M at 512x512
+            // (sixteen at a time where the placement can), then read from this thread's repeated_sums,
+            // not added fragment by fragment. The same sums, bit for bit: dc:4 on curly 1.5M at 512x512
             // built 1.10x faster (BENCHMARKS.md, issue 11).
             auto& repeats = detail::repeated_sums_of<Accumulation>(fragment_optical_depth(fragments[0]));
             const auto counts = detail::layer_counts(placement, state, fragments, instructions);

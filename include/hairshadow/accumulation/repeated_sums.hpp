@@ -2,8 +2,9 @@
 /// @file
 /// The sum of n fragments of one optical depth b, as an accumulation adds them one by one: a pure
 /// function of n, kept in a table. A texel whose fragments all share b (a model of one alpha, the
-/// common case) then sums each layer from its count, with no chain of dependent adds: the same
-/// value, bit for bit, as adding them in any order, since every add is the same.
+/// common case) then sums each layer from its count, with no chain of dependent adds per texel once
+/// the table holds its counts: the same value, bit for bit, as adding them in order, since every add
+/// is the same.
 
 #include <algorithm>
 #include <array>
@@ -13,7 +14,7 @@
 
 namespace hairshadow::detail {
 
-/// sums(n) = Accumulation::add applied n times to b from a zero sum. The first `tabled` are kept,
+/// sums(n) = b added n times to a zero sum by Accumulation::add. The first `tabled` are kept,
 /// filled as counts reach them and started afresh when b changes; larger counts go on adding from the
 /// last. A fixed array: a build that uses it allocates nothing.
 template <class Accumulation>

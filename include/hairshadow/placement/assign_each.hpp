@@ -143,8 +143,9 @@ HAIRSHADOW_ALWAYS_INLINE inline void for_each_layer(const Placement& placement, 
 }
 
 
-/// counts[k] += the fragments of layers[0..n) in layer k (k in [0, L)); layer -1 counts nowhere. With
-/// few layers, one pass per layer (comparisons that vectorise); with many, one increment per fragment.
+/// counts[k] += the fragments of layers[0..n) in layer k. Layers are in [-1, L), as placements assign
+/// them; -1 (no layer) counts nowhere. With few layers, one pass per layer (comparisons that
+/// vectorise); with many, one increment per fragment.
 template <std::size_t L>
 HAIRSHADOW_ALWAYS_INLINE inline void add_layer_counts(const std::int32_t* layers, std::size_t n, std::array<std::uint32_t, L>& counts) noexcept {
     if constexpr (L <= 16) {
@@ -159,8 +160,8 @@ HAIRSHADOW_ALWAYS_INLINE inline void add_layer_counts(const std::int32_t* layers
     }
 }
 
-/// How many of a texel's fragments fall in each layer (placement.assign), through for_each_layer's
-/// vector path where it runs.
+/// How many of a texel's fragments fall in each layer (placement.assign): sixteen at a time where the
+/// placement counts in vectors (count_texel_avx512) and `instructions` (resolved) is avx512.
 template <class Placement, class Fragment, std::size_t L = std::size_t(Placement::layer_count)>
 HAIRSHADOW_ALWAYS_INLINE inline std::array<std::uint32_t, L> layer_counts(const Placement& placement, const typename Placement::texel_state& state,
                                                                      std::span<const Fragment> fragments, instruction_set instructions) {
@@ -171,15 +172,6 @@ HAIRSHADOW_ALWAYS_INLINE inline std::array<std::uint32_t, L> layer_counts(const 
     if constexpr (std::is_same_v<Fragment, optical_fragment> && counts_texel_avx512<Placement>) {
         if (instructions == instruction_set::avx512) {
             placement.count_texel_avx512(state, fragments, counts);
-            return counts;
-        }
-    } else if constexpr (std::is_same_v<Fragment, optical_fragment> && assigns_texel_avx512<Placement>) {
-        if (instructions == instruction_set::avx512) {
-            for (std::size_t first = 0; first < fragments.size(); first += block) {
-                const auto part = fragments.subspan(first, std::min(block, fragments.size() - first));
-                placement.assign_texel_avx512(state, part, layers.data());
-                add_layer_counts(layers.data(), part.size(), counts);
-            }
             return counts;
         }
     }

@@ -47,8 +47,8 @@ struct interpolation {
         std::array<typename Accumulation::sum_type, std::size_t(L)> sums{};
         if (!fragments.empty() && one_optical_depth(fragments)) {
             // Every fragment adds the same b, so a layer's sum is a function of how many it took: counted
-            // (sixteen at a time where the placement can), then read from repeated_sums, with no chain
-            // of dependent adds per fragment. The same sums, bit for bit: dc:4 on curly 1.5M at 512x512
+            // (sixteen at a time where the placement can), then read from this thread's repeated_sums,
+            // not added fragment by fragment. The same sums, bit for bit: dc:4 on curly 1.5M at 512x512
             // built 1.10x faster (BENCHMARKS.md, issue 11).
             auto& repeats = detail::repeated_sums_of<Accumulation>(fragment_optical_depth(fragments[0]));
             const auto counts = detail::layer_counts(placement, state, fragments, instructions);
