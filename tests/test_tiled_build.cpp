@@ -13,6 +13,7 @@
 #include <random>
 #include <set>
 #include <thread>
+#include <tuple>
 
 using namespace hairshadow;
 
@@ -450,6 +451,69 @@ TEST_CASE("the AVX-512 walk stores the scalar walk's fragments, in its order, ti
                 CHECK(fragments > std::size_t(res));
                 CHECK(differing == 0);
             }
+}
+
+TEST_CASE("the walk in any order stores the segment-order walk's fragments, each texel's as a set, the same every time", "[tiled][raster]") {
+    if (!detail::cpu_has_avx512()) {
+        WARN("this CPU has no AVX-512: the walk in any order is the walk in segment order");
+        return;
+    }
+    // Long segments (the coarse model's) and short ones (curly's), tiles whose sides are no power of
+    // two, and a perspective light that walks some segments apart.
+    const hair_model coarse = make_procedural({.style = hair_style::wavy, .strands = 400, .segments = 6, .seed = 3});
+    const auto ortho = light_spec::directional({0.3f, -1.0f, 0.2f});
+    const auto spot = light_spec::point({0.4f, 2.2f, 0.6f});
+    using fragment_tuple = std::tuple<std::uint32_t, float, float>;
+    const auto fragments_of = [](const detail::tile_fragments& f) {
+        std::vector<fragment_tuple> out;
+        for (std::size_t i = 0; i < f.size(); ++i) out.emplace_back(f.walk_texels()[i], f.walk_depths()[i], f.walk_optical_depths()[i]);
+        return out;
+    };
+    for (const hair_model* model : {&test_model("curly"), &coarse})
+        for (const light_spec* spec : {&ortho, &spot})
+            for (const int res : {96, 512})
+                for (const int tile : {8, 16, 37, 64, 200}) {
+                    CAPTURE(model->strand_count(), res, tile, spec == &spot);
+                    raster_options options;
+                    options.tile_size = tile;
+                    options.depth_weighting = false; // one alpha under the spot light too: the vector walk's tiles
+                    detail::segment_bins bins;
+                    bins.prepare(*model, light_space::fit(*spec, model->bounds(), res), options);
+                    detail::tile_fragments in_order, any, again;
+                    std::size_t fragments = 0, reordered = 0, differing = 0, unstable = 0;
+                    for (std::size_t t = 0; t < bins.tile_count(); ++t) {
+                        in_order.gather(bins, t, instruction_set::scalar);
+                        any.gather(bins, t, instruction_set::avx512, detail::fragment_order::any);
+                        again.gather(bins, t, instruction_set::avx512, detail::fragment_order::any);
+                        auto expected = fragments_of(in_order), got = fragments_of(any);
+                        fragments += expected.size();
+                        reordered += expected != got;
+                        unstable += got != fragments_of(again);
+                        std::sort(expected.begin(), expected.end());
+                        std::sort(got.begin(), got.end());
+                        differing += expected != got;
+                    }
+                    CHECK(fragments > std::size_t(res));
+                    CHECK(differing == 0);
+                    CHECK(unstable == 0);
+                    CHECK(reordered > 0); // the test walks the other order, not segment order again
+                }
+}
+
+TEST_CASE("a build walks in any order only where its maps cannot tell: order-free policies, and no depth of -0", "[tiled]") {
+    using dom = per_pixel_depth<3>;
+    static_assert(detail::order_free_maps<dom, interpolation>);
+    static_assert(detail::order_free_maps<depth_range<128>, occupancy_bitcount<4>>);
+    static_assert(detail::order_free_maps<uniform_slices<16>, interpolation>);
+    static_assert(!detail::order_free_maps<clustered<4>, interpolation>); // k-means sums the depths in order
+    static_assert(!detail::order_free_maps<dom, fibre_density<fibre_density_source::measured>>); // says nothing
+    CHECK(detail::walks_in_any_order<dom, interpolation>({0.1f, 0.9f}));
+    CHECK(detail::walks_in_any_order<dom, interpolation>({-0.9f, -0.1f}));
+    CHECK_FALSE(detail::walks_in_any_order<dom, interpolation>({0.0f, 0.9f}));   // an end at +0 may be -0 beside it
+    CHECK_FALSE(detail::walks_in_any_order<dom, interpolation>({-0.2f, 0.9f}));  // depths of both signs: a fragment may be -0
+    CHECK_FALSE(detail::walks_in_any_order<dom, interpolation>({-0.9f, -0.0f}));
+    CHECK_FALSE(detail::walks_in_any_order<dom, interpolation>({0.0f, 0.0f}));   // nothing reaches the map
+    CHECK_FALSE(detail::walks_in_any_order<clustered<4>, interpolation>({0.1f, 0.9f}));
 }
 
 TEST_CASE("the streamed depth pass gives add_to_depth_range's ranges, signed zeros and ties included, on both paths", "[tiled][placement]") {

@@ -74,6 +74,25 @@ concept streams_tiles = requires(const Placement& p, typename Placement::texel_s
     Reconstruction::template finish<Placement, Accumulation>(a, out);
 };
 
+/// Whether a composition's maps are the same for any order of each texel's fragments where they all
+/// share one optical depth and no depth is -0 (both placement and reconstruction say so): then a
+/// tile may be walked in any order (fragment_order::any). The depth range is a minimum and a
+/// maximum, the same for any order once +0 and -0 cannot meet; every sum adds the same b, so that
+/// the sum of n of them is one number; bits are ORed. Density clustering is not: its k-means sums
+/// the depths themselves.
+template <class Placement, class Reconstruction>
+concept order_free_maps = Placement::fragment_order_free && Reconstruction::fragment_order_free;
+
+/// Whether a tile of this build may be walked in any order: the composition's maps are order free
+/// and no segment end, so no fragment, has depth -0. Every fragment's depth is a + ((b - a) s)
+/// rounded, s in [0, 1], between ends a and b of one sign (`extent` holds every end): it has their
+/// sign, or is +0 where the two terms cancel exactly, and is -0 only where an end is.
+template <class Placement, class Reconstruction>
+bool walks_in_any_order(const depth_extent& extent) noexcept {
+    if constexpr (order_free_maps<Placement, Reconstruction>) return extent.nearest > 0.0f || extent.furthest < 0.0f;
+    else return false;
+}
+
 /// One thread's working memory for the streamed build: per texel of a tile, its depth range, placement
 /// state and accumulator. Kept from tile to tile and from build to build.
 template <class Placement, class Accumulation, class Reconstruction>

@@ -3,7 +3,8 @@
 /// The tiled build: every method's maps built tile by tile straight from the model, with no buffer of
 /// the whole map's fragments. Segments are projected and binned once (segment_bins); then each tile,
 /// in parallel, gathers its fragments into a per-thread store that stays in cache, and every texel of
-/// the tile is built from its own fragments, in segment order, exactly as from a fragment_buffer.
+/// the tile is built from its own fragments, in segment order, exactly as from a fragment_buffer
+/// (or, where the method's maps cannot tell the order, in the walk's own: fragment_order::any).
 
 #include <hairshadow/core/parallel.hpp>
 #include <hairshadow/raster/segment_bins.hpp>
@@ -59,10 +60,10 @@ enum class tile_grouping {
 };
 
 /// Calls on_tile(slot, tile) for every tile of the map that w.bins was prepared for, in parallel
-/// (the tiles with the most segments first), with the tile's fragments gathered in `slot`'s store
-/// and grouped as `grouping` says. Returns the number of fragments.
+/// (the tiles with the most segments first), with the tile's fragments gathered in `slot`'s store,
+/// in the order `fragments_in` allows, and grouped as `grouping` says. Returns the number of fragments.
 template <class OnTile>
-std::size_t for_each_tile(tiled_workspace& w, tile_grouping grouping, OnTile&& on_tile) {
+std::size_t for_each_tile(tiled_workspace& w, tile_grouping grouping, OnTile&& on_tile, fragment_order fragments_in = fragment_order::segment) {
     const auto& order = w.bins.tiles_by_load();
     const execution& exec = w.bins.options().exec;
     const instruction_set instructions = resolve(w.bins.options().instructions);
@@ -75,9 +76,11 @@ std::size_t for_each_tile(tiled_workspace& w, tile_grouping grouping, OnTile&& o
     // The walk adds a segment only where a tile's side and 1 more fit.
     if (const std::size_t most = w.bins.largest_tile_fragment_bound(); most > 0)
         for (auto& tile : w.tiles) tile.reserve_fresh(most + side + 1, grouping == tile_grouping::grouped ? most : 0);
+    if (fragments_in == fragment_order::any && !order.empty())
+        for (auto& tile : w.tiles) tile.reserve_segments(w.bins.tile_load(order[0]), int(side)); // the most segments first
     parallel_for_slots(order.size(), exec, [&](unsigned slot, std::size_t i) {
         tile_fragments& tile = w.tiles[slot];
-        tile.gather(w.bins, order[i], instructions);
+        tile.gather(w.bins, order[i], instructions, fragments_in);
         if (grouping == tile_grouping::grouped) tile.group();
         w.fragments[slot] += tile.size();
         on_tile(slot, tile);

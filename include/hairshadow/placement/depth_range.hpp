@@ -24,6 +24,9 @@ class depth_range {
 public:
     static constexpr int layer_count = S;
     static constexpr bool cumulative = true; ///< read as opacity slices when interpolated
+    /// Each texel's state depends on its fragments' depths as a set (nearest and furthest), not their
+    /// order (order_free_maps).
+    static constexpr bool fragment_order_free = true;
     static constexpr bool contiguous = true;
     static constexpr std::string_view name = "depth_range";
     static constexpr std::string_view glsl_name = "placement/depth_range";

@@ -43,6 +43,9 @@ class per_pixel_depth {
 public:
     static constexpr int layer_count = K;
     static constexpr bool cumulative = true;
+    /// Each texel's state depends on its fragments' depths as a set (nearest and furthest), not their
+    /// order (order_free_maps).
+    static constexpr bool fragment_order_free = true;
     static constexpr bool contiguous = true;
     static constexpr std::string_view name = "per_pixel_depth";
     static constexpr std::string_view glsl_name = "placement/per_pixel_depth";

@@ -46,6 +46,8 @@ class planar_slices {
 public:
     static constexpr int layer_count = N;
     static constexpr bool cumulative = true; ///< each map holds the opacity in front of its depth
+    /// Each texel's state depends on nothing of its fragments, in any order (order_free_maps).
+    static constexpr bool fragment_order_free = true;
     static constexpr bool contiguous = true; ///< the slices tile [D_0, D_N) without gaps
     static constexpr std::string_view name = Spacing::name;
     static constexpr std::string_view glsl_name = "placement/planar_slices";

@@ -30,24 +30,50 @@ struct batch;
 }
 #endif
 
+/// The order a tile's walk stores its fragments in.
+enum class fragment_order {
+    /// Segment after segment, in the tile's list: each texel meets its fragments in segment order, the
+    /// order of a fragment_buffer, on which sums of different optical depths depend.
+    segment,
+    /// Any order the walk finds fastest (it sorts the segments by their length in the tile and stores
+    /// sixteen at a step), the same for any thread count. Only for a build whose maps depend on each
+    /// texel's fragments as a set where they share one optical depth and none is -0 (as the vector
+    /// walk's tiles do: order_free_maps); the scalar walk keeps segment order.
+    any,
+};
+
 /// A tile's fragments with their optical depths, each texel's in segment order, so that sums over
 /// them match the fragment_buffer build bit for bit. One per thread; its memory is kept from tile to
 /// tile and from build to build.
 class tile_fragments {
 public:
-    /// Walks tile t's segments into the store, in walk order. `instructions` must be resolved.
-    void gather(const segment_bins& bins, std::size_t t, instruction_set instructions) {
+    /// Walks tile t's segments into the store, in walk order: segment after segment, or, where `order`
+    /// allows any order and the vector walk runs, in an order of the walk's own (fragment_order).
+    /// `instructions` must be resolved.
+    void gather(const segment_bins& bins, std::size_t t, instruction_set instructions, fragment_order order = fragment_order::segment) {
         rect_ = bins.tile_rect(t);
         width_ = rect_.x1 - rect_.x0;
         n_ = 0;
         const bool vector = instructions == instruction_set::avx512;
 #if HAIRSHADOW_AVX512_WALK
-        if (vector && simd_tile(bins)) walk_avx512(bins, t, optical_depth_cached(bins.uniform_shader().shade(0.0f).alpha));
-        else walk_scalar(bins, t);
+        if (vector && simd_tile(bins)) {
+            const float optical = optical_depth_cached(bins.uniform_shader().shade(0.0f).alpha);
+            const bool gathered = bins.segment_count() < (std::size_t(1) << 28); // the records' word offsets fit the gathers
+            if (order == fragment_order::any && gathered) walk_any_order_avx512(bins, t, optical);
+            else walk_avx512(bins, t, optical);
+        } else {
+            walk_scalar(bins, t);
+        }
 #else
-        (void)vector;
+        (void)vector, (void)order;
         walk_scalar(bins, t);
 #endif
+    }
+    /// Room to sort a tile of `segments` segments and `side` texels a side for the walk in any order,
+    /// so that tiles up to that size allocate nothing, on whichever thread they land.
+    void reserve_segments(std::size_t segments, int side) {
+        if (sorted_.size() < segments) sorted_.resize(segments), steps_.resize(segments);
+        steps_of_.reserve(std::size_t(side) + 2);
     }
 
     const texel_rect& rect() const noexcept { return rect_; }
@@ -56,8 +82,8 @@ public:
         const std::size_t k = std::size_t(y - rect_.y0) * std::size_t(width_) + std::size_t(x - rect_.x0);
         return {grouped_.data() + offsets_[k], std::size_t(offsets_[k + 1] - offsets_[k])};
     }
-    /// The last tile's fragments in walk order: segment after segment, as in the tile's list. Each
-    /// texel's fragments come in the order texel() gives them. walk_texels() are row-major indices
+    /// The last tile's fragments in walk order: segment after segment, as in the tile's list, unless
+    /// gather was let walk in any order. Each texel's fragments come in the order texel() gives them. walk_texels() are row-major indices
     /// within the tile.
     std::span<const std::uint32_t> walk_texels() const noexcept { return {where_.data(), n_}; }
     std::span<const float> walk_depths() const noexcept { return {depth_.data(), n_}; }
@@ -87,7 +113,8 @@ public:
     }
     std::size_t memory_bytes() const noexcept {
         return (where_.capacity() + offsets_.capacity()) * sizeof(std::uint32_t) + (depth_.capacity() + optical_.capacity()) * sizeof(float) +
-               grouped_.capacity() * sizeof(optical_fragment);
+               grouped_.capacity() * sizeof(optical_fragment) + (sorted_.capacity() + steps_of_.capacity()) * sizeof(std::uint32_t) +
+               steps_.capacity() * sizeof(std::uint16_t);
     }
 
 private:
@@ -196,6 +223,9 @@ private:
         c = cursor();
     }
     void walk_avx512(const segment_bins& bins, std::size_t t, float optical);
+    void walk_any_order_avx512(const segment_bins& bins, std::size_t t, float optical);
+    HAIRSHADOW_AVX512_TARGET void walk_rows_avx512(store_cursor& c, const avx512::batch& b, __mmask16 lanes, __m512 optical);
+    std::span<const std::uint32_t> by_steps(const segment_bins& bins, std::span<const std::uint32_t> list, std::int32_t ox, std::int32_t oy);
     void walk_lane_avx512(store_cursor& c, const avx512::batch& b, int l, float optical);
     void store_start(store_cursor& c, const avx512::batch& b, int l, float optical) noexcept;
     HAIRSHADOW_AVX512_TARGET void store_kept(store_cursor& c, __mmask16 keep, __m512i texels, __m512 depths, __m512 optical, bool whole) noexcept;
@@ -211,6 +241,9 @@ private:
     big_vector<float> depth_, optical_;          ///< each candidate's depth and b
     big_vector<optical_fragment> grouped_;
     float last_alpha_ = -1.0f, last_optical_ = 0.0f;
+    std::vector<std::uint32_t> sorted_;   ///< the tile's segments by their steps (walk in any order)
+    std::vector<std::uint16_t> steps_;    ///< each segment's steps in the tile
+    std::vector<std::uint32_t> steps_of_; ///< per step count, the segments with it, then where they start
 };
 
 } // namespace detail

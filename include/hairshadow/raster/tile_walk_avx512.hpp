@@ -11,7 +11,9 @@
 /// per step. Either way the fragments are compressed into the tile's store segment after segment, so
 /// that segment order, and every sum, is the scalar walk's. Every quantity is an integer, or an
 /// integer held exactly in a double, until the depth: that is a + (b - a) t, rounded as the scalar
-/// walk rounds it.
+/// walk rounds it. Where the build allows any order (fragment_order::any), the tile's segments are
+/// sorted by their steps in the tile and every batch walks in lockstep, each step's fragments stored
+/// as they come: no transpose, and few idle lanes however long the segments.
 
 #include <hairshadow/raster/tile_fragments.hpp>
 
@@ -116,6 +118,31 @@ HAIRSHADOW_AVX512_TARGET inline __m512i integers_of(__m512d low, __m512d high) n
     return join_epi32(_mm512_cvttpd_epi32(low), _mm512_cvttpd_epi32(high));
 }
 
+/// The texel centres along the major axis that sixteen segments, ends (ax, ay) and (bx, by) in
+/// sub-pixels relative to a tile of w x h texels, cross: all of them (first to last), and those in
+/// the tile (count of them from m_begin): the walk's steps.
+struct major_steps {
+    __mmask16 x_major, rising;
+    __m512i first, last, m_begin, count;
+
+    HAIRSHADOW_AVX512_TARGET major_steps(__m512i ax, __m512i ay, __m512i bx, __m512i by, int w, int h) noexcept {
+        const __m512i zero = _mm512_setzero_si512(), one = _mm512_set1_epi32(1);
+        const __m512i dx = _mm512_sub_epi32(bx, ax), dy = _mm512_sub_epi32(by, ay);
+        x_major = _mm512_cmpge_epi32_mask(_mm512_abs_epi32(dx), _mm512_abs_epi32(dy));
+        const __m512i major_a = _mm512_mask_blend_epi32(x_major, ay, ax), major_b = _mm512_mask_blend_epi32(x_major, by, bx);
+        rising = _mm512_cmpgt_epi32_mask(_mm512_mask_blend_epi32(x_major, dy, dx), zero);
+        const __m512i lo_end = _mm512_mask_blend_epi32(rising, major_b, major_a), hi_end = _mm512_mask_blend_epi32(rising, major_a, major_b);
+        // Centres c S + H crossed: first = ceil((lo - H) / S), last = ceil((hi - H) / S) - 1.
+        const __m512i round_up = _mm512_set1_epi32(std::int32_t(subpixel_scale - 1 - subpixel_scale / 2));
+        first = texel_of(_mm512_add_epi32(lo_end, round_up));
+        last = _mm512_sub_epi32(texel_of(_mm512_add_epi32(hi_end, round_up)), one);
+        const __m512i extent = _mm512_mask_blend_epi32(x_major, _mm512_set1_epi32(h), _mm512_set1_epi32(w));
+        m_begin = _mm512_max_epi32(first, zero);
+        const __m512i m_end = _mm512_min_epi32(last, _mm512_sub_epi32(extent, one));
+        count = _mm512_max_epi32(_mm512_add_epi32(_mm512_sub_epi32(m_end, m_begin), one), zero);
+    }
+};
+
 /// Sixteen segments set up for the walk, in tile-relative coordinates (sub-pixels for ends, texels
 /// for the rest). Lanes not `simd` are walked in scalar.
 struct alignas(64) batch {
@@ -149,20 +176,13 @@ HAIRSHADOW_AVX512_TARGET inline void set_up(batch& b, int w, int h) noexcept {
     const __m512i half = _mm512_set1_epi32(std::int32_t(subpixel_scale / 2));
     const __m512i ax = _mm512_load_si512(b.ax), ay = _mm512_load_si512(b.ay), bx = _mm512_load_si512(b.bx), by = _mm512_load_si512(b.by);
     const __m512i dx = _mm512_sub_epi32(bx, ax), dy = _mm512_sub_epi32(by, ay);
-    const __mmask16 xm = _mm512_cmpge_epi32_mask(_mm512_abs_epi32(dx), _mm512_abs_epi32(dy));
-    const __m512i major_a = _mm512_mask_blend_epi32(xm, ay, ax), major_b = _mm512_mask_blend_epi32(xm, by, bx);
-    const __m512i minor_a = _mm512_mask_blend_epi32(xm, ax, ay);
+    const major_steps steps(ax, ay, bx, by, w, h);
+    const __mmask16 xm = steps.x_major, rising = steps.rising;
+    const __m512i major_a = _mm512_mask_blend_epi32(xm, ay, ax), minor_a = _mm512_mask_blend_epi32(xm, ax, ay);
     const __m512i d_major = _mm512_mask_blend_epi32(xm, dy, dx), d_minor = _mm512_mask_blend_epi32(xm, dx, dy);
-    const __mmask16 rising = _mm512_cmpgt_epi32_mask(d_major, zero);
-    const __m512i lo_end = _mm512_mask_blend_epi32(rising, major_b, major_a), hi_end = _mm512_mask_blend_epi32(rising, major_a, major_b);
-    // Centres c S + H crossed: first = ceil((lo - H) / S), last = ceil((hi - H) / S) - 1.
-    const __m512i round_up = _mm512_set1_epi32(std::int32_t(subpixel_scale - 1 - subpixel_scale / 2));
-    const __m512i first = texel_of(_mm512_add_epi32(lo_end, round_up));
-    const __m512i last = _mm512_sub_epi32(texel_of(_mm512_add_epi32(hi_end, round_up)), one);
-    const __m512i extent = _mm512_mask_blend_epi32(xm, _mm512_set1_epi32(h), _mm512_set1_epi32(w));
-    const __m512i m_begin = _mm512_max_epi32(first, zero), m_end = _mm512_min_epi32(last, _mm512_sub_epi32(extent, one));
+    const __m512i first = steps.first, last = steps.last, m_begin = steps.m_begin;
     _mm512_store_si512(b.m_begin, m_begin);
-    _mm512_store_si512(b.count, _mm512_max_epi32(_mm512_add_epi32(_mm512_sub_epi32(m_end, m_begin), one), zero));
+    _mm512_store_si512(b.count, steps.count);
     _mm512_store_si512(b.minor_extent, _mm512_mask_blend_epi32(xm, _mm512_set1_epi32(w), _mm512_set1_epi32(h)));
     // The minor coordinate at m_begin, num0 / denom, and its step per texel: exact integers in doubles.
     const __m512i denom = _mm512_slli_epi32(_mm512_abs_epi32(d_major), bits);
@@ -233,10 +253,45 @@ HAIRSHADOW_AVX512_TARGET inline void transpose(__m512i r[16]) noexcept {
 /// A step that makes no fragment, in a lockstep block.
 inline constexpr std::uint32_t no_texel = 0xFFFFFFFFu;
 
+/// Sixteen segments of a batch walked side by side, one step of each at a time, from the first: the
+/// arithmetic of the per-segment walk, lane for lane, so that the fragments are the same bits.
+struct lockstep {
+    __m512i m_begin, counts, end_major, end_minor, minor_extent, width;
+    __mmask16 along_x, tie;
+    depth_along along;
+    carried_quotient minor_at; ///< the minor coordinate at the next step, floor((num0 + j step) / denom)
+
+    HAIRSHADOW_AVX512_TARGET lockstep(const batch& b, int w) noexcept
+        : m_begin(_mm512_load_si512(b.m_begin)), counts(_mm512_load_si512(b.count)), end_major(_mm512_load_si512(b.end_major)),
+          end_minor(_mm512_load_si512(b.end_minor)), minor_extent(_mm512_load_si512(b.minor_extent)), width(_mm512_set1_epi32(w)),
+          along_x(b.x_major), tie(b.tie), along(b.depths()) {
+        __m512d part[8];
+        const __m512d denom_low = _mm512_load_pd(b.denom), denom_high = _mm512_load_pd(b.denom + 8);
+        const __m512d inv_denom_low = _mm512_load_pd(b.inv_denom), inv_denom_high = _mm512_load_pd(b.inv_denom + 8);
+        exact_quotient(_mm512_load_pd(b.num0), denom_low, inv_denom_low, part[0], part[1]);
+        exact_quotient(_mm512_load_pd(b.num0 + 8), denom_high, inv_denom_high, part[2], part[3]);
+        exact_quotient(_mm512_load_pd(b.step), denom_low, inv_denom_low, part[4], part[5]);
+        exact_quotient(_mm512_load_pd(b.step + 8), denom_high, inv_denom_high, part[6], part[7]);
+        minor_at = {integers_of(part[0], part[2]), integers_of(part[1], part[3]), integers_of(part[4], part[6]), integers_of(part[5], part[7]),
+                    integers_of(denom_low, denom_high)};
+    }
+    /// Step j, the one after the last taken: each lane's texel index (no_texel where it makes no
+    /// fragment) and its depth.
+    HAIRSHADOW_AVX512_TARGET __m512i step(int j, __m512& depth) noexcept {
+        const __m512i i = _mm512_set1_epi32(j);
+        const __m512i minor = minor_at.minor(tie);
+        minor_at.advance();
+        __m512i x, y;
+        const __m512i where = step_texels(_mm512_add_epi32(m_begin, i), minor, _mm512_cmpgt_epi32_mask(counts, i), along_x, end_major, end_minor,
+                                          minor_extent, width, _mm512_set1_epi32(std::int32_t(no_texel)), x, y);
+        depth = along.at(x, y);
+        return where;
+    }
+};
+
 /// The first `steps` (at most 16) texels of the sixteen segments of b at once, one segment per lane:
 /// step j's texel indices (no_texel where it makes no fragment) in where[j], its depths in depth[j];
-/// rows past `steps` make no fragment. The arithmetic is the per-segment walk's, lane for lane, so
-/// the fragments are the same bits.
+/// rows past `steps` make no fragment.
 HAIRSHADOW_AVX512_TARGET inline void walk_lockstep(const batch& b, int steps, int w, __m512i where[16], __m512i depth[16]) noexcept {
     const __m512i none = _mm512_set1_epi32(std::int32_t(no_texel)), width = _mm512_set1_epi32(w);
     const __mmask16 along_x = b.x_major, tie = b.tie;
@@ -297,24 +352,43 @@ inline void fill_batch(batch& b, const segment_bins& bins, const std::uint32_t* 
     }
 }
 
+/// The ends of the first `lanes` segments of `list` (zero in the other lanes), gathered from the
+/// records by 32-bit word offsets (segment_count() below 2^28) and made relative to the tile's corner
+/// (ox, oy) in sub-pixels; `words` are the records' first words.
+struct gathered_ends {
+    __m512i words, ax, ay, bx, by;
+
+    HAIRSHADOW_AVX512_TARGET gathered_ends(const segment_bins& bins, const std::uint32_t* list, int lanes, std::int32_t ox, std::int32_t oy) noexcept {
+        static_assert(sizeof(segment_geometry) == 6 * sizeof(std::int32_t));
+        const auto valid = __mmask16((1u << lanes) - 1u);
+        const __m512i zero = _mm512_setzero_si512();
+        const void* records = bins.segment_data();
+        words = _mm512_mullo_epi32(_mm512_maskz_loadu_epi32(valid, list), _mm512_set1_epi32(6));
+        __m512i field[4];
+        for (int k = 0; k < 4; ++k)
+            field[k] = _mm512_sub_epi32(_mm512_mask_i32gather_epi32(zero, valid, _mm512_add_epi32(words, _mm512_set1_epi32(k)), records, 4),
+                                        _mm512_set1_epi32(k % 2 == 0 ? ox : oy));
+        ax = field[0], ay = field[1], bx = field[2], by = field[3];
+    }
+};
+
+/// Fetches into the cache the records of the batch after the one at `base` of `list`. Always inlined:
+/// GCC finds a function that only prefetches free of side effects, and deletes its calls.
+HAIRSHADOW_ALWAYS_INLINE inline void prefetch_next_batch(const segment_bins& bins, std::span<const std::uint32_t> list, std::size_t base) noexcept {
+    for (std::size_t i = base + 16; i < std::min(base + 32, list.size()); ++i) bins.prefetch_segment(list[i]);
+}
+
 /// fill_batch, sixteen lanes at once: the records gathered by word offsets (segment_count() below
 /// 2^28), the same values and the same b.simd. Coordinates inside the guard band (2^28 sub-pixels)
 /// less a tile corner below 2^24 fit in 32 bits, and so do their differences.
 HAIRSHADOW_AVX512_TARGET inline void gather_batch(batch& b, const segment_bins& bins, const std::uint32_t* list, int lanes, std::int32_t ox,
                                                  std::int32_t oy) noexcept {
-    static_assert(sizeof(segment_geometry) == 6 * sizeof(std::int32_t));
     const auto valid = __mmask16((1u << lanes) - 1u);
-    const __m512i zero = _mm512_setzero_si512();
-    const __m512i words = _mm512_mullo_epi32(_mm512_maskz_loadu_epi32(valid, list), _mm512_set1_epi32(6));
+    const gathered_ends ends(bins, list, lanes, ox, oy);
+    const __m512i ax = ends.ax, ay = ends.ay, bx = ends.bx, by = ends.by;
     const void* records = bins.segment_data();
-    __m512i field[6];
-    for (int k = 0; k < 6; ++k) field[k] = _mm512_add_epi32(words, _mm512_set1_epi32(k));
-    const __m512i ax = _mm512_sub_epi32(_mm512_mask_i32gather_epi32(zero, valid, field[0], records, 4), _mm512_set1_epi32(ox));
-    const __m512i ay = _mm512_sub_epi32(_mm512_mask_i32gather_epi32(zero, valid, field[1], records, 4), _mm512_set1_epi32(oy));
-    const __m512i bx = _mm512_sub_epi32(_mm512_mask_i32gather_epi32(zero, valid, field[2], records, 4), _mm512_set1_epi32(ox));
-    const __m512i by = _mm512_sub_epi32(_mm512_mask_i32gather_epi32(zero, valid, field[3], records, 4), _mm512_set1_epi32(oy));
-    const __m512 depth_a = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), valid, field[4], records, 4);
-    const __m512 depth_b = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), valid, field[5], records, 4);
+    const __m512 depth_a = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), valid, _mm512_add_epi32(ends.words, _mm512_set1_epi32(4)), records, 4);
+    const __m512 depth_b = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), valid, _mm512_add_epi32(ends.words, _mm512_set1_epi32(5)), records, 4);
     __mmask16 fits = valid;
     if (const auto* inv_w = bins.inv_w_data()) {
         const __m512i pairs = _mm512_slli_epi32(_mm512_maskz_loadu_epi32(valid, list), 1);
@@ -378,10 +452,7 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
     store_cursor c = cursor();
     for (std::size_t base = 0; base < list.size(); base += 16) {
         const int lanes = int(std::min<std::size_t>(16, list.size() - base));
-#if defined(__GNUC__)
-        // The next batch's segments, fetched while this one is walked.
-        for (std::size_t i = base + 16; i < std::min(base + 32, list.size()); ++i) bins.prefetch_segment(list[i]);
-#endif
+        prefetch_next_batch(bins, list, base); // fetched while this one is walked
         if (gathered) gather_batch(b, bins, list.data() + base, lanes, std::int32_t(ox), std::int32_t(oy));
         else fill_batch(b, bins, list.data() + base, lanes, ox, oy);
         set_up(b, w, rect_.y1 - rect_.y0);
@@ -415,6 +486,82 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
             store_kept(c, _mm512_cmpneq_epi32_mask(where[l], none), where[l], _mm512_castsi512_ps(depth[l]), optical_depth, c.n + 16 <= c.end);
             if ((unsigned(b.start & ~start_in_row) >> l) & 1u) store_start(c, b, l, optical);
         }
+    }
+    n_ = c.n;
+}
+
+/// The `lanes` of b (set up) walked side by side, enough steps for the longest, each step's
+/// fragments stored as they come; then their start fragments.
+HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_rows_avx512(store_cursor& c, const avx512::batch& b, __mmask16 lanes, __m512 optical) {
+    using namespace avx512;
+    const __m512i counts = _mm512_load_si512(b.count), none = _mm512_set1_epi32(std::int32_t(no_texel));
+    make_room(c, std::size_t(_mm512_mask_reduce_add_epi32(lanes, counts)) + std::size_t(__builtin_popcount(lanes)));
+    const int steps = _mm512_mask_reduce_max_epi32(lanes, counts);
+    lockstep walk(b, width_);
+    for (int j = 0; j < steps; ++j) {
+        __m512 depth;
+        const __m512i texels = walk.step(j, depth);
+        store_kept(c, __mmask16(lanes & _mm512_cmpneq_epi32_mask(texels, none)), texels, depth, optical, c.n + 16 <= c.end);
+    }
+    const __m512i start = _mm512_add_epi32(_mm512_mullo_epi32(_mm512_load_si512(b.start_y), _mm512_set1_epi32(width_)), _mm512_load_si512(b.start_x));
+    store_kept(c, __mmask16(lanes & b.start), start, _mm512_load_ps(b.start_depth), optical, c.n + 16 <= c.end);
+}
+
+/// The tile's segments in `list` ordered by how many steps of the walk they take in it
+/// (major_steps::count), fewest first and in list order among equals (a stable counting sort): a
+/// batch of them then walks side by side with few idle lanes.
+HAIRSHADOW_AVX512_TARGET inline std::span<const std::uint32_t> tile_fragments::by_steps(const segment_bins& bins, std::span<const std::uint32_t> list,
+                                                                                       std::int32_t ox, std::int32_t oy) {
+    using namespace avx512;
+    const std::size_t n = list.size();
+    const int h = rect_.y1 - rect_.y0, most = std::max(width_, h);
+    if (sorted_.size() < n) reserve_segments(n + n / 2, most); // reserve_segments made room for the largest tile
+    steps_of_.assign(std::size_t(most) + 2, 0);
+    std::uint16_t* steps = steps_.data();
+    for (std::size_t base = 0; base < n; base += 16) {
+        const int lanes = int(std::min<std::size_t>(16, n - base));
+        prefetch_next_batch(bins, list, base); // the records are first read here, from all over the map's
+        const gathered_ends ends(bins, list.data() + base, lanes, ox, oy);
+        const major_steps walk(ends.ax, ends.ay, ends.bx, ends.by, width_, h); // count in [0, most], whatever the ends
+        _mm512_mask_cvtepi32_storeu_epi16(steps + base, __mmask16((1u << lanes) - 1u), walk.count);
+    }
+    std::uint32_t* first = steps_of_.data() + 1;
+    for (std::size_t i = 0; i < n; ++i) ++first[steps[i]];
+    for (std::size_t k = 1; k < steps_of_.size(); ++k) steps_of_[k] += steps_of_[k - 1];
+    first = steps_of_.data();
+    for (std::size_t i = 0; i < n; ++i) sorted_[first[steps[i]]++] = list[i];
+    return {sorted_.data(), n};
+}
+
+/// Walks tile t, whose every fragment has optical depth `optical`, into the store in an order of its
+/// own (fragment_order::any), the same fragments as walk_avx512: its segments sorted by their steps
+/// in the tile (by_steps), walked sixteen at a time side by side, each step's fragments stored as
+/// they come, with no transpose back to segment order. A tile of one batch is walked in segment order.
+HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_any_order_avx512(const segment_bins& bins, std::size_t t, float optical) {
+    using namespace avx512;
+    constexpr int bits = HAIRSHADOW_SUBPIXEL_BITS;
+    const int w = width_, h = rect_.y1 - rect_.y0;
+    const auto ox = std::int32_t(std::int64_t(rect_.x0) << bits), oy = std::int32_t(std::int64_t(rect_.y0) << bits);
+    const auto tile_list = bins.tile_segments(t);
+    if (tile_list.size() <= 16) return walk_avx512(bins, t, optical);
+    const auto list = by_steps(bins, tile_list, ox, oy);
+    const __m512 optical_depth = _mm512_set1_ps(optical);
+    batch b;
+    store_cursor c = cursor();
+    for (std::size_t base = 0; base < list.size(); base += 16) {
+        const int lanes = int(std::min<std::size_t>(16, list.size() - base));
+        // by_steps read the records in list order; a dense tile's are past the second-level cache by
+        // the time they come again in this order.
+        prefetch_next_batch(bins, list, base);
+        gather_batch(b, bins, list.data() + base, lanes, ox, oy);
+        set_up(b, w, h);
+        if (b.simd) walk_rows_avx512(c, b, b.simd, optical_depth);
+        for (int l = 0; l < lanes; ++l)
+            if (!((b.simd >> l) & 1u)) {
+                n_ = c.n;
+                walk_segment_apart(bins, list[base + std::size_t(l)]);
+                c = cursor();
+            }
     }
     n_ = c.n;
 }

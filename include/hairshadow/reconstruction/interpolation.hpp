@@ -30,6 +30,10 @@ struct interpolation {
     template <class Placement>
     static constexpr bool accepts = Placement::layer_count >= 1;
 
+    /// A texel's maps depend on its fragments as a set where they share one optical depth: every sum
+    /// then adds the same b, whatever the order (order_free_maps).
+    static constexpr bool fragment_order_free = true;
+
     /// One value per layer: cumulative (the optical depth in front of the layer's end) when the
     /// placement's layers are opacity maps, per bin when they are histogram bins.
     template <class Placement, class Accumulation>

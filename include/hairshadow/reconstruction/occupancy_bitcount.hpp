@@ -33,6 +33,10 @@ struct occupancy_bitcount {
     template <class Placement>
     static constexpr bool accepts = Placement::contiguous && Placement::layer_count % 32 == 0 && Placement::layer_count % Slabs == 0;
 
+    /// A texel's maps depend on its fragments as a set where they share one optical depth: every sum
+    /// then adds the same b, whatever the order (order_free_maps).
+    static constexpr bool fragment_order_free = true;
+
     template <class Placement, class Accumulation>
     struct storage {
         std::array<std::uint32_t, std::size_t(Placement::layer_count / 32)> bits{};
