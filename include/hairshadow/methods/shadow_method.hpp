@@ -176,7 +176,8 @@ public:
     static constexpr std::size_t texel_bytes() noexcept { return sizeof(texel_maps); }
 
 private:
-    /// One texel's maps from its fragments (fragment or optical_fragment), in segment order, with the
+    /// One texel's maps from its fragments (fragment or optical_fragment), in segment order (or any,
+    /// for an order-free composition: detail::order_free_maps), with the
     /// vector steps `instructions` (resolved) allows (placement/assign_each.hpp): the same maps.
     template <class Fragment>
     HAIRSHADOW_ALWAYS_INLINE void build_texel(std::span<const Fragment> in, texel_maps& out, instruction_set instructions) const {

@@ -5,7 +5,8 @@
 /// (texel_state_from), and a reconstruction that accumulates one fragment at a time (accumulator,
 /// accumulate, finish). The tile's fragments are read twice in walk order, where they already lie:
 /// once for each texel's depth range, once to add each fragment into its texel's layer. Each texel
-/// still meets its own fragments in segment order, so the maps are the grouped build's, bit for bit;
+/// still meets its own fragments in the walk's order (segment order, or one that the maps cannot
+/// tell from it: order_free_maps), so the maps are the grouped build's, bit for bit;
 /// what it saves is the counting sort, whose scattered writes miss the cache on a dense tile. The
 /// layers are chosen a block of fragments at a time (placement/assign_each.hpp: sixteen a step with
 /// AVX-512), then added one by one, in walk order. Only the texels that took fragments are finished;

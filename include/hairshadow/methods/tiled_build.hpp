@@ -73,10 +73,12 @@ std::size_t for_each_tile(tiled_workspace& w, tile_grouping grouping, OnTile&& o
     w.fragments.assign(slots, 0);
     // Room for the largest tile before any walk (segment_bins::tile_fragment_bound, thin lines): no
     // store grows in the middle of a tile, holding its old and new memory at once, or overshoots.
-    // The walk adds a segment only where a tile's side and 1 more fit.
+    // The walk adds a segment only where its steps and 1 more fit (at most the tile's side and 1),
+    // or sixteen at once (in any order) where theirs and 16 more fit: each segment's steps and start
+    // exceed its bound by at most 1.
     if (const std::size_t most = w.bins.largest_tile_fragment_bound(); most > 0)
-        for (auto& tile : w.tiles) tile.reserve_fresh(most + side + 1, grouping == tile_grouping::grouped ? most : 0);
-    if (fragments_in == fragment_order::any && !order.empty())
+        for (auto& tile : w.tiles) tile.reserve_fresh(most + side + 16, grouping == tile_grouping::grouped ? most : 0);
+    if (fragments_in == fragment_order::any && instructions == instruction_set::avx512 && !order.empty()) // the vector walk sorts
         for (auto& tile : w.tiles) tile.reserve_segments(w.bins.tile_load(order[0]), int(side)); // the most segments first
     parallel_for_slots(order.size(), exec, [&](unsigned slot, std::size_t i) {
         tile_fragments& tile = w.tiles[slot];

@@ -2,7 +2,8 @@
 /// @file
 /// One tile's fragments: the working set of the tiled build. The tile's segments are walked once, by
 /// the line rule, into a per-thread store, in walk order; group() then groups the fragments by texel,
-/// each texel's in segment order, the order a fragment_buffer keeps. The walk runs
+/// each texel's in walk order: segment order, the order a fragment_buffer keeps, unless the build let
+/// the walk choose its own (fragment_order::any). The walk runs
 /// in AVX-512 where the CPU has it (raster/tile_walk_avx512.hpp), else in scalar C++; both give the
 /// same fragments, bit for bit.
 
@@ -42,8 +43,8 @@ enum class fragment_order {
     any,
 };
 
-/// A tile's fragments with their optical depths, each texel's in segment order, so that sums over
-/// them match the fragment_buffer build bit for bit. One per thread; its memory is kept from tile to
+/// A tile's fragments with their optical depths, each texel's in segment order (unless walked in any
+/// order), so that sums over them match the fragment_buffer build bit for bit. One per thread; its memory is kept from tile to
 /// tile and from build to build.
 class tile_fragments {
 public:

@@ -293,34 +293,13 @@ struct lockstep {
 /// step j's texel indices (no_texel where it makes no fragment) in where[j], its depths in depth[j];
 /// rows past `steps` make no fragment.
 HAIRSHADOW_AVX512_TARGET inline void walk_lockstep(const batch& b, int steps, int w, __m512i where[16], __m512i depth[16]) noexcept {
-    const __m512i none = _mm512_set1_epi32(std::int32_t(no_texel)), width = _mm512_set1_epi32(w);
-    const __mmask16 along_x = b.x_major, tie = b.tie;
-    const depth_along along = b.depths();
-    const __m512i m_begin = _mm512_load_si512(b.m_begin), counts = _mm512_load_si512(b.count);
-    const __m512i end_major = _mm512_load_si512(b.end_major), end_minor = _mm512_load_si512(b.end_minor);
-    const __m512i minor_extent = _mm512_load_si512(b.minor_extent);
-    const __m512d num0_low = _mm512_load_pd(b.num0), num0_high = _mm512_load_pd(b.num0 + 8);
-    const __m512d step_low = _mm512_load_pd(b.step), step_high = _mm512_load_pd(b.step + 8);
-    const __m512d denom_low = _mm512_load_pd(b.denom), denom_high = _mm512_load_pd(b.denom + 8);
-    const __m512d inv_denom_low = _mm512_load_pd(b.inv_denom), inv_denom_high = _mm512_load_pd(b.inv_denom + 8);
-    // The minor coordinate at step j is floor((num0 + j step) / denom), carried from step to step.
-    __m512d part[8];
-    exact_quotient(num0_low, denom_low, inv_denom_low, part[0], part[1]);
-    exact_quotient(num0_high, denom_high, inv_denom_high, part[2], part[3]);
-    exact_quotient(step_low, denom_low, inv_denom_low, part[4], part[5]);
-    exact_quotient(step_high, denom_high, inv_denom_high, part[6], part[7]);
-    carried_quotient minor_at{integers_of(part[0], part[2]), integers_of(part[1], part[3]), integers_of(part[4], part[6]), integers_of(part[5], part[7]),
-                              integers_of(denom_low, denom_high)};
+    lockstep walk(b, w);
     for (int j = 0; j < steps; ++j) {
-        const __m512i i = _mm512_set1_epi32(j);
-        const __m512i minor = minor_at.minor(tie);
-        minor_at.advance();
-        __m512i x, y;
-        where[j] = step_texels(_mm512_add_epi32(m_begin, i), minor, _mm512_cmpgt_epi32_mask(counts, i), along_x, end_major, end_minor,
-                               minor_extent, width, none, x, y);
-        depth[j] = _mm512_castps_si512(along.at(x, y));
+        __m512 d;
+        where[j] = walk.step(j, d);
+        depth[j] = _mm512_castps_si512(d);
     }
-    for (int j = steps; j < 16; ++j) where[j] = none, depth[j] = _mm512_setzero_si512();
+    for (int j = steps; j < 16; ++j) where[j] = _mm512_set1_epi32(std::int32_t(no_texel)), depth[j] = _mm512_setzero_si512();
 }
 
 /// Bounds that keep every product of the walk exact in a double and every coordinate in 32 bits: a
@@ -457,17 +436,17 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
         else fill_batch(b, bins, list.data() + base, lanes, ox, oy);
         set_up(b, w, rect_.y1 - rect_.y0);
         const __m512i counts = _mm512_load_si512(b.count);
-        auto lockstep = __mmask16(b.simd & _mm512_cmple_epi32_mask(counts, sixteen));
-        const int steps = lockstep ? _mm512_mask_reduce_max_epi32(lockstep, counts) : 0;
+        auto side_by_side = __mmask16(b.simd & _mm512_cmple_epi32_mask(counts, sixteen));
+        const int steps = side_by_side ? _mm512_mask_reduce_max_epi32(side_by_side, counts) : 0;
         // Every lockstep segment pays for the longest one's steps, and the batch for two transposes:
         // unless most lanes are short (all sixteen for sixteen steps, twelve for eight), they walk
         // alone. The rule was chosen by measuring on this project's benchmark machine (BENCHMARKS.md,
         // issue 11); it chooses a path, never a fragment.
-        if (2 * __builtin_popcount(lockstep) < steps + 16) lockstep = 0;
+        if (2 * __builtin_popcount(side_by_side) < steps + 16) side_by_side = 0;
         __mmask16 start_in_row = 0;
-        if (lockstep) {
+        if (side_by_side) {
             walk_lockstep(b, steps, w, where, depth);
-            start_in_row = place_starts(b, lockstep, w, where, depth);
+            start_in_row = place_starts(b, side_by_side, w, where, depth);
             transpose(where);
             transpose(depth);
         }
@@ -478,7 +457,7 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
                 c = cursor();
                 continue;
             }
-            if (!((lockstep >> l) & 1u)) {
+            if (!((side_by_side >> l) & 1u)) {
                 walk_lane_avx512(c, b, l, optical);
                 continue;
             }
