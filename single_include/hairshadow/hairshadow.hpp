@@ -2293,6 +2293,8 @@ struct raster_options {
 #include <cstdlib>
 #include <limits>
 #include <new>
+#include <type_traits>
+#include <utility>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -2341,6 +2343,34 @@ struct huge_page_allocator {
     template <class U>
     friend bool operator==(const huge_page_allocator&, const huge_page_allocator<U>&) noexcept {
         return true;
+    }
+};
+
+/// huge_page_allocator for an array whose owner initialises the elements that growing it adds: the
+/// maps, zeroed in parallel by the build's threads. Growing it (vector::resize) leaves the new
+/// elements as allocated, so that their pages are first touched by those threads, not cleared first
+/// on one: on this machine's virtual machine a first touch of memory it has not used lately costs
+/// about 2 ms per MiB on one thread and half that on two (BENCHMARKS.md, issue 11). Only for
+/// trivially copyable types (implicit-lifetime, so that the allocation creates them).
+template <class T>
+struct overwritten_huge_page_allocator : huge_page_allocator<T> {
+    template <class U>
+    struct rebind {
+        using other = overwritten_huge_page_allocator<U>;
+    };
+    overwritten_huge_page_allocator() noexcept = default;
+    template <class U>
+    overwritten_huge_page_allocator(const overwritten_huge_page_allocator<U>&) noexcept {}
+
+    /// Value-initialisation: nothing; the owner initialises the element before reading it.
+    template <class U>
+    void construct(U*) noexcept {
+        static_assert(std::is_trivially_copyable_v<U> && std::is_trivially_destructible_v<U>,
+                      "an element left as allocated must be an implicit-lifetime type that any bytes represent");
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
     }
 };
 
@@ -4881,8 +4911,7 @@ concept streams_tiles = requires(const Placement& p, typename Placement::texel_s
 /// share one optical depth and no depth is -0 (both placement and reconstruction say so): then a
 /// tile may be walked in any order (fragment_order::any). The depth range is a minimum and a
 /// maximum, the same for any order once +0 and -0 cannot meet; every sum adds the same b, so that
-/// the sum of n of them is one number; bits are ORed. Density clustering is not: its k-means sums
-/// the depths themselves.
+/// the sum of n of them is one number; bits are ORed; density clustering's k-means sums are integers.
 template <class Placement, class Reconstruction>
 concept order_free_maps = Placement::fragment_order_free && Reconstruction::fragment_order_free;
 
@@ -5172,6 +5201,8 @@ inline std::size_t count_fragments(const hair_model& model, const light_space& l
 } // namespace hairshadow
 // ---- end hairshadow/methods/tiled_build.hpp
 
+#include <algorithm>
+#include <cstring>
 #include <vector>
 
 namespace hairshadow {
@@ -5232,7 +5263,7 @@ public:
             extent_ = w.bins.extent();
             placement_.prepare(extent_);
             const std::size_t res = std::size_t(light.resolution());
-            texels_.resize(res * res);
+            resize_maps(res * res, options.exec);
             const auto texel_out = [&](int x, int y) -> texel_maps& { return texels_[std::size_t(y) * res + std::size_t(x)]; };
             const instruction_set instructions = resolve(options.instructions);
             const auto build_grouped = [&](const detail::tile_fragments& tile) {
@@ -5240,17 +5271,18 @@ public:
                 for (int y = r.y0; y < r.y1; ++y)
                     for (int x = r.x0; x < r.x1; ++x) build_texel(tile.texel(x, y), texel_out(x, y), instructions);
             };
+            // Where the maps do not depend on the fragments' order, the walk stores them in its own
+            // (segments sorted by length, sixteen at a step): dom:3, occ:128:4 and osm:16 on curly
+            // 1.5M built 1.2-1.26x faster at 2048x2048, up to 1.1x at 512x512, dc:4 1.06x at
+            // 2048x2048 (BENCHMARKS.md, issue 11).
+            const auto order = detail::walks_in_any_order<Placement, Reconstruction>(extent_) ? detail::fragment_order::any
+                                                                                               : detail::fragment_order::segment;
             if constexpr (detail::streams_tiles<Placement, Accumulation, Reconstruction>) {
                 // Dense tiles reduce their fragments where the walk left them (methods/streamed_tile.hpp);
                 // sparse ones are grouped, which is cheaper there. Both give the same texels.
                 auto& per_thread = streamed_.get();
                 per_thread.resize(detail::tile_slots(w));
                 for (auto& s : per_thread) s.reserve(std::size_t(options.tile_size) * std::size_t(options.tile_size));
-                // Where the maps do not depend on the fragments' order, the walk stores them in its own
-                // (segments sorted by length, sixteen at a step): dom:3, occ:128:4 and osm:16 on curly
-                // 1.5M built 1.2-1.26x faster at 2048x2048, up to 1.1x at 512x512 (BENCHMARKS.md, issue 11).
-                const auto order = detail::walks_in_any_order<Placement, Reconstruction>(extent_) ? detail::fragment_order::any
-                                                                                                   : detail::fragment_order::segment;
                 fragments_ = detail::for_each_tile(
                     w, detail::tile_grouping::on_demand,
                     [&](unsigned slot, detail::tile_fragments& tile) {
@@ -5260,8 +5292,8 @@ public:
                     },
                     order);
             } else {
-                fragments_ = detail::for_each_tile(w, detail::tile_grouping::grouped,
-                                                   [&](unsigned, const detail::tile_fragments& tile) { build_grouped(tile); });
+                fragments_ = detail::for_each_tile(
+                    w, detail::tile_grouping::grouped, [&](unsigned, const detail::tile_fragments& tile) { build_grouped(tile); }, order);
             }
         });
     }
@@ -5281,7 +5313,7 @@ public:
             extent_ = extent;
             placement_.prepare(extent);
             fragments_ = fragments.size();
-            texels_.assign(fragments.texel_count(), texel_maps{});
+            resize_maps(fragments.texel_count(), exec);
             parallel_for(texels_.size(), exec, [&](std::size_t t) { build_texel(fragments.texel(t), texels_[t], instruction_set::scalar); }, 512);
         });
     }
@@ -5352,6 +5384,22 @@ private:
         if constexpr (requires { reconstruction_.prepare(light); }) reconstruction_.prepare(light);
     }
 
+    /// Resizes the maps to `texels` texels, the new ones zeroed (padding included: the maps' bytes are
+    /// the same for any thread count) in parallel, so that the build's threads, not one, first touch
+    /// their pages: on this machine's virtual machine that halved the cost of a cold build's fresh
+    /// pages, which after idle seconds is about 2 ms per MiB on one thread (BENCHMARKS.md, issue 11).
+    void resize_maps(std::size_t texels, const execution& exec) {
+        const std::size_t old = texels_.size();
+        texels_.resize(texels); // leaves the new texels as allocated (overwritten_huge_page_allocator)
+        if (texels <= old) return;
+        constexpr std::size_t chunk = (std::size_t(1) << 20) / sizeof(texel_maps) + 1; // about 1 MiB
+        const std::size_t added = texels - old, chunks = (added + chunk - 1) / chunk;
+        parallel_for(chunks, exec, [&](std::size_t c) {
+            const std::size_t first = old + c * chunk, count = std::min(chunk, texels - first);
+            std::memset(static_cast<void*>(texels_.data() + first), 0, count * sizeof(texel_maps));
+        });
+    }
+
     /// Runs a build; if it throws (out of memory, say), the maps go back to the unbuilt state, never to
     /// a light whose resolution the texels do not match.
     template <class Build>
@@ -5370,7 +5418,8 @@ private:
     Placement placement_;
     [[no_unique_address]] Reconstruction reconstruction_;
     light_space light_;                                  // 1x1 until built, so early queries see no shadow
-    std::vector<texel_maps, detail::huge_page_allocator<texel_maps>> texels_ = decltype(texels_)(1);
+    /// Row by row. Grown only by resize_maps, which zeroes the new texels in parallel.
+    std::vector<texel_maps, detail::overwritten_huge_page_allocator<texel_maps>> texels_ = decltype(texels_)(1, texel_maps{});
     depth_extent extent_{};
     std::size_t fragments_ = 0;
     detail::scratch<detail::tiled_workspace> workspace_;
@@ -5642,6 +5691,9 @@ public:
     static constexpr int layer_count = K;
     static constexpr bool cumulative = false; ///< a histogram: a fragment adds to its own bin only
     static constexpr bool contiguous = false; ///< bins may leave gaps
+    /// Each texel's state depends on its fragments as a set: the depth range is a minimum and a
+    /// maximum, and the k-means sums are integers (fixed_sum), which no order changes (order_free_maps).
+    static constexpr bool fragment_order_free = true;
     static constexpr std::string_view name = "clustered";
     static constexpr std::string_view glsl_name = "placement/clustered";
     /// gamma = sqrt(3): the half-width of a uniform distribution with standard deviation sigma.

@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <limits>
 #include <new>
+#include <type_traits>
+#include <utility>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -57,6 +59,34 @@ struct huge_page_allocator {
     template <class U>
     friend bool operator==(const huge_page_allocator&, const huge_page_allocator<U>&) noexcept {
         return true;
+    }
+};
+
+/// huge_page_allocator for an array whose owner initialises the elements that growing it adds: the
+/// maps, zeroed in parallel by the build's threads. Growing it (vector::resize) leaves the new
+/// elements as allocated, so that their pages are first touched by those threads, not cleared first
+/// on one: on this machine's virtual machine a first touch of memory it has not used lately costs
+/// about 2 ms per MiB on one thread and half that on two (BENCHMARKS.md, issue 11). Only for
+/// trivially copyable types (implicit-lifetime, so that the allocation creates them).
+template <class T>
+struct overwritten_huge_page_allocator : huge_page_allocator<T> {
+    template <class U>
+    struct rebind {
+        using other = overwritten_huge_page_allocator<U>;
+    };
+    overwritten_huge_page_allocator() noexcept = default;
+    template <class U>
+    overwritten_huge_page_allocator(const overwritten_huge_page_allocator<U>&) noexcept {}
+
+    /// Value-initialisation: nothing; the owner initialises the element before reading it.
+    template <class U>
+    void construct(U*) noexcept {
+        static_assert(std::is_trivially_copyable_v<U> && std::is_trivially_destructible_v<U>,
+                      "an element left as allocated must be an implicit-lifetime type that any bytes represent");
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
     }
 };
 

@@ -16,6 +16,8 @@
 #include <hairshadow/raster/fragment.hpp>
 #include <hairshadow/raster/raster_options.hpp>
 
+#include <algorithm>
+#include <cstring>
 #include <vector>
 
 namespace hairshadow {
@@ -76,7 +78,7 @@ public:
             extent_ = w.bins.extent();
             placement_.prepare(extent_);
             const std::size_t res = std::size_t(light.resolution());
-            texels_.resize(res * res);
+            resize_maps(res * res, options.exec);
             const auto texel_out = [&](int x, int y) -> texel_maps& { return texels_[std::size_t(y) * res + std::size_t(x)]; };
             const instruction_set instructions = resolve(options.instructions);
             const auto build_grouped = [&](const detail::tile_fragments& tile) {
@@ -84,17 +86,18 @@ public:
                 for (int y = r.y0; y < r.y1; ++y)
                     for (int x = r.x0; x < r.x1; ++x) build_texel(tile.texel(x, y), texel_out(x, y), instructions);
             };
+            // Where the maps do not depend on the fragments' order, the walk stores them in its own
+            // (segments sorted by length, sixteen at a step): dom:3, occ:128:4 and osm:16 on curly
+            // 1.5M built 1.2-1.26x faster at 2048x2048, up to 1.1x at 512x512, dc:4 1.06x at
+            // 2048x2048 (BENCHMARKS.md, issue 11).
+            const auto order = detail::walks_in_any_order<Placement, Reconstruction>(extent_) ? detail::fragment_order::any
+                                                                                               : detail::fragment_order::segment;
             if constexpr (detail::streams_tiles<Placement, Accumulation, Reconstruction>) {
                 // Dense tiles reduce their fragments where the walk left them (methods/streamed_tile.hpp);
                 // sparse ones are grouped, which is cheaper there. Both give the same texels.
                 auto& per_thread = streamed_.get();
                 per_thread.resize(detail::tile_slots(w));
                 for (auto& s : per_thread) s.reserve(std::size_t(options.tile_size) * std::size_t(options.tile_size));
-                // Where the maps do not depend on the fragments' order, the walk stores them in its own
-                // (segments sorted by length, sixteen at a step): dom:3, occ:128:4 and osm:16 on curly
-                // 1.5M built 1.2-1.26x faster at 2048x2048, up to 1.1x at 512x512 (BENCHMARKS.md, issue 11).
-                const auto order = detail::walks_in_any_order<Placement, Reconstruction>(extent_) ? detail::fragment_order::any
-                                                                                                   : detail::fragment_order::segment;
                 fragments_ = detail::for_each_tile(
                     w, detail::tile_grouping::on_demand,
                     [&](unsigned slot, detail::tile_fragments& tile) {
@@ -104,8 +107,8 @@ public:
                     },
                     order);
             } else {
-                fragments_ = detail::for_each_tile(w, detail::tile_grouping::grouped,
-                                                   [&](unsigned, const detail::tile_fragments& tile) { build_grouped(tile); });
+                fragments_ = detail::for_each_tile(
+                    w, detail::tile_grouping::grouped, [&](unsigned, const detail::tile_fragments& tile) { build_grouped(tile); }, order);
             }
         });
     }
@@ -125,7 +128,7 @@ public:
             extent_ = extent;
             placement_.prepare(extent);
             fragments_ = fragments.size();
-            texels_.assign(fragments.texel_count(), texel_maps{});
+            resize_maps(fragments.texel_count(), exec);
             parallel_for(texels_.size(), exec, [&](std::size_t t) { build_texel(fragments.texel(t), texels_[t], instruction_set::scalar); }, 512);
         });
     }
@@ -196,6 +199,22 @@ private:
         if constexpr (requires { reconstruction_.prepare(light); }) reconstruction_.prepare(light);
     }
 
+    /// Resizes the maps to `texels` texels, the new ones zeroed (padding included: the maps' bytes are
+    /// the same for any thread count) in parallel, so that the build's threads, not one, first touch
+    /// their pages: on this machine's virtual machine that halved the cost of a cold build's fresh
+    /// pages, which after idle seconds is about 2 ms per MiB on one thread (BENCHMARKS.md, issue 11).
+    void resize_maps(std::size_t texels, const execution& exec) {
+        const std::size_t old = texels_.size();
+        texels_.resize(texels); // leaves the new texels as allocated (overwritten_huge_page_allocator)
+        if (texels <= old) return;
+        constexpr std::size_t chunk = (std::size_t(1) << 20) / sizeof(texel_maps) + 1; // about 1 MiB
+        const std::size_t added = texels - old, chunks = (added + chunk - 1) / chunk;
+        parallel_for(chunks, exec, [&](std::size_t c) {
+            const std::size_t first = old + c * chunk, count = std::min(chunk, texels - first);
+            std::memset(static_cast<void*>(texels_.data() + first), 0, count * sizeof(texel_maps));
+        });
+    }
+
     /// Runs a build; if it throws (out of memory, say), the maps go back to the unbuilt state, never to
     /// a light whose resolution the texels do not match.
     template <class Build>
@@ -214,7 +233,8 @@ private:
     Placement placement_;
     [[no_unique_address]] Reconstruction reconstruction_;
     light_space light_;                                  // 1x1 until built, so early queries see no shadow
-    std::vector<texel_maps, detail::huge_page_allocator<texel_maps>> texels_ = decltype(texels_)(1);
+    /// Row by row. Grown only by resize_maps, which zeroes the new texels in parallel.
+    std::vector<texel_maps, detail::overwritten_huge_page_allocator<texel_maps>> texels_ = decltype(texels_)(1, texel_maps{});
     depth_extent extent_{};
     std::size_t fragments_ = 0;
     detail::scratch<detail::tiled_workspace> workspace_;

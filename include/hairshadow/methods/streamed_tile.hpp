@@ -79,8 +79,7 @@ concept streams_tiles = requires(const Placement& p, typename Placement::texel_s
 /// share one optical depth and no depth is -0 (both placement and reconstruction say so): then a
 /// tile may be walked in any order (fragment_order::any). The depth range is a minimum and a
 /// maximum, the same for any order once +0 and -0 cannot meet; every sum adds the same b, so that
-/// the sum of n of them is one number; bits are ORed. Density clustering is not: its k-means sums
-/// the depths themselves.
+/// the sum of n of them is one number; bits are ORed; density clustering's k-means sums are integers.
 template <class Placement, class Reconstruction>
 concept order_free_maps = Placement::fragment_order_free && Reconstruction::fragment_order_free;
 

@@ -31,6 +31,9 @@ public:
     static constexpr int layer_count = K;
     static constexpr bool cumulative = false; ///< a histogram: a fragment adds to its own bin only
     static constexpr bool contiguous = false; ///< bins may leave gaps
+    /// Each texel's state depends on its fragments as a set: the depth range is a minimum and a
+    /// maximum, and the k-means sums are integers (fixed_sum), which no order changes (order_free_maps).
+    static constexpr bool fragment_order_free = true;
     static constexpr std::string_view name = "clustered";
     static constexpr std::string_view glsl_name = "placement/clustered";
     /// gamma = sqrt(3): the half-width of a uniform distribution with standard deviation sigma.
