@@ -2,7 +2,8 @@
 # The CPU test suite under clang's AddressSanitizer and UndefinedBehaviorSanitizer (every report is
 # fatal), and the parallel kernels' tests under ThreadSanitizer (not the [.slow] ones, which an explicit
 # tag would otherwise select: the 1.5M-segment case takes minutes under TSan; nor the [raster] ones,
-# which walk tiles on one thread and took half the TSan run). Each builds in its own folder.
+# which took half the TSan run walking tiles on one thread: their threads only project and bin, as
+# the [tiled] build tests' do). Each builds in its own folder.
 #   bash scripts/sanitize.sh [address|thread]    (both by default)
 set -euo pipefail
 cd "$(dirname "$0")/.."

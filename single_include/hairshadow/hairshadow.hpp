@@ -2351,7 +2351,7 @@ struct huge_page_allocator {
 /// elements as allocated, so that their pages are first touched by those threads, not cleared first
 /// on one: on this machine's virtual machine a first touch of memory it has not used lately costs
 /// about 2 ms per MiB on one thread and half that on two (BENCHMARKS.md, issue 11). Only for
-/// trivially copyable types (implicit-lifetime, so that the allocation creates them).
+/// trivially copyable types, whose bytes the owner may write.
 template <class T>
 struct overwritten_huge_page_allocator : huge_page_allocator<T> {
     template <class U>
@@ -2362,11 +2362,13 @@ struct overwritten_huge_page_allocator : huge_page_allocator<T> {
     template <class U>
     overwritten_huge_page_allocator(const overwritten_huge_page_allocator<U>&) noexcept {}
 
-    /// Value-initialisation: nothing; the owner initialises the element before reading it.
+    /// Value-initialisation: no stores; the owner initialises the element before reading it. Starting
+    /// the lifetime of an array of bytes there creates the element implicitly (C++20 [intro.object]):
+    /// storage reused after a shrink holds an object again.
     template <class U>
-    void construct(U*) noexcept {
-        static_assert(std::is_trivially_copyable_v<U> && std::is_trivially_destructible_v<U>,
-                      "an element left as allocated must be an implicit-lifetime type that any bytes represent");
+    void construct(U* p) noexcept {
+        static_assert(std::is_trivially_copyable_v<U>, "an element left as allocated must be trivially copyable: its owner writes its bytes");
+        ::new (static_cast<void*>(p)) unsigned char[sizeof(U)];
     }
     template <class U, class... Args>
     void construct(U* p, Args&&... args) {
@@ -5202,6 +5204,7 @@ inline std::size_t count_fragments(const hair_model& model, const light_space& l
 // ---- end hairshadow/methods/tiled_build.hpp
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <vector>
 
@@ -5386,17 +5389,21 @@ private:
 
     /// Resizes the maps to `texels` texels, the new ones zeroed (padding included: the maps' bytes are
     /// the same for any thread count) in parallel, so that the build's threads, not one, first touch
-    /// their pages: on this machine's virtual machine that halved the cost of a cold build's fresh
-    /// pages, which after idle seconds is about 2 ms per MiB on one thread (BENCHMARKS.md, issue 11).
+    /// their pages: on this machine's virtual machine that cut the cost of a cold build's fresh pages,
+    /// which after idle seconds is about 2 ms per MiB on one thread (BENCHMARKS.md, issue 11). The
+    /// bytes are split at 2 MiB boundaries, so that each huge page is first touched by one thread:
+    /// the kernel clears a huge page whole, and a second thread touching it would wait.
     void resize_maps(std::size_t texels, const execution& exec) {
         const std::size_t old = texels_.size();
         texels_.resize(texels); // leaves the new texels as allocated (overwritten_huge_page_allocator)
         if (texels <= old) return;
-        constexpr std::size_t chunk = (std::size_t(1) << 20) / sizeof(texel_maps) + 1; // about 1 MiB
-        const std::size_t added = texels - old, chunks = (added + chunk - 1) / chunk;
-        parallel_for(chunks, exec, [&](std::size_t c) {
-            const std::size_t first = old + c * chunk, count = std::min(chunk, texels - first);
-            std::memset(static_cast<void*>(texels_.data() + first), 0, count * sizeof(texel_maps));
+        constexpr std::size_t page = detail::huge_page_allocator<texel_maps>::huge_page;
+        auto* const bytes = reinterpret_cast<unsigned char*>(texels_.data() + old);
+        const std::size_t size = (texels - old) * sizeof(texel_maps);
+        const std::size_t before = std::size_t(reinterpret_cast<std::uintptr_t>(bytes) % page); // into the first page
+        parallel_for((before + size + page - 1) / page, exec, [&](std::size_t i) {
+            const std::size_t lo = i == 0 ? 0 : i * page - before, hi = std::min(size, (i + 1) * page - before);
+            std::memset(bytes + lo, 0, hi - lo);
         });
     }
 

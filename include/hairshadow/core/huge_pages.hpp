@@ -67,7 +67,7 @@ struct huge_page_allocator {
 /// elements as allocated, so that their pages are first touched by those threads, not cleared first
 /// on one: on this machine's virtual machine a first touch of memory it has not used lately costs
 /// about 2 ms per MiB on one thread and half that on two (BENCHMARKS.md, issue 11). Only for
-/// trivially copyable types (implicit-lifetime, so that the allocation creates them).
+/// trivially copyable types, whose bytes the owner may write.
 template <class T>
 struct overwritten_huge_page_allocator : huge_page_allocator<T> {
     template <class U>
@@ -78,11 +78,13 @@ struct overwritten_huge_page_allocator : huge_page_allocator<T> {
     template <class U>
     overwritten_huge_page_allocator(const overwritten_huge_page_allocator<U>&) noexcept {}
 
-    /// Value-initialisation: nothing; the owner initialises the element before reading it.
+    /// Value-initialisation: no stores; the owner initialises the element before reading it. Starting
+    /// the lifetime of an array of bytes there creates the element implicitly (C++20 [intro.object]):
+    /// storage reused after a shrink holds an object again.
     template <class U>
-    void construct(U*) noexcept {
-        static_assert(std::is_trivially_copyable_v<U> && std::is_trivially_destructible_v<U>,
-                      "an element left as allocated must be an implicit-lifetime type that any bytes represent");
+    void construct(U* p) noexcept {
+        static_assert(std::is_trivially_copyable_v<U>, "an element left as allocated must be trivially copyable: its owner writes its bytes");
+        ::new (static_cast<void*>(p)) unsigned char[sizeof(U)];
     }
     template <class U, class... Args>
     void construct(U* p, Args&&... args) {
