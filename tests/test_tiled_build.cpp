@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstring>
+#include <numeric>
 #include <random>
 #include <set>
 #include <thread>
@@ -92,7 +93,8 @@ TEMPLATE_TEST_CASE("the tiled build gives the fragment-buffer build's maps, bit 
                    (opacity_shadow_maps<64, uniform_spacing, emulated_8bit>), (opacity_shadow_maps<37, gamma_spacing>),
                    (shadow_method<uniform_slices<64>, float_accumulation, occupancy_bitcount<2>>), (occupancy_maps<32, 1, emulated_8bit>),
                    (shadow_method<depth_range<24>, float_accumulation, interpolation>),
-                   (shadow_method<per_pixel_depth<4, layer_sizes::uniform, beyond_last_layer::extend>, float_accumulation, interpolation>)) {
+                   (shadow_method<per_pixel_depth<4, layer_sizes::uniform, beyond_last_layer::extend>, float_accumulation, interpolation>),
+                   (density_clustering<3, emulated_8bit>)) {
     const std::string name = GENERATE("sintel", "curly");
     CAPTURE(name);
     const auto& model = test_model(name);
@@ -677,7 +679,7 @@ TEMPLATE_TEST_CASE("density clustering's vector pre-pass, bin assignment and bin
     zeros[3].depth = 0.0f, zeros[17].depth = -0.0f; // in order +0 comes first; in lanes, -0 (lane 1)
     texels.push_back(zeros);
     std::size_t differing_states = 0, differing_layers = 0, differing_counts = 0, differing_ranges = 0, differing_one_b = 0, texels_of_one_b = 0,
-                fragments = 0;
+                fragments = 0, differing_maps = 0;
     for (const auto& t : texels) {
         const std::span<const optical_fragment> in(t);
         const depth_extent range = detail::depth_range_of(in);
@@ -709,6 +711,24 @@ TEMPLATE_TEST_CASE("density clustering's vector pre-pass, bin assignment and bin
         differing_counts += counted != expected;
         differing_counts += detail::layer_counts(placement, scalar, in, instruction_set::avx512) != expected;
         differing_counts += detail::layer_counts(placement, scalar, in, instruction_set::scalar) != expected;
+        if (!one_b) continue;
+        // The texel as its depths alone (tile_fragments::group_depths, where a map has one b): the
+        // same range, state, counts and maps.
+        std::vector<float> depths;
+        for (const auto& f : t) depths.push_back(f.depth);
+        const std::span<const float> alone(depths);
+        const depth_extent alone_range = detail::avx512::texel_scan_of(alone).range;
+        differing_ranges += std::memcmp(&range, &alone_range, sizeof(range)) != 0;
+        state from_depths;
+        placement.prepare_texel_depths_avx512(alone, t[0].optical_depth, from_depths);
+        differing_states += std::memcmp(&scalar, &from_depths, sizeof(state)) != 0;
+        std::array<std::uint32_t, K> counted_alone{};
+        placement.count_texel_avx512(scalar, alone, counted_alone);
+        differing_counts += counted_alone != expected;
+        interpolation::storage<TestType, float_accumulation> built, built_alone;
+        interpolation::build<TestType, float_accumulation>(placement, scalar, in, built);
+        interpolation::build_from_depths<TestType, float_accumulation>(placement, scalar, alone, t[0].optical_depth, built_alone);
+        differing_maps += std::memcmp(&built, &built_alone, sizeof(built)) != 0;
     }
     CHECK(fragments > 2000);
     CHECK(differing_counts == 0);
@@ -717,6 +737,49 @@ TEMPLATE_TEST_CASE("density clustering's vector pre-pass, bin assignment and bin
     CHECK(texels_of_one_b > 70);
     CHECK(differing_states == 0);
     CHECK(differing_layers == 0);
+    CHECK(differing_maps == 0);
+}
+
+TEST_CASE("a tile's depths grouped alone are its fragments' depths, texel by texel", "[tiled]") {
+    if (!detail::cpu_has_avx512()) {
+        WARN("this CPU has no AVX-512: the build groups whole fragments");
+        return;
+    }
+    const auto& model = test_model("curly");
+    const auto light = light_space::fit(light_spec::directional({0.3f, -1, -0.5f}), model.bounds(), 256);
+    raster_options o;
+    o.exec.threads = 2;
+    detail::tiled_workspace w;
+    w.bins.prepare(model, light, o, true);
+    REQUIRE(detail::tile_fragments::one_optical_depth(w.bins));
+    const float b = optical_depth_of(w.bins.uniform_shader().shade(0.0f).alpha);
+    std::vector<std::size_t> differing(detail::tile_slots(w), 0), compared(differing.size(), 0);
+    detail::for_each_tile(
+        w, detail::tile_grouping::on_demand,
+        [&](unsigned slot, detail::tile_fragments& tile) {
+            tile.group_depths();
+            std::vector<std::vector<float>> alone;
+            const texel_rect r = tile.rect();
+            for (int y = r.y0; y < r.y1; ++y)
+                for (int x = r.x0; x < r.x1; ++x) alone.emplace_back(tile.texel_depths(x, y).begin(), tile.texel_depths(x, y).end());
+            tile.group();
+            std::size_t k = 0;
+            for (int y = r.y0; y < r.y1; ++y)
+                for (int x = r.x0; x < r.x1; ++x, ++k) {
+                    const auto whole = tile.texel(x, y);
+                    differing[slot] += whole.size() != alone[k].size();
+                    for (std::size_t i = 0; i < std::min(whole.size(), alone[k].size()); ++i, ++compared[slot])
+                        differing[slot] += whole[i].depth != alone[k][i] || whole[i].optical_depth != b;
+                }
+        },
+        detail::fragment_order::any);
+    CHECK(std::accumulate(compared.begin(), compared.end(), std::size_t(0)) > 100000);
+    CHECK(std::accumulate(differing.begin(), differing.end(), std::size_t(0)) == 0);
+    // A model of per-point transparency may have more than one b: its fragments are grouped whole.
+    hair_model varied = model;
+    varied.transparency.assign(varied.point_count(), 0.3f);
+    w.bins.prepare(varied, light, o, false);
+    CHECK_FALSE(detail::tile_fragments::one_optical_depth(w.bins));
 }
 #endif
 
@@ -775,4 +838,10 @@ TEST_CASE("the compositions that reduce texel by texel build without grouping fr
     STATIC_REQUIRE(detail::streams_tiles<per_pixel_depth<128>, emulated_8bit, occupancy_bitcount<1>>);
     STATIC_REQUIRE_FALSE(detail::streams_tiles<clustered<4>, float_accumulation, interpolation>);
     STATIC_REQUIRE_FALSE(detail::streams_tiles<per_pixel_depth<1>, float_accumulation, fibre_density<fibre_density_source::fixed>>);
+#if HAIRSHADOW_AVX512_WALK
+    // Density clustering groups the depths alone where a map has one b (tile_fragments::group_depths).
+    STATIC_REQUIRE(detail::builds_from_depths_avx512<clustered<4>, float_accumulation, interpolation>);
+    STATIC_REQUIRE(detail::builds_from_depths_avx512<clustered<3>, emulated_8bit, interpolation>);
+    STATIC_REQUIRE_FALSE(detail::builds_from_depths_avx512<per_pixel_depth<1>, float_accumulation, fibre_density<fibre_density_source::fixed>>);
+#endif
 }

@@ -2439,12 +2439,20 @@ inline void add_to_depth_range(depth_extent& range, float depth) noexcept {
     range.furthest = std::max(range.furthest, depth);
 }
 
+/// A fragment's depth, where a texel holds fragments, or their depths alone (a texel whose fragments
+/// share one optical depth: tile_fragments::group_depths).
+template <class Fragment>
+float depth_of(const Fragment& f) noexcept {
+    return f.depth;
+}
+inline float depth_of(float depth) noexcept { return depth; }
+
 /// The nearest and furthest depth of a texel's fragments, reduced in their order from the first:
 /// the order matters only for the sign of a zero, and add_to_depth_range keeps the same order.
 template <class Fragment>
 depth_extent depth_range_of(std::span<const Fragment> fragments) noexcept {
-    depth_extent range{fragments[0].depth, fragments[0].depth};
-    for (const auto& f : fragments) add_to_depth_range(range, f.depth);
+    depth_extent range{depth_of(fragments[0]), depth_of(fragments[0])};
+    for (const auto& f : fragments) add_to_depth_range(range, depth_of(f));
     return range;
 }
 
@@ -3800,7 +3808,8 @@ concept reconstruction_policy =
 /// - assign_each: the layers of fragments from many texels (the streamed build, methods/streamed_tile.hpp),
 ///   through a placement's assign_each_avx512;
 /// - prepare_texel and for_each_layer: one texel's pre-pass and layers (the grouped build), through
-///   prepare_texel_avx512 and assign_texel_avx512.
+///   prepare_texel_avx512 and assign_texel_avx512 (or, for a texel's depths alone,
+///   prepare_texel_depths_avx512: builds_from_depths_avx512).
 /// The vector forms give the scalar results bit for bit: the same IEEE subtraction, division and
 /// comparisons in every lane, so that only the instruction count changes. Which runs follows
 /// raster_options::instructions (raster/instruction_set.hpp).
@@ -3841,6 +3850,16 @@ template <class Placement>
 concept counts_texel_avx512 = requires(const Placement& p, const typename Placement::texel_state& s, std::span<const optical_fragment> fragments,
                                        std::array<std::uint32_t, std::size_t(Placement::layer_count)>& counts) {
     p.count_texel_avx512(s, fragments, counts);
+};
+
+/// Whether a composition builds a texel whose fragments share one optical depth from their depths
+/// alone (tile_fragments::group_depths): a placement with prepare_texel_depths_avx512 and a
+/// reconstruction with build_from_depths.
+template <class Placement, class Accumulation, class Reconstruction>
+concept builds_from_depths_avx512 = requires(const Placement& p, typename Placement::texel_state& s, std::span<const float> depths,
+                                             typename Reconstruction::template storage<Placement, Accumulation>& out) {
+    p.prepare_texel_depths_avx512(depths, 0.0f, s);
+    Reconstruction::template build_from_depths<Placement, Accumulation>(p, s, depths, 0.0f, out);
 };
 
 namespace avx512 {
@@ -3987,7 +4006,8 @@ HAIRSHADOW_ALWAYS_INLINE inline std::array<std::uint32_t, L> layer_counts(const 
 /// One tile's fragments: the working set of the tiled build. The tile's segments are walked once, by
 /// the line rule, into a per-thread store, in walk order; group() then groups the fragments by texel,
 /// each texel's in walk order: segment order, the order a fragment_buffer keeps, unless the build let
-/// the walk choose its own (fragment_order::any). The walk runs
+/// the walk choose its own (fragment_order::any); group_depths() groups the depths alone, where every
+/// fragment has one optical depth (one_optical_depth). The walk runs
 /// in AVX-512 where the CPU has it (raster/tile_walk_avx512.hpp), else in scalar C++; both give the
 /// same fragments, bit for bit.
 
@@ -4054,11 +4074,23 @@ public:
         steps_of_.reserve(std::size_t(side) + 2);
     }
 
+    /// Whether every fragment a walk of `bins` makes has one optical depth: thin lines of uniform
+    /// attributes and one alpha, the tiles the vector walk covers. That b is
+    /// optical_depth_of(bins.uniform_shader().shade(0.0f).alpha).
+    static bool one_optical_depth(const segment_bins& bins) noexcept {
+        return bins.options().wide_line_width == 0.0f && bins.uniform_attributes() && bins.uniform_shader().constant_alpha();
+    }
+
     const texel_rect& rect() const noexcept { return rect_; }
     /// Fragments of the tile's texel (x, y), in map coordinates, once grouped (group()).
     std::span<const optical_fragment> texel(int x, int y) const noexcept {
         const std::size_t k = std::size_t(y - rect_.y0) * std::size_t(width_) + std::size_t(x - rect_.x0);
         return {grouped_.data() + offsets_[k], std::size_t(offsets_[k + 1] - offsets_[k])};
+    }
+    /// Depths of the tile's texel (x, y), in map coordinates, once grouped alone (group_depths()).
+    std::span<const float> texel_depths(int x, int y) const noexcept {
+        const std::size_t k = std::size_t(y - rect_.y0) * std::size_t(width_) + std::size_t(x - rect_.x0);
+        return {grouped_depths_.data() + offsets_[k], std::size_t(offsets_[k + 1] - offsets_[k])};
     }
     /// The last tile's fragments in walk order: segment after segment, as in the tile's list, unless
     /// gather was let walk in any order. Each texel's fragments come in the order texel() gives them. walk_texels() are row-major indices
@@ -4070,27 +4102,32 @@ public:
     std::size_t size() const noexcept { return n_; }
     /// Fragments it walks without allocating.
     std::size_t capacity() const noexcept { return where_.size(); }
-    /// Room to walk a tile of `fragments` fragments and group `grouped` of them without growing,
-    /// allocated afresh where the store is smaller: nothing it held is copied.
-    void reserve_fresh(std::size_t fragments, std::size_t grouped) {
+    /// Room to walk a tile of `fragments` fragments and group `grouped` of them (group()) and
+    /// `grouped_depths` of their depths (group_depths()) without growing, allocated afresh where the
+    /// store is smaller: nothing it held is copied.
+    void reserve_fresh(std::size_t fragments, std::size_t grouped, std::size_t grouped_depths = 0) {
         if (where_.size() < fragments) {
             where_ = decltype(where_)(), depth_ = decltype(depth_)(), optical_ = decltype(optical_)();
             where_.resize(fragments), depth_.resize(fragments), optical_.resize(fragments);
         }
         if (grouped_.size() < grouped) grouped_ = decltype(grouped_)(), grouped_.resize(grouped);
+        if (grouped_depths_.size() < grouped_depths) grouped_depths_ = decltype(grouped_depths_)(), grouped_depths_.resize(grouped_depths);
     }
-    /// Fragments it groups without allocating.
+    /// Fragments it groups without allocating (group()).
     std::size_t grouped_capacity() const noexcept { return grouped_.size(); }
-    /// Makes room to walk `fragments` fragments and group `grouped` of them, in tiles of `tile_texels`
-    /// texels, so that tiles up to those sizes allocate nothing.
-    void reserve(std::size_t fragments, std::size_t grouped, std::size_t tile_texels) {
+    /// Depths it groups without allocating (group_depths()).
+    std::size_t grouped_depths_capacity() const noexcept { return grouped_depths_.size(); }
+    /// Makes room to walk `fragments` fragments, group `grouped` of them and `grouped_depths` of their
+    /// depths, in tiles of `tile_texels` texels, so that tiles up to those sizes allocate nothing.
+    void reserve(std::size_t fragments, std::size_t grouped, std::size_t grouped_depths, std::size_t tile_texels) {
         if (where_.size() < fragments) where_.resize(fragments), depth_.resize(fragments), optical_.resize(fragments);
-        if (grouped == 0) return;
         if (grouped_.size() < grouped) grouped_.resize(grouped);
-        offsets_.reserve(tile_texels + 2);
+        if (grouped_depths_.size() < grouped_depths) grouped_depths_.resize(grouped_depths);
+        if (grouped > 0 || grouped_depths > 0) offsets_.reserve(tile_texels + 2);
     }
     std::size_t memory_bytes() const noexcept {
-        return (where_.capacity() + offsets_.capacity()) * sizeof(std::uint32_t) + (depth_.capacity() + optical_.capacity()) * sizeof(float) +
+        return (where_.capacity() + offsets_.capacity()) * sizeof(std::uint32_t) +
+               (depth_.capacity() + optical_.capacity() + grouped_depths_.capacity()) * sizeof(float) +
                grouped_.capacity() * sizeof(optical_fragment) + (sorted_.capacity() + steps_of_.capacity()) * sizeof(std::uint32_t) +
                steps_.capacity() * sizeof(std::uint16_t);
     }
@@ -4162,6 +4199,30 @@ public:
     /// Groups the last tile's fragments by texel, for texel(): a count, prefix sums and a stable
     /// scatter, so that texel k's fragments end in [offsets_[k], offsets_[k + 1]) in walk order.
     void group() {
+        std::uint32_t* cursor = count_texels();
+        // Only as large as the tiles grouped (the streamed build groups only sparse ones), grown by half.
+        if (grouped_.size() < n_) grouped_.resize(std::max(n_, grouped_.size() + grouped_.size() / 2));
+        optical_fragment* grouped = grouped_.data();
+        const std::uint32_t* where = where_.data();
+        const float* depth = depth_.data();
+        const float* optical = optical_.data();
+        for (std::size_t i = 0; i < n_; ++i) grouped[cursor[where[i]]++] = {depth[i], optical[i]};
+    }
+    /// group() for the depths alone, for texel_depths(): where every fragment has one optical depth
+    /// (one_optical_depth), half the bytes to scatter, the scatter being most of the grouping's time.
+    void group_depths() {
+        std::uint32_t* cursor = count_texels();
+        if (grouped_depths_.size() < n_) grouped_depths_.resize(std::max(n_, grouped_depths_.size() + grouped_depths_.size() / 2));
+        float* grouped = grouped_depths_.data();
+        const std::uint32_t* where = where_.data();
+        const float* depth = depth_.data();
+        for (std::size_t i = 0; i < n_; ++i) grouped[cursor[where[i]]++] = depth[i];
+    }
+
+private:
+    /// The grouping's first steps: texel k's count, then its fragments' offsets, in offsets_[k + 1]
+    /// (offsets_[k + 2] once the scatter has moved each texel's cursor to its end). Returns the cursors.
+    std::uint32_t* count_texels() {
         const std::size_t texels = std::size_t(width_) * std::size_t(rect_.y1 - rect_.y0);
         if (n_ > std::numeric_limits<std::uint32_t>::max()) throw argument_error("more than 2^32 fragments in one tile: use smaller tiles");
         offsets_.assign(texels + 2, 0);
@@ -4169,22 +4230,13 @@ public:
         const std::uint32_t* where = where_.data();
         for (std::size_t i = 0; i < n_; ++i) ++counts[where[i]];
         for (std::size_t k = 2; k < offsets_.size(); ++k) offsets_[k] += offsets_[k - 1];
-        // Only as large as the tiles grouped (the streamed build groups only sparse ones), grown by half.
-        if (grouped_.size() < n_) grouped_.resize(std::max(n_, grouped_.size() + grouped_.size() / 2));
-        std::uint32_t* cursor = offsets_.data() + 1;
-        optical_fragment* grouped = grouped_.data();
-        const float* depth = depth_.data();
-        const float* optical = optical_.data();
-        for (std::size_t i = 0; i < n_; ++i) grouped[cursor[where[i]]++] = {depth[i], optical[i]};
+        return offsets_.data() + 1;
     }
 
-private:
 #if HAIRSHADOW_AVX512_WALK
     /// The vector walk covers thin lines of one alpha (uniform attributes, a footprint constant in
     /// depth); other tiles walk in scalar.
-    bool simd_tile(const segment_bins& bins) const noexcept {
-        return bins.options().wide_line_width == 0.0f && bins.uniform_attributes() && bins.uniform_shader().constant_alpha();
-    }
+    static bool simd_tile(const segment_bins& bins) noexcept { return one_optical_depth(bins); }
     /// The store's arrays, next slot and size, held in locals through the vector walk: its vector
     /// stores may alias anything, and through the members the compiler reloaded all of them after each.
     struct store_cursor {
@@ -4218,6 +4270,7 @@ private:
     std::vector<std::uint32_t> offsets_;         ///< per texel counts, then offsets
     big_vector<float> depth_, optical_;          ///< each candidate's depth and b
     big_vector<optical_fragment> grouped_;
+    big_vector<float> grouped_depths_;
     float last_alpha_ = -1.0f, last_optical_ = 0.0f;
     std::vector<std::uint32_t> sorted_;   ///< the tile's segments by their steps (walk in any order)
     std::vector<std::uint16_t> steps_;    ///< each segment's steps in the tile
@@ -5132,6 +5185,9 @@ inline unsigned tile_slots(const tiled_workspace& w) noexcept { return parallel_
 /// What for_each_tile does with a tile's fragments after the walk.
 enum class tile_grouping {
     grouped,    ///< groups them by texel (tile_fragments::texel)
+    /// groups their depths alone by texel (tile_fragments::texel_depths), for a map whose fragments
+    /// share one optical depth (tile_fragments::one_optical_depth)
+    grouped_depths,
     walk_order, ///< leaves them in walk order
     on_demand,  ///< leaves them in walk order; on_tile may group them (tile_fragments::group)
 };
@@ -5154,21 +5210,27 @@ std::size_t for_each_tile(tiled_workspace& w, tile_grouping grouping, OnTile&& o
     // or sixteen at once (in any order) where theirs and 16 more fit: each segment's steps and start
     // exceed its bound by at most 1.
     if (const std::size_t most = w.bins.largest_tile_fragment_bound(); most > 0)
-        for (auto& tile : w.tiles) tile.reserve_fresh(most + side + 16, grouping == tile_grouping::grouped ? most : 0);
+        for (auto& tile : w.tiles)
+            tile.reserve_fresh(most + side + 16, grouping == tile_grouping::grouped ? most : 0, grouping == tile_grouping::grouped_depths ? most : 0);
     if (fragments_in == fragment_order::any && instructions == instruction_set::avx512 && !order.empty()) // the vector walk sorts
         for (auto& tile : w.tiles) tile.reserve_segments(w.bins.tile_load(order[0]), int(side)); // the most segments first
     parallel_for_slots(order.size(), exec, [&](unsigned slot, std::size_t i) {
         tile_fragments& tile = w.tiles[slot];
         tile.gather(w.bins, order[i], instructions, fragments_in);
         if (grouping == tile_grouping::grouped) tile.group();
+        else if (grouping == tile_grouping::grouped_depths) tile.group_depths();
         w.fragments[slot] += tile.size();
         on_tile(slot, tile);
     });
     // Every thread's store as large as the largest: the tiles go to other threads in the next build,
     // which then allocates nothing.
-    std::size_t largest = 0, largest_grouped = 0;
-    for (const auto& tile : w.tiles) largest = std::max(largest, tile.capacity()), largest_grouped = std::max(largest_grouped, tile.grouped_capacity());
-    for (auto& tile : w.tiles) tile.reserve(largest, largest_grouped, side * side);
+    std::size_t largest = 0, largest_grouped = 0, largest_depths = 0;
+    for (const auto& tile : w.tiles) {
+        largest = std::max(largest, tile.capacity());
+        largest_grouped = std::max(largest_grouped, tile.grouped_capacity());
+        largest_depths = std::max(largest_depths, tile.grouped_depths_capacity());
+    }
+    for (auto& tile : w.tiles) tile.reserve(largest, largest_grouped, largest_depths, side * side);
     std::size_t total = 0;
     for (const std::size_t n : w.fragments) total += n;
     return total;
@@ -5295,6 +5357,25 @@ public:
                     },
                     order);
             } else {
+#if HAIRSHADOW_AVX512_WALK
+                // Where every fragment shares one b, the tiles group their depths alone, half the bytes
+                // of the grouping's scatter and of the texels' passes: dc:4 on curly 1.5M at 512x512
+                // built 1.08-1.12x faster (BENCHMARKS.md, issue 11). The same maps, bit for bit.
+                if constexpr (detail::builds_from_depths_avx512<Placement, Accumulation, Reconstruction>) {
+                    if (instructions == instruction_set::avx512 && detail::tile_fragments::one_optical_depth(w.bins)) {
+                        const float b = optical_depth_of(w.bins.uniform_shader().shade(0.0f).alpha);
+                        fragments_ = detail::for_each_tile(
+                            w, detail::tile_grouping::grouped_depths,
+                            [&](unsigned, const detail::tile_fragments& tile) {
+                                const texel_rect r = tile.rect();
+                                for (int y = r.y0; y < r.y1; ++y)
+                                    for (int x = r.x0; x < r.x1; ++x) build_texel_from_depths(tile.texel_depths(x, y), b, texel_out(x, y));
+                            },
+                            order);
+                        return;
+                    }
+                }
+#endif
                 fragments_ = detail::for_each_tile(
                     w, detail::tile_grouping::grouped, [&](unsigned, const detail::tile_fragments& tile) { build_grouped(tile); }, order);
             }
@@ -5381,6 +5462,17 @@ private:
             reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
     }
 
+#if HAIRSHADOW_AVX512_WALK
+    /// build_texel for a texel whose fragments all have optical depth b, given by their depths alone:
+    /// the same maps (detail::builds_from_depths_avx512).
+    void build_texel_from_depths(std::span<const float> depths, float b, texel_maps& out) const {
+        out = texel_maps{};
+        if (depths.empty()) return;
+        placement_.prepare_texel_depths_avx512(depths, b, out.placement);
+        Reconstruction::template build_from_depths<Placement, Accumulation>(placement_, out.placement, depths, b, out.data);
+    }
+#endif
+
     /// The light of the maps, given to a reconstruction that needs it (a fibre density's world units).
     void set_light(const light_space& light) {
         light_ = light;
@@ -5451,7 +5543,9 @@ private:
 /// Density clustering's per-texel passes sixteen fragments at a time (placement/clustered.hpp): the
 /// depth range, the two k-means sums and the assignment of fragments to bins. Each lane does the
 /// scalar pass's own IEEE operations, and the k-means sums are integers (fixed point), whose order
-/// changes nothing, so the texel's state and layers are the scalar ones bit for bit.
+/// changes nothing, so the texel's state and layers are the scalar ones bit for bit. A texel comes as
+/// optical fragments, or, where its fragments share one optical depth, as their depths alone (half
+/// the bytes to group and to load).
 
 
 #include <algorithm>
@@ -5460,6 +5554,7 @@ private:
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 
 namespace hairshadow::detail {
 
@@ -5485,6 +5580,21 @@ HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __mmask16 load_fragment
     return first_lanes(n);
 }
 
+/// load_fragments for a texel's depths alone (fragments of one optical depth, grouped without it:
+/// tile_fragments::group_depths): the depths, and optical depths of zero, which the passes for one
+/// optical depth do not read.
+HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __mmask16 load_fragments(const float* depths, std::size_t remaining, __m512& depth,
+                                                                               __m512& optical) noexcept {
+    const __mmask16 lanes = first_lanes(remaining);
+    depth = _mm512_maskz_loadu_ps(lanes, depths);
+    optical = _mm512_setzero_ps();
+    return lanes;
+}
+
+/// A texel's fragments for the vector passes: optical_fragment, or float where only depths are kept.
+template <class Fragment>
+concept texel_fragment = std::is_same_v<Fragment, optical_fragment> || std::is_same_v<Fragment, float>;
+
 /// A texel's depth range and whether all its fragments share the first one's optical depth.
 struct texel_scan {
     depth_extent range;
@@ -5492,19 +5602,22 @@ struct texel_scan {
 };
 
 /// detail::depth_range_of: the same nearest and furthest depth, and whether every optical depth equals
-/// the first (as floats: a zero of either sign makes the same fixed-point terms). The lanes are reduced
-/// in another order than the fragments come, which can change only the sign of a zero, so a range that
-/// ends at zero is reduced again in order.
-HAIRSHADOW_AVX512_TARGET inline texel_scan texel_scan_of(std::span<const optical_fragment> fragments) noexcept {
-    __m512 nearest = _mm512_set1_ps(fragments[0].depth), furthest = nearest;
-    const __m512 first_optical = _mm512_set1_ps(fragments[0].optical_depth);
+/// the first (as floats: a zero of either sign makes the same fixed-point terms; depths alone share
+/// one by construction). The lanes are reduced in another order than the fragments come, which can
+/// change only the sign of a zero, so a range that ends at zero is reduced again in order.
+template <texel_fragment Fragment>
+HAIRSHADOW_AVX512_TARGET inline texel_scan texel_scan_of(std::span<const Fragment> fragments) noexcept {
+    constexpr bool depths_alone = std::is_same_v<Fragment, float>;
+    __m512 nearest = _mm512_set1_ps(depth_of(fragments[0])), furthest = nearest;
+    __m512 first_optical = _mm512_setzero_ps();
+    if constexpr (!depths_alone) first_optical = _mm512_set1_ps(fragments[0].optical_depth);
     __mmask16 other_optical = 0;
     for (std::size_t i = 0; i < fragments.size(); i += 16) {
         __m512 depth, optical;
         const __mmask16 lanes = load_fragments(fragments.data() + i, fragments.size() - i, depth, optical);
         nearest = _mm512_mask_mov_ps(nearest, lanes & _mm512_cmp_ps_mask(depth, nearest, _CMP_LT_OQ), depth);
         furthest = _mm512_mask_mov_ps(furthest, lanes & _mm512_cmp_ps_mask(furthest, depth, _CMP_LT_OQ), depth);
-        other_optical |= _mm512_mask_cmp_ps_mask(lanes, optical, first_optical, _CMP_NEQ_UQ);
+        if constexpr (!depths_alone) other_optical |= _mm512_mask_cmp_ps_mask(lanes, optical, first_optical, _CMP_NEQ_UQ);
     }
     // vminps and vmaxps return their second operand where either is NaN, and every lane starts at
     // the first depth, so a NaN there stays, as in depth_range_of; a later NaN never enters a lane.
@@ -5575,16 +5688,17 @@ HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __m512i lane_sums(const
 /// are not usable are left 0. With OneOpticalDepth, every fragment's b is the first one's
 /// (texel_scan_of), and weight[j] is fixed_sum(b) times the fragments j takes: the same integer, with
 /// no conversion per fragment. Returns false, with the sums unfinished, where a term is too large for the
-/// vector's exact conversion (|term| >= 2^15), which only absurd depths make.
-template <int K, bool Spread, bool OneOpticalDepth>
-    requires(K <= 16)
-HAIRSHADOW_AVX512_TARGET inline bool add_cluster_sums(std::span<const optical_fragment> fragments, const float* centres, std::uint32_t usable,
-                                                      std::int64_t* weight, std::int64_t* sum) noexcept {
+/// vector's exact conversion (|term| >= 2^15), which only absurd depths make. `first_optical` is the
+/// first fragment's b (the only one read with OneOpticalDepth, which depths alone need).
+template <int K, bool Spread, bool OneOpticalDepth, texel_fragment Fragment>
+    requires(K <= 16 && (OneOpticalDepth || std::is_same_v<Fragment, optical_fragment>))
+HAIRSHADOW_AVX512_TARGET inline bool add_cluster_sums(std::span<const Fragment> fragments, float first_optical, const float* centres,
+                                                      std::uint32_t usable, std::int64_t* weight, std::int64_t* sum) noexcept {
     // Per cluster, eight lanes of weight (with OneOpticalDepth, of fragments taken) and of sum terms.
     __m512i weights[K], sums[K];
     for (int j = 0; j < K; ++j) weights[j] = sums[j] = _mm512_setzero_si512();
     __mmask8 too_large = 0;
-    const __m512d one_optical = _mm512_set1_pd(double(fragments[0].optical_depth));
+    const __m512d one_optical = _mm512_set1_pd(double(first_optical));
     const __m512 centre_floats = _mm512_maskz_loadu_ps(__mmask16((1u << K) - 1u), centres);
     const __m512d centres_low = widen_half(centre_floats, 0), centres_high = widen_half(centre_floats, 1);
     for (std::size_t i = 0; i < fragments.size(); i += 16) {
@@ -5620,7 +5734,7 @@ HAIRSHADOW_AVX512_TARGET inline bool add_cluster_sums(std::span<const optical_fr
     for (int v = 0; v < vectors; v += 8) _mm512_store_si512(totals + v, lane_sums(all + v));
     std::int64_t weight_unit = 1;
     if constexpr (OneOpticalDepth) {
-        const double units = double(fragments[0].optical_depth) * cluster_fixed_scale;
+        const double units = double(first_optical) * cluster_fixed_scale;
         if (!(std::abs(units) < 0x1p51)) return false;
         weight_unit = std::int64_t(units); // fixed_sum(b), which every fragment taken would add
     }
@@ -5649,8 +5763,8 @@ HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __m512i bins_of(__m512 
 }
 
 /// layers[i] = bins_of(fragments[i].depth) for every fragment.
-template <int K>
-HAIRSHADOW_AVX512_TARGET inline void assign_to_bins(std::span<const optical_fragment> fragments, const float* lo, const float* hi, std::uint32_t filled,
+template <int K, texel_fragment Fragment>
+HAIRSHADOW_AVX512_TARGET inline void assign_to_bins(std::span<const Fragment> fragments, const float* lo, const float* hi, std::uint32_t filled,
                                                     const float* means, std::uint32_t usable, std::int32_t* layers) noexcept {
     for (std::size_t i = 0; i < fragments.size(); i += 16) {
         __m512 depth, optical;
@@ -5660,8 +5774,8 @@ HAIRSHADOW_AVX512_TARGET inline void assign_to_bins(std::span<const optical_frag
 }
 
 /// counts[j] += the fragments whose bins_of is j: assign_to_bins's layers, counted by their masks.
-template <int K>
-HAIRSHADOW_AVX512_TARGET inline void count_in_bins(std::span<const optical_fragment> fragments, const float* lo, const float* hi, std::uint32_t filled,
+template <int K, texel_fragment Fragment>
+HAIRSHADOW_AVX512_TARGET inline void count_in_bins(std::span<const Fragment> fragments, const float* lo, const float* hi, std::uint32_t filled,
                                                    const float* means, std::uint32_t usable, std::uint32_t* counts) noexcept {
     for (std::size_t i = 0; i < fragments.size(); i += 16) {
         __m512 depth, optical;
@@ -5723,30 +5837,7 @@ public:
 
     template <class Fragment>
     void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
-        s.sigma.fill(-1.0f);
-        if (fragments.empty()) return;
-        const depth_extent range = detail::depth_range_of(fragments);
-        const std::array<float, K> centre = initial_centres(range.nearest, range.furthest);
-        // One k-means iteration: weighted means of the fragments nearest each centre. The sums are
-        // exact integers (fixed_sum), so no order of the fragments changes them, and the GPU's compute
-        // build, summing in whatever order its threads run, gets the same means bit for bit.
-        cluster_sums sums{};
-        for (const auto& f : fragments) {
-            const auto j = std::size_t(nearest(centre, f.depth, [](int) { return true; }));
-            const double b = fragment_optical_depth(f);
-            sums.weight[j] += fixed_sum(b);
-            sums.sum[j] += fixed_sum(b * double(f.depth)); // exact in double: two floats' product
-        }
-        set_means(sums, centre, s);
-        // Second pass: weighted variance of each cluster's fragments around its mean.
-        cluster_sums spread{};
-        for (const auto& f : fragments) {
-            const auto j = std::size_t(nearest(s.mean, f.depth, [&](int i) { return usable(s, i); }));
-            const double b = fragment_optical_depth(f), d = double(f.depth) - s.mean[j];
-            spread.weight[j] += fixed_sum(b);
-            spread.sum[j] += fixed_sum(b * d * d);
-        }
-        set_sigmas(spread, s);
+        prepare_scalar(fragments, [](const Fragment& f) { return fragment_optical_depth(f); }, s);
     }
 
 #if HAIRSHADOW_AVX512_WALK
@@ -5761,8 +5852,20 @@ public:
         s.sigma.fill(-1.0f);
         const detail::avx512::texel_scan scan = detail::avx512::texel_scan_of(fragments);
         const std::array<float, K> centre = initial_centres(scan.range.nearest, scan.range.furthest);
-        const bool done = scan.one_optical_depth ? vector_k_means<true>(fragments, centre, s) : vector_k_means<false>(fragments, centre, s);
+        const float b = fragments[0].optical_depth;
+        const bool done = scan.one_optical_depth ? vector_k_means<true>(fragments, b, centre, s) : vector_k_means<false>(fragments, b, centre, s);
         if (!done) prepare_texel(fragments, s); // a term beyond the vector's exact range: only absurd depths
+    }
+
+    /// prepare_texel_avx512 for a texel whose fragments all have optical depth b, given by their depths
+    /// alone (tile_fragments::group_depths): the state its optical fragments give, bit for bit.
+    HAIRSHADOW_AVX512_TARGET void prepare_texel_depths_avx512(std::span<const float> depths, float b, texel_state& s) const noexcept
+        requires(K <= 16) {
+        const auto optical_depth = [b](float) { return b; };
+        if (depths.size() < vector_worthwhile) return prepare_scalar(depths, optical_depth, s);
+        s.sigma.fill(-1.0f);
+        const depth_extent range = detail::avx512::texel_scan_of(depths).range;
+        if (!vector_k_means<true>(depths, b, initial_centres(range.nearest, range.furthest), s)) prepare_scalar(depths, optical_depth, s);
     }
 
     /// layers[i] = assign(s, fragments[i].depth), sixteen at a time, bit for bit.
@@ -5780,7 +5883,9 @@ public:
 
     /// counts[j] += the fragments assign(s, depth) puts in bin j, sixteen at a time: assign_texel_avx512's
     /// layers, counted.
-    HAIRSHADOW_AVX512_TARGET void count_texel_avx512(const texel_state& s, std::span<const optical_fragment> fragments,
+    /// The fragments may be optical fragments or depths alone (tile_fragments::group_depths).
+    template <detail::avx512::texel_fragment Fragment>
+    HAIRSHADOW_AVX512_TARGET void count_texel_avx512(const texel_state& s, std::span<const Fragment> fragments,
                                                       std::array<std::uint32_t, std::size_t(K)>& counts) const noexcept
         requires(K <= 16) {
         const vector_bins v(*this, s);
@@ -5859,6 +5964,37 @@ private:
     struct cluster_sums {
         std::array<std::int64_t, K> weight, sum;
     };
+    /// prepare_texel, with each fragment's b from optical_depth(fragment): a texel's fragments may
+    /// come as their depths alone, all of one b.
+    template <class Fragment, class OpticalDepth>
+    void prepare_scalar(std::span<const Fragment> fragments, OpticalDepth&& optical_depth, texel_state& s) const noexcept {
+        s.sigma.fill(-1.0f);
+        if (fragments.empty()) return;
+        const depth_extent range = detail::depth_range_of(fragments);
+        const std::array<float, K> centre = initial_centres(range.nearest, range.furthest);
+        // One k-means iteration: weighted means of the fragments nearest each centre. The sums are
+        // exact integers (fixed_sum), so no order of the fragments changes them, and the GPU's compute
+        // build, summing in whatever order its threads run, gets the same means bit for bit.
+        cluster_sums sums{};
+        for (const auto& f : fragments) {
+            const float depth = detail::depth_of(f);
+            const auto j = std::size_t(nearest(centre, depth, [](int) { return true; }));
+            const double b = optical_depth(f);
+            sums.weight[j] += fixed_sum(b);
+            sums.sum[j] += fixed_sum(b * double(depth)); // exact in double: two floats' product
+        }
+        set_means(sums, centre, s);
+        // Second pass: weighted variance of each cluster's fragments around its mean.
+        cluster_sums spread{};
+        for (const auto& f : fragments) {
+            const float depth = detail::depth_of(f);
+            const auto j = std::size_t(nearest(s.mean, depth, [&](int i) { return usable(s, i); }));
+            const double b = optical_depth(f), d = double(depth) - s.mean[j];
+            spread.weight[j] += fixed_sum(b);
+            spread.sum[j] += fixed_sum(b * d * d);
+        }
+        set_sigmas(spread, s);
+    }
     /// Initial centres: the middles of K equal parts of [lo, hi].
     static std::array<float, K> initial_centres(float lo, float hi) noexcept {
         std::array<float, K> centre;
@@ -5902,14 +6038,16 @@ private:
     };
     /// prepare_texel_avx512's two k-means passes from the initial centres; false where a term is beyond
     /// the vector's exact range, and then `s` is unfinished.
-    template <bool OneOpticalDepth>
-    HAIRSHADOW_AVX512_TARGET static bool vector_k_means(std::span<const optical_fragment> fragments, const std::array<float, K>& centre,
+    /// `b` is the first fragment's optical depth.
+    template <bool OneOpticalDepth, class Fragment>
+    HAIRSHADOW_AVX512_TARGET static bool vector_k_means(std::span<const Fragment> fragments, float b, const std::array<float, K>& centre,
                                                         texel_state& s) noexcept requires(K <= 16) {
         cluster_sums sums{}, spread{};
-        if (!detail::avx512::add_cluster_sums<K, false, OneOpticalDepth>(fragments, centre.data(), all_usable(), sums.weight.data(), sums.sum.data()))
+        if (!detail::avx512::add_cluster_sums<K, false, OneOpticalDepth>(fragments, b, centre.data(), all_usable(), sums.weight.data(), sums.sum.data()))
             return false;
         set_means(sums, centre, s);
-        if (!detail::avx512::add_cluster_sums<K, true, OneOpticalDepth>(fragments, s.mean.data(), usable_mask(s), spread.weight.data(), spread.sum.data()))
+        if (!detail::avx512::add_cluster_sums<K, true, OneOpticalDepth>(fragments, b, s.mean.data(), usable_mask(s), spread.weight.data(),
+                                                                       spread.sum.data()))
             return false;
         set_sigmas(spread, s);
         return true;
@@ -6666,11 +6804,8 @@ struct interpolation {
             // (sixteen at a time where the placement can), then read from this thread's repeated_sums,
             // not added fragment by fragment. The same sums, bit for bit: dc:4 on curly 1.5M at 512x512
             // built 1.10x faster (BENCHMARKS.md, issue 11).
-            auto& repeats = detail::repeated_sums_of<Accumulation>(fragment_optical_depth(fragments[0]));
-            const auto counts = detail::layer_counts(placement, state, fragments, instructions);
-            for (std::size_t k = 0; k < std::size_t(L); ++k) sums[k] = repeats(counts[k]);
-            finish<Placement, Accumulation>(sums, out);
-            return;
+            return finish_counted<Placement, Accumulation>(fragment_optical_depth(fragments[0]),
+                                                           detail::layer_counts(placement, state, fragments, instructions), out);
         }
         detail::for_each_layer(placement, state, fragments, instructions, [&sums](int k, const Fragment& f) {
             if constexpr (std::is_same_v<Accumulation, float_accumulation> && L <= 16) {
@@ -6686,6 +6821,20 @@ struct interpolation {
         finish<Placement, Accumulation>(sums, out);
     }
 
+#if HAIRSHADOW_AVX512_WALK
+    /// build for a texel whose fragments all have optical depth b, given by their depths alone
+    /// (tile_fragments::group_depths): build's branch for one optical depth, the same maps bit for bit.
+    template <class Placement, class Accumulation>
+        requires requires(const Placement& p, const typename Placement::texel_state& s, std::span<const float> depths,
+                          std::array<std::uint32_t, std::size_t(Placement::layer_count)>& counts) { p.count_texel_avx512(s, depths, counts); }
+    static void build_from_depths(const Placement& placement, const typename Placement::texel_state& state, std::span<const float> depths, float b,
+                                  storage<Placement, Accumulation>& out) {
+        std::array<std::uint32_t, std::size_t(Placement::layer_count)> counts{};
+        placement.count_texel_avx512(state, depths, counts);
+        finish_counted<Placement, Accumulation>(b, counts, out);
+    }
+#endif
+
     /// Whether every fragment's optical depth is the first one's: their alphas (or optical depths) are,
     /// bit for bit. Without a branch per fragment, so that the loop vectorises.
     template <class Fragment>
@@ -6698,6 +6847,16 @@ struct interpolation {
         std::uint32_t other = 0;
         for (const auto& f : fragments) other |= source(f) ^ first;
         return other == 0;
+    }
+
+    /// The maps of a texel whose fragments all add b, counts[k] of them in layer k.
+    template <class Placement, class Accumulation>
+    static void finish_counted(float b, const std::array<std::uint32_t, std::size_t(Placement::layer_count)>& counts,
+                               storage<Placement, Accumulation>& out) {
+        auto& repeats = detail::repeated_sums_of<Accumulation>(b);
+        std::array<typename Accumulation::sum_type, std::size_t(Placement::layer_count)> sums{};
+        for (std::size_t k = 0; k < sums.size(); ++k) sums[k] = repeats(counts[k]);
+        finish<Placement, Accumulation>(sums, out);
     }
 
     /// The build in pieces, for a build that meets a texel's fragments among other texels' (in each

@@ -108,6 +108,25 @@ public:
                     },
                     order);
             } else {
+#if HAIRSHADOW_AVX512_WALK
+                // Where every fragment shares one b, the tiles group their depths alone, half the bytes
+                // of the grouping's scatter and of the texels' passes: dc:4 on curly 1.5M at 512x512
+                // built 1.08-1.12x faster (BENCHMARKS.md, issue 11). The same maps, bit for bit.
+                if constexpr (detail::builds_from_depths_avx512<Placement, Accumulation, Reconstruction>) {
+                    if (instructions == instruction_set::avx512 && detail::tile_fragments::one_optical_depth(w.bins)) {
+                        const float b = optical_depth_of(w.bins.uniform_shader().shade(0.0f).alpha);
+                        fragments_ = detail::for_each_tile(
+                            w, detail::tile_grouping::grouped_depths,
+                            [&](unsigned, const detail::tile_fragments& tile) {
+                                const texel_rect r = tile.rect();
+                                for (int y = r.y0; y < r.y1; ++y)
+                                    for (int x = r.x0; x < r.x1; ++x) build_texel_from_depths(tile.texel_depths(x, y), b, texel_out(x, y));
+                            },
+                            order);
+                        return;
+                    }
+                }
+#endif
                 fragments_ = detail::for_each_tile(
                     w, detail::tile_grouping::grouped, [&](unsigned, const detail::tile_fragments& tile) { build_grouped(tile); }, order);
             }
@@ -193,6 +212,17 @@ private:
         else
             reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
     }
+
+#if HAIRSHADOW_AVX512_WALK
+    /// build_texel for a texel whose fragments all have optical depth b, given by their depths alone:
+    /// the same maps (detail::builds_from_depths_avx512).
+    void build_texel_from_depths(std::span<const float> depths, float b, texel_maps& out) const {
+        out = texel_maps{};
+        if (depths.empty()) return;
+        placement_.prepare_texel_depths_avx512(depths, b, out.placement);
+        Reconstruction::template build_from_depths<Placement, Accumulation>(placement_, out.placement, depths, b, out.data);
+    }
+#endif
 
     /// The light of the maps, given to a reconstruction that needs it (a fibre density's world units).
     void set_light(const light_space& light) {

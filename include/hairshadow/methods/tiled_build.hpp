@@ -55,6 +55,9 @@ inline unsigned tile_slots(const tiled_workspace& w) noexcept { return parallel_
 /// What for_each_tile does with a tile's fragments after the walk.
 enum class tile_grouping {
     grouped,    ///< groups them by texel (tile_fragments::texel)
+    /// groups their depths alone by texel (tile_fragments::texel_depths), for a map whose fragments
+    /// share one optical depth (tile_fragments::one_optical_depth)
+    grouped_depths,
     walk_order, ///< leaves them in walk order
     on_demand,  ///< leaves them in walk order; on_tile may group them (tile_fragments::group)
 };
@@ -77,21 +80,27 @@ std::size_t for_each_tile(tiled_workspace& w, tile_grouping grouping, OnTile&& o
     // or sixteen at once (in any order) where theirs and 16 more fit: each segment's steps and start
     // exceed its bound by at most 1.
     if (const std::size_t most = w.bins.largest_tile_fragment_bound(); most > 0)
-        for (auto& tile : w.tiles) tile.reserve_fresh(most + side + 16, grouping == tile_grouping::grouped ? most : 0);
+        for (auto& tile : w.tiles)
+            tile.reserve_fresh(most + side + 16, grouping == tile_grouping::grouped ? most : 0, grouping == tile_grouping::grouped_depths ? most : 0);
     if (fragments_in == fragment_order::any && instructions == instruction_set::avx512 && !order.empty()) // the vector walk sorts
         for (auto& tile : w.tiles) tile.reserve_segments(w.bins.tile_load(order[0]), int(side)); // the most segments first
     parallel_for_slots(order.size(), exec, [&](unsigned slot, std::size_t i) {
         tile_fragments& tile = w.tiles[slot];
         tile.gather(w.bins, order[i], instructions, fragments_in);
         if (grouping == tile_grouping::grouped) tile.group();
+        else if (grouping == tile_grouping::grouped_depths) tile.group_depths();
         w.fragments[slot] += tile.size();
         on_tile(slot, tile);
     });
     // Every thread's store as large as the largest: the tiles go to other threads in the next build,
     // which then allocates nothing.
-    std::size_t largest = 0, largest_grouped = 0;
-    for (const auto& tile : w.tiles) largest = std::max(largest, tile.capacity()), largest_grouped = std::max(largest_grouped, tile.grouped_capacity());
-    for (auto& tile : w.tiles) tile.reserve(largest, largest_grouped, side * side);
+    std::size_t largest = 0, largest_grouped = 0, largest_depths = 0;
+    for (const auto& tile : w.tiles) {
+        largest = std::max(largest, tile.capacity());
+        largest_grouped = std::max(largest_grouped, tile.grouped_capacity());
+        largest_depths = std::max(largest_depths, tile.grouped_depths_capacity());
+    }
+    for (auto& tile : w.tiles) tile.reserve(largest, largest_grouped, largest_depths, side * side);
     std::size_t total = 0;
     for (const std::size_t n : w.fragments) total += n;
     return total;

@@ -4,7 +4,8 @@
 /// - assign_each: the layers of fragments from many texels (the streamed build, methods/streamed_tile.hpp),
 ///   through a placement's assign_each_avx512;
 /// - prepare_texel and for_each_layer: one texel's pre-pass and layers (the grouped build), through
-///   prepare_texel_avx512 and assign_texel_avx512.
+///   prepare_texel_avx512 and assign_texel_avx512 (or, for a texel's depths alone,
+///   prepare_texel_depths_avx512: builds_from_depths_avx512).
 /// The vector forms give the scalar results bit for bit: the same IEEE subtraction, division and
 /// comparisons in every lane, so that only the instruction count changes. Which runs follows
 /// raster_options::instructions (raster/instruction_set.hpp).
@@ -47,6 +48,16 @@ template <class Placement>
 concept counts_texel_avx512 = requires(const Placement& p, const typename Placement::texel_state& s, std::span<const optical_fragment> fragments,
                                        std::array<std::uint32_t, std::size_t(Placement::layer_count)>& counts) {
     p.count_texel_avx512(s, fragments, counts);
+};
+
+/// Whether a composition builds a texel whose fragments share one optical depth from their depths
+/// alone (tile_fragments::group_depths): a placement with prepare_texel_depths_avx512 and a
+/// reconstruction with build_from_depths.
+template <class Placement, class Accumulation, class Reconstruction>
+concept builds_from_depths_avx512 = requires(const Placement& p, typename Placement::texel_state& s, std::span<const float> depths,
+                                             typename Reconstruction::template storage<Placement, Accumulation>& out) {
+    p.prepare_texel_depths_avx512(depths, 0.0f, s);
+    Reconstruction::template build_from_depths<Placement, Accumulation>(p, s, depths, 0.0f, out);
 };
 
 namespace avx512 {

@@ -56,30 +56,7 @@ public:
 
     template <class Fragment>
     void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
-        s.sigma.fill(-1.0f);
-        if (fragments.empty()) return;
-        const depth_extent range = detail::depth_range_of(fragments);
-        const std::array<float, K> centre = initial_centres(range.nearest, range.furthest);
-        // One k-means iteration: weighted means of the fragments nearest each centre. The sums are
-        // exact integers (fixed_sum), so no order of the fragments changes them, and the GPU's compute
-        // build, summing in whatever order its threads run, gets the same means bit for bit.
-        cluster_sums sums{};
-        for (const auto& f : fragments) {
-            const auto j = std::size_t(nearest(centre, f.depth, [](int) { return true; }));
-            const double b = fragment_optical_depth(f);
-            sums.weight[j] += fixed_sum(b);
-            sums.sum[j] += fixed_sum(b * double(f.depth)); // exact in double: two floats' product
-        }
-        set_means(sums, centre, s);
-        // Second pass: weighted variance of each cluster's fragments around its mean.
-        cluster_sums spread{};
-        for (const auto& f : fragments) {
-            const auto j = std::size_t(nearest(s.mean, f.depth, [&](int i) { return usable(s, i); }));
-            const double b = fragment_optical_depth(f), d = double(f.depth) - s.mean[j];
-            spread.weight[j] += fixed_sum(b);
-            spread.sum[j] += fixed_sum(b * d * d);
-        }
-        set_sigmas(spread, s);
+        prepare_scalar(fragments, [](const Fragment& f) { return fragment_optical_depth(f); }, s);
     }
 
 #if HAIRSHADOW_AVX512_WALK
@@ -94,8 +71,20 @@ public:
         s.sigma.fill(-1.0f);
         const detail::avx512::texel_scan scan = detail::avx512::texel_scan_of(fragments);
         const std::array<float, K> centre = initial_centres(scan.range.nearest, scan.range.furthest);
-        const bool done = scan.one_optical_depth ? vector_k_means<true>(fragments, centre, s) : vector_k_means<false>(fragments, centre, s);
+        const float b = fragments[0].optical_depth;
+        const bool done = scan.one_optical_depth ? vector_k_means<true>(fragments, b, centre, s) : vector_k_means<false>(fragments, b, centre, s);
         if (!done) prepare_texel(fragments, s); // a term beyond the vector's exact range: only absurd depths
+    }
+
+    /// prepare_texel_avx512 for a texel whose fragments all have optical depth b, given by their depths
+    /// alone (tile_fragments::group_depths): the state its optical fragments give, bit for bit.
+    HAIRSHADOW_AVX512_TARGET void prepare_texel_depths_avx512(std::span<const float> depths, float b, texel_state& s) const noexcept
+        requires(K <= 16) {
+        const auto optical_depth = [b](float) { return b; };
+        if (depths.size() < vector_worthwhile) return prepare_scalar(depths, optical_depth, s);
+        s.sigma.fill(-1.0f);
+        const depth_extent range = detail::avx512::texel_scan_of(depths).range;
+        if (!vector_k_means<true>(depths, b, initial_centres(range.nearest, range.furthest), s)) prepare_scalar(depths, optical_depth, s);
     }
 
     /// layers[i] = assign(s, fragments[i].depth), sixteen at a time, bit for bit.
@@ -113,7 +102,9 @@ public:
 
     /// counts[j] += the fragments assign(s, depth) puts in bin j, sixteen at a time: assign_texel_avx512's
     /// layers, counted.
-    HAIRSHADOW_AVX512_TARGET void count_texel_avx512(const texel_state& s, std::span<const optical_fragment> fragments,
+    /// The fragments may be optical fragments or depths alone (tile_fragments::group_depths).
+    template <detail::avx512::texel_fragment Fragment>
+    HAIRSHADOW_AVX512_TARGET void count_texel_avx512(const texel_state& s, std::span<const Fragment> fragments,
                                                       std::array<std::uint32_t, std::size_t(K)>& counts) const noexcept
         requires(K <= 16) {
         const vector_bins v(*this, s);
@@ -192,6 +183,37 @@ private:
     struct cluster_sums {
         std::array<std::int64_t, K> weight, sum;
     };
+    /// prepare_texel, with each fragment's b from optical_depth(fragment): a texel's fragments may
+    /// come as their depths alone, all of one b.
+    template <class Fragment, class OpticalDepth>
+    void prepare_scalar(std::span<const Fragment> fragments, OpticalDepth&& optical_depth, texel_state& s) const noexcept {
+        s.sigma.fill(-1.0f);
+        if (fragments.empty()) return;
+        const depth_extent range = detail::depth_range_of(fragments);
+        const std::array<float, K> centre = initial_centres(range.nearest, range.furthest);
+        // One k-means iteration: weighted means of the fragments nearest each centre. The sums are
+        // exact integers (fixed_sum), so no order of the fragments changes them, and the GPU's compute
+        // build, summing in whatever order its threads run, gets the same means bit for bit.
+        cluster_sums sums{};
+        for (const auto& f : fragments) {
+            const float depth = detail::depth_of(f);
+            const auto j = std::size_t(nearest(centre, depth, [](int) { return true; }));
+            const double b = optical_depth(f);
+            sums.weight[j] += fixed_sum(b);
+            sums.sum[j] += fixed_sum(b * double(depth)); // exact in double: two floats' product
+        }
+        set_means(sums, centre, s);
+        // Second pass: weighted variance of each cluster's fragments around its mean.
+        cluster_sums spread{};
+        for (const auto& f : fragments) {
+            const float depth = detail::depth_of(f);
+            const auto j = std::size_t(nearest(s.mean, depth, [&](int i) { return usable(s, i); }));
+            const double b = optical_depth(f), d = double(depth) - s.mean[j];
+            spread.weight[j] += fixed_sum(b);
+            spread.sum[j] += fixed_sum(b * d * d);
+        }
+        set_sigmas(spread, s);
+    }
     /// Initial centres: the middles of K equal parts of [lo, hi].
     static std::array<float, K> initial_centres(float lo, float hi) noexcept {
         std::array<float, K> centre;
@@ -235,14 +257,16 @@ private:
     };
     /// prepare_texel_avx512's two k-means passes from the initial centres; false where a term is beyond
     /// the vector's exact range, and then `s` is unfinished.
-    template <bool OneOpticalDepth>
-    HAIRSHADOW_AVX512_TARGET static bool vector_k_means(std::span<const optical_fragment> fragments, const std::array<float, K>& centre,
+    /// `b` is the first fragment's optical depth.
+    template <bool OneOpticalDepth, class Fragment>
+    HAIRSHADOW_AVX512_TARGET static bool vector_k_means(std::span<const Fragment> fragments, float b, const std::array<float, K>& centre,
                                                         texel_state& s) noexcept requires(K <= 16) {
         cluster_sums sums{}, spread{};
-        if (!detail::avx512::add_cluster_sums<K, false, OneOpticalDepth>(fragments, centre.data(), all_usable(), sums.weight.data(), sums.sum.data()))
+        if (!detail::avx512::add_cluster_sums<K, false, OneOpticalDepth>(fragments, b, centre.data(), all_usable(), sums.weight.data(), sums.sum.data()))
             return false;
         set_means(sums, centre, s);
-        if (!detail::avx512::add_cluster_sums<K, true, OneOpticalDepth>(fragments, s.mean.data(), usable_mask(s), spread.weight.data(), spread.sum.data()))
+        if (!detail::avx512::add_cluster_sums<K, true, OneOpticalDepth>(fragments, b, s.mean.data(), usable_mask(s), spread.weight.data(),
+                                                                       spread.sum.data()))
             return false;
         set_sigmas(spread, s);
         return true;

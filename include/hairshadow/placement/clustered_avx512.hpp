@@ -3,7 +3,9 @@
 /// Density clustering's per-texel passes sixteen fragments at a time (placement/clustered.hpp): the
 /// depth range, the two k-means sums and the assignment of fragments to bins. Each lane does the
 /// scalar pass's own IEEE operations, and the k-means sums are integers (fixed point), whose order
-/// changes nothing, so the texel's state and layers are the scalar ones bit for bit.
+/// changes nothing, so the texel's state and layers are the scalar ones bit for bit. A texel comes as
+/// optical fragments, or, where its fragments share one optical depth, as their depths alone (half
+/// the bytes to group and to load).
 
 #include <hairshadow/placement/assign_each.hpp>
 #include <hairshadow/placement/layer_position.hpp>
@@ -14,6 +16,7 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 
 namespace hairshadow::detail {
 
@@ -39,6 +42,21 @@ HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __mmask16 load_fragment
     return first_lanes(n);
 }
 
+/// load_fragments for a texel's depths alone (fragments of one optical depth, grouped without it:
+/// tile_fragments::group_depths): the depths, and optical depths of zero, which the passes for one
+/// optical depth do not read.
+HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __mmask16 load_fragments(const float* depths, std::size_t remaining, __m512& depth,
+                                                                               __m512& optical) noexcept {
+    const __mmask16 lanes = first_lanes(remaining);
+    depth = _mm512_maskz_loadu_ps(lanes, depths);
+    optical = _mm512_setzero_ps();
+    return lanes;
+}
+
+/// A texel's fragments for the vector passes: optical_fragment, or float where only depths are kept.
+template <class Fragment>
+concept texel_fragment = std::is_same_v<Fragment, optical_fragment> || std::is_same_v<Fragment, float>;
+
 /// A texel's depth range and whether all its fragments share the first one's optical depth.
 struct texel_scan {
     depth_extent range;
@@ -46,19 +64,22 @@ struct texel_scan {
 };
 
 /// detail::depth_range_of: the same nearest and furthest depth, and whether every optical depth equals
-/// the first (as floats: a zero of either sign makes the same fixed-point terms). The lanes are reduced
-/// in another order than the fragments come, which can change only the sign of a zero, so a range that
-/// ends at zero is reduced again in order.
-HAIRSHADOW_AVX512_TARGET inline texel_scan texel_scan_of(std::span<const optical_fragment> fragments) noexcept {
-    __m512 nearest = _mm512_set1_ps(fragments[0].depth), furthest = nearest;
-    const __m512 first_optical = _mm512_set1_ps(fragments[0].optical_depth);
+/// the first (as floats: a zero of either sign makes the same fixed-point terms; depths alone share
+/// one by construction). The lanes are reduced in another order than the fragments come, which can
+/// change only the sign of a zero, so a range that ends at zero is reduced again in order.
+template <texel_fragment Fragment>
+HAIRSHADOW_AVX512_TARGET inline texel_scan texel_scan_of(std::span<const Fragment> fragments) noexcept {
+    constexpr bool depths_alone = std::is_same_v<Fragment, float>;
+    __m512 nearest = _mm512_set1_ps(depth_of(fragments[0])), furthest = nearest;
+    __m512 first_optical = _mm512_setzero_ps();
+    if constexpr (!depths_alone) first_optical = _mm512_set1_ps(fragments[0].optical_depth);
     __mmask16 other_optical = 0;
     for (std::size_t i = 0; i < fragments.size(); i += 16) {
         __m512 depth, optical;
         const __mmask16 lanes = load_fragments(fragments.data() + i, fragments.size() - i, depth, optical);
         nearest = _mm512_mask_mov_ps(nearest, lanes & _mm512_cmp_ps_mask(depth, nearest, _CMP_LT_OQ), depth);
         furthest = _mm512_mask_mov_ps(furthest, lanes & _mm512_cmp_ps_mask(furthest, depth, _CMP_LT_OQ), depth);
-        other_optical |= _mm512_mask_cmp_ps_mask(lanes, optical, first_optical, _CMP_NEQ_UQ);
+        if constexpr (!depths_alone) other_optical |= _mm512_mask_cmp_ps_mask(lanes, optical, first_optical, _CMP_NEQ_UQ);
     }
     // vminps and vmaxps return their second operand where either is NaN, and every lane starts at
     // the first depth, so a NaN there stays, as in depth_range_of; a later NaN never enters a lane.
@@ -129,16 +150,17 @@ HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __m512i lane_sums(const
 /// are not usable are left 0. With OneOpticalDepth, every fragment's b is the first one's
 /// (texel_scan_of), and weight[j] is fixed_sum(b) times the fragments j takes: the same integer, with
 /// no conversion per fragment. Returns false, with the sums unfinished, where a term is too large for the
-/// vector's exact conversion (|term| >= 2^15), which only absurd depths make.
-template <int K, bool Spread, bool OneOpticalDepth>
-    requires(K <= 16)
-HAIRSHADOW_AVX512_TARGET inline bool add_cluster_sums(std::span<const optical_fragment> fragments, const float* centres, std::uint32_t usable,
-                                                      std::int64_t* weight, std::int64_t* sum) noexcept {
+/// vector's exact conversion (|term| >= 2^15), which only absurd depths make. `first_optical` is the
+/// first fragment's b (the only one read with OneOpticalDepth, which depths alone need).
+template <int K, bool Spread, bool OneOpticalDepth, texel_fragment Fragment>
+    requires(K <= 16 && (OneOpticalDepth || std::is_same_v<Fragment, optical_fragment>))
+HAIRSHADOW_AVX512_TARGET inline bool add_cluster_sums(std::span<const Fragment> fragments, float first_optical, const float* centres,
+                                                      std::uint32_t usable, std::int64_t* weight, std::int64_t* sum) noexcept {
     // Per cluster, eight lanes of weight (with OneOpticalDepth, of fragments taken) and of sum terms.
     __m512i weights[K], sums[K];
     for (int j = 0; j < K; ++j) weights[j] = sums[j] = _mm512_setzero_si512();
     __mmask8 too_large = 0;
-    const __m512d one_optical = _mm512_set1_pd(double(fragments[0].optical_depth));
+    const __m512d one_optical = _mm512_set1_pd(double(first_optical));
     const __m512 centre_floats = _mm512_maskz_loadu_ps(__mmask16((1u << K) - 1u), centres);
     const __m512d centres_low = widen_half(centre_floats, 0), centres_high = widen_half(centre_floats, 1);
     for (std::size_t i = 0; i < fragments.size(); i += 16) {
@@ -174,7 +196,7 @@ HAIRSHADOW_AVX512_TARGET inline bool add_cluster_sums(std::span<const optical_fr
     for (int v = 0; v < vectors; v += 8) _mm512_store_si512(totals + v, lane_sums(all + v));
     std::int64_t weight_unit = 1;
     if constexpr (OneOpticalDepth) {
-        const double units = double(fragments[0].optical_depth) * cluster_fixed_scale;
+        const double units = double(first_optical) * cluster_fixed_scale;
         if (!(std::abs(units) < 0x1p51)) return false;
         weight_unit = std::int64_t(units); // fixed_sum(b), which every fragment taken would add
     }
@@ -203,8 +225,8 @@ HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __m512i bins_of(__m512 
 }
 
 /// layers[i] = bins_of(fragments[i].depth) for every fragment.
-template <int K>
-HAIRSHADOW_AVX512_TARGET inline void assign_to_bins(std::span<const optical_fragment> fragments, const float* lo, const float* hi, std::uint32_t filled,
+template <int K, texel_fragment Fragment>
+HAIRSHADOW_AVX512_TARGET inline void assign_to_bins(std::span<const Fragment> fragments, const float* lo, const float* hi, std::uint32_t filled,
                                                     const float* means, std::uint32_t usable, std::int32_t* layers) noexcept {
     for (std::size_t i = 0; i < fragments.size(); i += 16) {
         __m512 depth, optical;
@@ -214,8 +236,8 @@ HAIRSHADOW_AVX512_TARGET inline void assign_to_bins(std::span<const optical_frag
 }
 
 /// counts[j] += the fragments whose bins_of is j: assign_to_bins's layers, counted by their masks.
-template <int K>
-HAIRSHADOW_AVX512_TARGET inline void count_in_bins(std::span<const optical_fragment> fragments, const float* lo, const float* hi, std::uint32_t filled,
+template <int K, texel_fragment Fragment>
+HAIRSHADOW_AVX512_TARGET inline void count_in_bins(std::span<const Fragment> fragments, const float* lo, const float* hi, std::uint32_t filled,
                                                    const float* means, std::uint32_t usable, std::uint32_t* counts) noexcept {
     for (std::size_t i = 0; i < fragments.size(); i += 16) {
         __m512 depth, optical;

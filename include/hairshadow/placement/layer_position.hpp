@@ -60,12 +60,20 @@ inline void add_to_depth_range(depth_extent& range, float depth) noexcept {
     range.furthest = std::max(range.furthest, depth);
 }
 
+/// A fragment's depth, where a texel holds fragments, or their depths alone (a texel whose fragments
+/// share one optical depth: tile_fragments::group_depths).
+template <class Fragment>
+float depth_of(const Fragment& f) noexcept {
+    return f.depth;
+}
+inline float depth_of(float depth) noexcept { return depth; }
+
 /// The nearest and furthest depth of a texel's fragments, reduced in their order from the first:
 /// the order matters only for the sign of a zero, and add_to_depth_range keeps the same order.
 template <class Fragment>
 depth_extent depth_range_of(std::span<const Fragment> fragments) noexcept {
-    depth_extent range{fragments[0].depth, fragments[0].depth};
-    for (const auto& f : fragments) add_to_depth_range(range, f.depth);
+    depth_extent range{depth_of(fragments[0]), depth_of(fragments[0])};
+    for (const auto& f : fragments) add_to_depth_range(range, depth_of(f));
     return range;
 }
 

@@ -3,7 +3,8 @@
 /// One tile's fragments: the working set of the tiled build. The tile's segments are walked once, by
 /// the line rule, into a per-thread store, in walk order; group() then groups the fragments by texel,
 /// each texel's in walk order: segment order, the order a fragment_buffer keeps, unless the build let
-/// the walk choose its own (fragment_order::any). The walk runs
+/// the walk choose its own (fragment_order::any); group_depths() groups the depths alone, where every
+/// fragment has one optical depth (one_optical_depth). The walk runs
 /// in AVX-512 where the CPU has it (raster/tile_walk_avx512.hpp), else in scalar C++; both give the
 /// same fragments, bit for bit.
 
@@ -77,11 +78,23 @@ public:
         steps_of_.reserve(std::size_t(side) + 2);
     }
 
+    /// Whether every fragment a walk of `bins` makes has one optical depth: thin lines of uniform
+    /// attributes and one alpha, the tiles the vector walk covers. That b is
+    /// optical_depth_of(bins.uniform_shader().shade(0.0f).alpha).
+    static bool one_optical_depth(const segment_bins& bins) noexcept {
+        return bins.options().wide_line_width == 0.0f && bins.uniform_attributes() && bins.uniform_shader().constant_alpha();
+    }
+
     const texel_rect& rect() const noexcept { return rect_; }
     /// Fragments of the tile's texel (x, y), in map coordinates, once grouped (group()).
     std::span<const optical_fragment> texel(int x, int y) const noexcept {
         const std::size_t k = std::size_t(y - rect_.y0) * std::size_t(width_) + std::size_t(x - rect_.x0);
         return {grouped_.data() + offsets_[k], std::size_t(offsets_[k + 1] - offsets_[k])};
+    }
+    /// Depths of the tile's texel (x, y), in map coordinates, once grouped alone (group_depths()).
+    std::span<const float> texel_depths(int x, int y) const noexcept {
+        const std::size_t k = std::size_t(y - rect_.y0) * std::size_t(width_) + std::size_t(x - rect_.x0);
+        return {grouped_depths_.data() + offsets_[k], std::size_t(offsets_[k + 1] - offsets_[k])};
     }
     /// The last tile's fragments in walk order: segment after segment, as in the tile's list, unless
     /// gather was let walk in any order. Each texel's fragments come in the order texel() gives them. walk_texels() are row-major indices
@@ -93,27 +106,32 @@ public:
     std::size_t size() const noexcept { return n_; }
     /// Fragments it walks without allocating.
     std::size_t capacity() const noexcept { return where_.size(); }
-    /// Room to walk a tile of `fragments` fragments and group `grouped` of them without growing,
-    /// allocated afresh where the store is smaller: nothing it held is copied.
-    void reserve_fresh(std::size_t fragments, std::size_t grouped) {
+    /// Room to walk a tile of `fragments` fragments and group `grouped` of them (group()) and
+    /// `grouped_depths` of their depths (group_depths()) without growing, allocated afresh where the
+    /// store is smaller: nothing it held is copied.
+    void reserve_fresh(std::size_t fragments, std::size_t grouped, std::size_t grouped_depths = 0) {
         if (where_.size() < fragments) {
             where_ = decltype(where_)(), depth_ = decltype(depth_)(), optical_ = decltype(optical_)();
             where_.resize(fragments), depth_.resize(fragments), optical_.resize(fragments);
         }
         if (grouped_.size() < grouped) grouped_ = decltype(grouped_)(), grouped_.resize(grouped);
+        if (grouped_depths_.size() < grouped_depths) grouped_depths_ = decltype(grouped_depths_)(), grouped_depths_.resize(grouped_depths);
     }
-    /// Fragments it groups without allocating.
+    /// Fragments it groups without allocating (group()).
     std::size_t grouped_capacity() const noexcept { return grouped_.size(); }
-    /// Makes room to walk `fragments` fragments and group `grouped` of them, in tiles of `tile_texels`
-    /// texels, so that tiles up to those sizes allocate nothing.
-    void reserve(std::size_t fragments, std::size_t grouped, std::size_t tile_texels) {
+    /// Depths it groups without allocating (group_depths()).
+    std::size_t grouped_depths_capacity() const noexcept { return grouped_depths_.size(); }
+    /// Makes room to walk `fragments` fragments, group `grouped` of them and `grouped_depths` of their
+    /// depths, in tiles of `tile_texels` texels, so that tiles up to those sizes allocate nothing.
+    void reserve(std::size_t fragments, std::size_t grouped, std::size_t grouped_depths, std::size_t tile_texels) {
         if (where_.size() < fragments) where_.resize(fragments), depth_.resize(fragments), optical_.resize(fragments);
-        if (grouped == 0) return;
         if (grouped_.size() < grouped) grouped_.resize(grouped);
-        offsets_.reserve(tile_texels + 2);
+        if (grouped_depths_.size() < grouped_depths) grouped_depths_.resize(grouped_depths);
+        if (grouped > 0 || grouped_depths > 0) offsets_.reserve(tile_texels + 2);
     }
     std::size_t memory_bytes() const noexcept {
-        return (where_.capacity() + offsets_.capacity()) * sizeof(std::uint32_t) + (depth_.capacity() + optical_.capacity()) * sizeof(float) +
+        return (where_.capacity() + offsets_.capacity()) * sizeof(std::uint32_t) +
+               (depth_.capacity() + optical_.capacity() + grouped_depths_.capacity()) * sizeof(float) +
                grouped_.capacity() * sizeof(optical_fragment) + (sorted_.capacity() + steps_of_.capacity()) * sizeof(std::uint32_t) +
                steps_.capacity() * sizeof(std::uint16_t);
     }
@@ -185,6 +203,30 @@ public:
     /// Groups the last tile's fragments by texel, for texel(): a count, prefix sums and a stable
     /// scatter, so that texel k's fragments end in [offsets_[k], offsets_[k + 1]) in walk order.
     void group() {
+        std::uint32_t* cursor = count_texels();
+        // Only as large as the tiles grouped (the streamed build groups only sparse ones), grown by half.
+        if (grouped_.size() < n_) grouped_.resize(std::max(n_, grouped_.size() + grouped_.size() / 2));
+        optical_fragment* grouped = grouped_.data();
+        const std::uint32_t* where = where_.data();
+        const float* depth = depth_.data();
+        const float* optical = optical_.data();
+        for (std::size_t i = 0; i < n_; ++i) grouped[cursor[where[i]]++] = {depth[i], optical[i]};
+    }
+    /// group() for the depths alone, for texel_depths(): where every fragment has one optical depth
+    /// (one_optical_depth), half the bytes to scatter, the scatter being most of the grouping's time.
+    void group_depths() {
+        std::uint32_t* cursor = count_texels();
+        if (grouped_depths_.size() < n_) grouped_depths_.resize(std::max(n_, grouped_depths_.size() + grouped_depths_.size() / 2));
+        float* grouped = grouped_depths_.data();
+        const std::uint32_t* where = where_.data();
+        const float* depth = depth_.data();
+        for (std::size_t i = 0; i < n_; ++i) grouped[cursor[where[i]]++] = depth[i];
+    }
+
+private:
+    /// The grouping's first steps: texel k's count, then its fragments' offsets, in offsets_[k + 1]
+    /// (offsets_[k + 2] once the scatter has moved each texel's cursor to its end). Returns the cursors.
+    std::uint32_t* count_texels() {
         const std::size_t texels = std::size_t(width_) * std::size_t(rect_.y1 - rect_.y0);
         if (n_ > std::numeric_limits<std::uint32_t>::max()) throw argument_error("more than 2^32 fragments in one tile: use smaller tiles");
         offsets_.assign(texels + 2, 0);
@@ -192,22 +234,13 @@ public:
         const std::uint32_t* where = where_.data();
         for (std::size_t i = 0; i < n_; ++i) ++counts[where[i]];
         for (std::size_t k = 2; k < offsets_.size(); ++k) offsets_[k] += offsets_[k - 1];
-        // Only as large as the tiles grouped (the streamed build groups only sparse ones), grown by half.
-        if (grouped_.size() < n_) grouped_.resize(std::max(n_, grouped_.size() + grouped_.size() / 2));
-        std::uint32_t* cursor = offsets_.data() + 1;
-        optical_fragment* grouped = grouped_.data();
-        const float* depth = depth_.data();
-        const float* optical = optical_.data();
-        for (std::size_t i = 0; i < n_; ++i) grouped[cursor[where[i]]++] = {depth[i], optical[i]};
+        return offsets_.data() + 1;
     }
 
-private:
 #if HAIRSHADOW_AVX512_WALK
     /// The vector walk covers thin lines of one alpha (uniform attributes, a footprint constant in
     /// depth); other tiles walk in scalar.
-    bool simd_tile(const segment_bins& bins) const noexcept {
-        return bins.options().wide_line_width == 0.0f && bins.uniform_attributes() && bins.uniform_shader().constant_alpha();
-    }
+    static bool simd_tile(const segment_bins& bins) noexcept { return one_optical_depth(bins); }
     /// The store's arrays, next slot and size, held in locals through the vector walk: its vector
     /// stores may alias anything, and through the members the compiler reloaded all of them after each.
     struct store_cursor {
@@ -241,6 +274,7 @@ private:
     std::vector<std::uint32_t> offsets_;         ///< per texel counts, then offsets
     big_vector<float> depth_, optical_;          ///< each candidate's depth and b
     big_vector<optical_fragment> grouped_;
+    big_vector<float> grouped_depths_;
     float last_alpha_ = -1.0f, last_optical_ = 0.0f;
     std::vector<std::uint32_t> sorted_;   ///< the tile's segments by their steps (walk in any order)
     std::vector<std::uint16_t> steps_;    ///< each segment's steps in the tile

@@ -54,11 +54,8 @@ struct interpolation {
             // (sixteen at a time where the placement can), then read from this thread's repeated_sums,
             // not added fragment by fragment. The same sums, bit for bit: dc:4 on curly 1.5M at 512x512
             // built 1.10x faster (BENCHMARKS.md, issue 11).
-            auto& repeats = detail::repeated_sums_of<Accumulation>(fragment_optical_depth(fragments[0]));
-            const auto counts = detail::layer_counts(placement, state, fragments, instructions);
-            for (std::size_t k = 0; k < std::size_t(L); ++k) sums[k] = repeats(counts[k]);
-            finish<Placement, Accumulation>(sums, out);
-            return;
+            return finish_counted<Placement, Accumulation>(fragment_optical_depth(fragments[0]),
+                                                           detail::layer_counts(placement, state, fragments, instructions), out);
         }
         detail::for_each_layer(placement, state, fragments, instructions, [&sums](int k, const Fragment& f) {
             if constexpr (std::is_same_v<Accumulation, float_accumulation> && L <= 16) {
@@ -74,6 +71,20 @@ struct interpolation {
         finish<Placement, Accumulation>(sums, out);
     }
 
+#if HAIRSHADOW_AVX512_WALK
+    /// build for a texel whose fragments all have optical depth b, given by their depths alone
+    /// (tile_fragments::group_depths): build's branch for one optical depth, the same maps bit for bit.
+    template <class Placement, class Accumulation>
+        requires requires(const Placement& p, const typename Placement::texel_state& s, std::span<const float> depths,
+                          std::array<std::uint32_t, std::size_t(Placement::layer_count)>& counts) { p.count_texel_avx512(s, depths, counts); }
+    static void build_from_depths(const Placement& placement, const typename Placement::texel_state& state, std::span<const float> depths, float b,
+                                  storage<Placement, Accumulation>& out) {
+        std::array<std::uint32_t, std::size_t(Placement::layer_count)> counts{};
+        placement.count_texel_avx512(state, depths, counts);
+        finish_counted<Placement, Accumulation>(b, counts, out);
+    }
+#endif
+
     /// Whether every fragment's optical depth is the first one's: their alphas (or optical depths) are,
     /// bit for bit. Without a branch per fragment, so that the loop vectorises.
     template <class Fragment>
@@ -86,6 +97,16 @@ struct interpolation {
         std::uint32_t other = 0;
         for (const auto& f : fragments) other |= source(f) ^ first;
         return other == 0;
+    }
+
+    /// The maps of a texel whose fragments all add b, counts[k] of them in layer k.
+    template <class Placement, class Accumulation>
+    static void finish_counted(float b, const std::array<std::uint32_t, std::size_t(Placement::layer_count)>& counts,
+                               storage<Placement, Accumulation>& out) {
+        auto& repeats = detail::repeated_sums_of<Accumulation>(b);
+        std::array<typename Accumulation::sum_type, std::size_t(Placement::layer_count)> sums{};
+        for (std::size_t k = 0; k < sums.size(); ++k) sums[k] = repeats(counts[k]);
+        finish<Placement, Accumulation>(sums, out);
     }
 
     /// The build in pieces, for a build that meets a texel's fragments among other texels' (in each
