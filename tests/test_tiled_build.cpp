@@ -679,7 +679,7 @@ TEMPLATE_TEST_CASE("density clustering's vector pre-pass, bin assignment and bin
     zeros[3].depth = 0.0f, zeros[17].depth = -0.0f; // in order +0 comes first; in lanes, -0 (lane 1)
     texels.push_back(zeros);
     std::size_t differing_states = 0, differing_layers = 0, differing_counts = 0, differing_ranges = 0, differing_one_b = 0, texels_of_one_b = 0,
-                fragments = 0, differing_maps = 0;
+                fragments = 0, differing_maps = 0, texels_alone = 0;
     for (const auto& t : texels) {
         const std::span<const optical_fragment> in(t);
         const depth_extent range = detail::depth_range_of(in);
@@ -711,24 +711,32 @@ TEMPLATE_TEST_CASE("density clustering's vector pre-pass, bin assignment and bin
         differing_counts += counted != expected;
         differing_counts += detail::layer_counts(placement, scalar, in, instruction_set::avx512) != expected;
         differing_counts += detail::layer_counts(placement, scalar, in, instruction_set::scalar) != expected;
-        if (!one_b) continue;
-        // The texel as its depths alone (tile_fragments::group_depths, where a map has one b): the
-        // same range, state, counts and maps.
+        // The texel as its depths alone (tile_fragments::group_depths, where a map has one b), against
+        // its fragments all given the first one's b: the same range, state, counts and maps.
+        std::vector<optical_fragment> one_of_b = t;
         std::vector<float> depths;
-        for (const auto& f : t) depths.push_back(f.depth);
+        for (auto& f : one_of_b) {
+            f.optical_depth = t[0].optical_depth;
+            depths.push_back(f.depth);
+        }
+        const std::span<const optical_fragment> uniform(one_of_b);
         const std::span<const float> alone(depths);
         const depth_extent alone_range = detail::avx512::texel_scan_of(alone).range;
         differing_ranges += std::memcmp(&range, &alone_range, sizeof(range)) != 0;
-        state from_depths;
+        state expected_state, from_depths;
+        placement.prepare_texel(uniform, expected_state);
         placement.prepare_texel_depths_avx512(alone, t[0].optical_depth, from_depths);
-        differing_states += std::memcmp(&scalar, &from_depths, sizeof(state)) != 0;
-        std::array<std::uint32_t, K> counted_alone{};
-        placement.count_texel_avx512(scalar, alone, counted_alone);
-        differing_counts += counted_alone != expected;
+        differing_states += std::memcmp(&expected_state, &from_depths, sizeof(state)) != 0;
+        std::array<std::uint32_t, K> expected_alone{}, counted_alone{};
+        for (const float d : depths)
+            if (const int k = placement.assign(expected_state, d); k >= 0) ++expected_alone[std::size_t(k)];
+        placement.count_texel_avx512(expected_state, alone, counted_alone);
+        differing_counts += counted_alone != expected_alone;
         interpolation::storage<TestType, float_accumulation> built, built_alone;
-        interpolation::build<TestType, float_accumulation>(placement, scalar, in, built);
-        interpolation::build_from_depths<TestType, float_accumulation>(placement, scalar, alone, t[0].optical_depth, built_alone);
+        interpolation::build<TestType, float_accumulation>(placement, expected_state, uniform, built);
+        interpolation::build_from_depths<TestType, float_accumulation>(placement, expected_state, alone, t[0].optical_depth, built_alone);
         differing_maps += std::memcmp(&built, &built_alone, sizeof(built)) != 0;
+        ++texels_alone;
     }
     CHECK(fragments > 2000);
     CHECK(differing_counts == 0);
@@ -738,6 +746,7 @@ TEMPLATE_TEST_CASE("density clustering's vector pre-pass, bin assignment and bin
     CHECK(differing_states == 0);
     CHECK(differing_layers == 0);
     CHECK(differing_maps == 0);
+    CHECK(texels_alone == texels.size());
 }
 
 TEST_CASE("a tile's depths grouped alone are its fragments' depths, texel by texel", "[tiled]") {

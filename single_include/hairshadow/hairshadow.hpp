@@ -3955,7 +3955,6 @@ HAIRSHADOW_ALWAYS_INLINE inline void for_each_layer(const Placement& placement, 
     for (const auto& f : fragments) visit(assign(f.depth), f);
 }
 
-
 /// counts[k] += the fragments of layers[0..n) in layer k. Layers are in [-1, L), as placements assign
 /// them; -1 (no layer) counts nowhere. With few layers, one pass per layer (comparisons that
 /// vectorise); with many, one increment per fragment.
@@ -5689,7 +5688,8 @@ HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __m512i lane_sums(const
 /// (texel_scan_of), and weight[j] is fixed_sum(b) times the fragments j takes: the same integer, with
 /// no conversion per fragment. Returns false, with the sums unfinished, where a term is too large for the
 /// vector's exact conversion (|term| >= 2^15), which only absurd depths make. `first_optical` is the
-/// first fragment's b (the only one read with OneOpticalDepth, which depths alone need).
+/// first fragment's b, the only one read with OneOpticalDepth (which depths alone need: there, the b
+/// every fragment has).
 template <int K, bool Spread, bool OneOpticalDepth, texel_fragment Fragment>
     requires(K <= 16 && (OneOpticalDepth || std::is_same_v<Fragment, optical_fragment>))
 HAIRSHADOW_AVX512_TARGET inline bool add_cluster_sums(std::span<const Fragment> fragments, float first_optical, const float* centres,
@@ -6038,7 +6038,8 @@ private:
     };
     /// prepare_texel_avx512's two k-means passes from the initial centres; false where a term is beyond
     /// the vector's exact range, and then `s` is unfinished.
-    /// `b` is the first fragment's optical depth.
+    /// `b` is the first fragment's optical depth (the only one read with OneOpticalDepth): for depths
+    /// alone, the b every fragment has.
     template <bool OneOpticalDepth, class Fragment>
     HAIRSHADOW_AVX512_TARGET static bool vector_k_means(std::span<const Fragment> fragments, float b, const std::array<float, K>& centre,
                                                         texel_state& s) noexcept requires(K <= 16) {

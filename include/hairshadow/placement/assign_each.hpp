@@ -153,7 +153,6 @@ HAIRSHADOW_ALWAYS_INLINE inline void for_each_layer(const Placement& placement, 
     for (const auto& f : fragments) visit(assign(f.depth), f);
 }
 
-
 /// counts[k] += the fragments of layers[0..n) in layer k. Layers are in [-1, L), as placements assign
 /// them; -1 (no layer) counts nowhere. With few layers, one pass per layer (comparisons that
 /// vectorise); with many, one increment per fragment.

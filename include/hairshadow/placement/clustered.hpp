@@ -257,7 +257,8 @@ private:
     };
     /// prepare_texel_avx512's two k-means passes from the initial centres; false where a term is beyond
     /// the vector's exact range, and then `s` is unfinished.
-    /// `b` is the first fragment's optical depth.
+    /// `b` is the first fragment's optical depth (the only one read with OneOpticalDepth): for depths
+    /// alone, the b every fragment has.
     template <bool OneOpticalDepth, class Fragment>
     HAIRSHADOW_AVX512_TARGET static bool vector_k_means(std::span<const Fragment> fragments, float b, const std::array<float, K>& centre,
                                                         texel_state& s) noexcept requires(K <= 16) {

@@ -151,7 +151,8 @@ HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __m512i lane_sums(const
 /// (texel_scan_of), and weight[j] is fixed_sum(b) times the fragments j takes: the same integer, with
 /// no conversion per fragment. Returns false, with the sums unfinished, where a term is too large for the
 /// vector's exact conversion (|term| >= 2^15), which only absurd depths make. `first_optical` is the
-/// first fragment's b (the only one read with OneOpticalDepth, which depths alone need).
+/// first fragment's b, the only one read with OneOpticalDepth (which depths alone need: there, the b
+/// every fragment has).
 template <int K, bool Spread, bool OneOpticalDepth, texel_fragment Fragment>
     requires(K <= 16 && (OneOpticalDepth || std::is_same_v<Fragment, optical_fragment>))
 HAIRSHADOW_AVX512_TARGET inline bool add_cluster_sums(std::span<const Fragment> fragments, float first_optical, const float* centres,
