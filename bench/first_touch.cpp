@@ -1,6 +1,7 @@
-// What a first touch of fresh memory costs on this machine, on one thread and on two: the floor under
-// a cold build, which writes its maps' pages for the first time (BENCHMARKS.md, issue 11). Maps
-// MIB MiB advised as huge pages, writes it on THREADS threads, then once more with its pages present.
+// What a first touch of fresh memory costs on the machine it runs on, on one thread and on two: the
+// floor under a cold build, which writes its maps' pages for the first time (BENCHMARKS.md, issue
+// 11). Maps MIB MiB advised as huge pages, writes it on THREADS threads, then once more with its pages
+// present.
 //   build/bench/hairshadow_first_touch [MIB [THREADS...]]     (256, then 1 and 2)
 // Run it after some idle seconds and again at once: a virtual machine may have handed its free memory
 // back to the host meanwhile, and a first touch then costs far more.

@@ -1,10 +1,18 @@
 #!/usr/bin/env bash
-# Installs, with apt-get, every Debian 12 package hairshadow builds, tests or benchmarks with
-# (only those missing). Run as root, or with sudo available.
+# Installs, with apt-get, the Debian 12 packages hairshadow needs (only those missing). Run as root,
+# or with sudo available.
+#   bash scripts/setup.sh        everything: the build, the tests, the benchmarks, the viewer, the
+#                                sanitizer and fuzz checks
+#   bash scripts/setup.sh main   only what the command line needs (the main job: the figure)
 set -euo pipefail
-packages=(build-essential cmake pkg-config python3 libglm-dev catch2 libstb-dev libcli11-dev
-          libbenchmark-dev python3-glad libosmesa6-dev libegl-dev libgl1-mesa-dri glslang-tools libglfw3-dev xvfb xauth
-          clang libclang-rt-14-dev)
+main=(build-essential cmake ninja-build pkg-config python3 libglm-dev libstb-dev libcli11-dev python3-glad libosmesa6-dev libegl-dev
+      libgl1-mesa-dri)
+rest=(catch2 libbenchmark-dev glslang-tools libglfw3-dev xvfb xauth clang libclang-rt-14-dev)
+case "${1:-all}" in
+    main) packages=("${main[@]}") ;;
+    all) packages=("${main[@]}" "${rest[@]}") ;;
+    *) echo "usage: bash scripts/setup.sh [main|all]" >&2; exit 2 ;;
+esac
 missing=()
 for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

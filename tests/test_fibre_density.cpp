@@ -10,6 +10,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 
 using namespace hairshadow;
 
@@ -48,12 +49,22 @@ TEST_CASE("approximate deep shadow maps give TressFX's transmittance behind shee
     // Off the sheets' rows the texels hold no hair: no shadow at any depth.
     CHECK(adsm.transmittance(glm::vec3(0.2f, 0.49f, -0.5f)) == 1.0f);
 
-    // TressFX caps the fibres counted.
+    // An optional cap on the fibres counted (ours: TressFX's shader counts them all).
     approximate_deep_shadow_maps capped(per_pixel_depth<1>(), fibre_density<>({.spacing = 0.5f, .radius = 0.2f, .alpha = 0.3f, .max_fibres = 5}));
     capped.build(scene.model, scene.light);
     const auto c = along_row(capped, scene, {0.1f, -0.5f});
     CHECK(c[0] == Approx(std::pow(0.7f, 4.0f)).epsilon(1e-4));
     CHECK(c[1] == Approx(std::pow(0.7f, 5.0f)).epsilon(1e-4));
+
+    // By default no cap, as in TressFX: 0.005 world units a fibre, so 1.0 behind the first sheet is 200
+    // fibres, four times the 50 that TressFX's settings name (and its shader never reads).
+    CHECK(fibre_density_parameters{}.max_fibres == std::numeric_limits<float>::infinity());
+    approximate_deep_shadow_maps dense(per_pixel_depth<1>(), fibre_density<>({.spacing = 0.5f, .radius = 0.01f, .alpha = 0.01f}));
+    dense.build(scene.model, scene.light);
+    CHECK(along_row(dense, scene, {-0.5f})[0] == Approx(std::pow(0.99f, 200.0f)).epsilon(1e-3));
+    approximate_deep_shadow_maps dense_capped(per_pixel_depth<1>(), fibre_density<>({.spacing = 0.5f, .radius = 0.01f, .alpha = 0.01f, .max_fibres = 50}));
+    dense_capped.build(scene.model, scene.light);
+    CHECK(along_row(dense_capped, scene, {-0.5f})[0] == Approx(std::pow(0.99f, 50.0f)).epsilon(1e-3));
 }
 
 TEST_CASE("the measured fibre density equals the exact answer at evenly spaced sheets", "[methods][adsm]") {
@@ -83,12 +94,13 @@ TEST_CASE("adsm specs parse TressFX's parameters and refuse bad ones", "[methods
     CHECK_FALSE(plain.measured_density);
     CHECK(parse_method_spec("adsm:auto").measured_density);
     CHECK(parse_method_spec("adsm:0.4:0.0021:0.35:8").density.max_fibres == 8.0f);
+    CHECK(std::isinf(parse_method_spec("adsm:0.4:0.0021:0.35").density.max_fibres)); // no cap unless asked
     const auto given = parse_method_spec("adsm:0.5:0.002:0.3");
     CHECK(given.density.spacing == 0.5f);
     CHECK(given.density.radius == 0.002f);
     CHECK(given.density.alpha == 0.3f);
     for (const char* bad : {"adsm:", "adsm:automatic", "adsm:auto:1", "adsm:1:1", "adsm:0:1:0.5", "adsm:1:-1:0.5", "adsm:1:1:1", "adsm:1:1:0",
-                            "adsm:nan:1:0.5", "adsm:1:inf:0.5", "adsm:1:1:0.5:0.5", "adsm:1:1:0.5:inf", "adsm:1:1:0.5:2:3", "adsm:8bit", "adsm:1e30:1e30:0.5", "adsm:x:1:0.5"}) {
+                            "adsm:nan:1:0.5", "adsm:1:inf:0.5", "adsm:1:1:0.5:0.5", "adsm:1:1:0.5:inf", "adsm:1:1:0.5:1.5", "adsm:1:1:0.5:0", "adsm:1:1:0.5:08", "adsm:1:1:0.5:2:3", "adsm:8bit", "adsm:1e30:1e30:0.5", "adsm:x:1:0.5"}) {
         CAPTURE(bad);
         CHECK_THROWS_AS(parse_method_spec(bad), spec_error);
     }

@@ -201,3 +201,16 @@ TEST_CASE("adopted maps answer like the maps they came from, and must fit the li
     texels.pop_back();
     CHECK_THROWS_AS(adopted.adopt(light, built.placement(), texels), argument_error);
 }
+
+TEST_CASE("a method spec's counts are whole numbers written without a sign or a leading zero", "[methods][spec]") {
+    CHECK(parse_method_spec("dom:3").layers == 3);
+    CHECK(parse_method_spec("osm:16:gamma").layers == 16);
+    CHECK(parse_method_spec("occ:128:4:8bit").slabs == 4);
+    CHECK(parse_method_spec("rosm:8").layers == 8);
+    for (const char* bad : {"dom:03", "dc:04", "osm:016", "occ:0128:4", "occ:128:04", "docc:128:004", "rosm:08", "dom:00", "dom:+3", "dom:3.0",
+                            "dom: 3", "dom:3 ", "osm:1e1", "dom:-3"}) {
+        CAPTURE(bad);
+        CHECK_THROWS_AS(parse_method_spec(bad), spec_error);
+    }
+    CHECK_THROWS_WITH(parse_method_spec("dom:03"), Catch::Contains("'03' has a leading zero"));
+}

@@ -1,44 +1,75 @@
 // A renderer rebuilds its maps every frame: once warm, posing the moving hair and rebuilding a method's
-// maps from it allocate nothing. Every operator new of this executable is counted (its own
-// executable, since replacing the global allocator is a whole-program choice).
+// maps from it allocate nothing. Every allocation of this executable is counted, whatever its route:
+// the C allocation functions are replaced (glibc's own are called underneath), so operator new (which
+// calls malloc), std::aligned_alloc (the maps' huge-page blocks, core/huge_pages.hpp) and the C
+// library's callers all pass through the counter. Its own executable, since replacing the allocator
+// is a whole-program choice, and never under a sanitizer, which replaces it itself.
 #include <hairshadow/hairshadow.hpp>
+#include <hairshadow/core/huge_pages.hpp>
 #include <hairshadow/procedural/motion.hpp>
 
 #include <catch2/catch.hpp>
 
 #include <atomic>
+#include <cerrno>
 #include <cstdlib>
 #include <new>
 
+#include <unistd.h>
+
 namespace {
 std::atomic<std::size_t> allocations{0};
-}
+void count() noexcept { allocations.fetch_add(1, std::memory_order_relaxed); }
+} // namespace
 
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete" // these operators pair malloc and free themselves
-#endif
+// Replacements of the functions that glibc's manual ("Replacing malloc") lists: each counts the call
+// and hands it on to glibc's own allocator, which glibc exports as __libc_malloc and its kin.
+extern "C" {
+void* __libc_malloc(std::size_t size) noexcept;
+void* __libc_calloc(std::size_t count, std::size_t size) noexcept;
+void* __libc_realloc(void* p, std::size_t size) noexcept;
+void* __libc_memalign(std::size_t alignment, std::size_t size) noexcept;
+void __libc_free(void* p) noexcept;
 
-void* operator new(std::size_t size) {
-    allocations.fetch_add(1, std::memory_order_relaxed);
-    if (void* p = std::malloc(size ? size : 1)) return p;
-    throw std::bad_alloc();
+void* malloc(std::size_t size) noexcept {
+    count();
+    return __libc_malloc(size);
 }
-void* operator new[](std::size_t size) { return ::operator new(size); }
-void* operator new(std::size_t size, std::align_val_t align) {
-    allocations.fetch_add(1, std::memory_order_relaxed);
-    const std::size_t a = std::size_t(align);
-    if (void* p = std::aligned_alloc(a, (size + a - 1) / a * a)) return p;
-    throw std::bad_alloc();
+void* calloc(std::size_t n, std::size_t size) noexcept {
+    count();
+    return __libc_calloc(n, size);
 }
-void* operator new[](std::size_t size, std::align_val_t align) { return ::operator new(size, align); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void* realloc(void* p, std::size_t size) noexcept {
+    count();
+    return __libc_realloc(p, size);
+}
+void free(void* p) noexcept { __libc_free(p); }
+void* aligned_alloc(std::size_t alignment, std::size_t size) noexcept {
+    count();
+    return __libc_memalign(alignment, size);
+}
+void* memalign(std::size_t alignment, std::size_t size) noexcept {
+    count();
+    return __libc_memalign(alignment, size);
+}
+int posix_memalign(void** out, std::size_t alignment, std::size_t size) noexcept {
+    count();
+    if (alignment < sizeof(void*) || (alignment & (alignment - 1)) != 0) return EINVAL;
+    void* p = __libc_memalign(alignment, size);
+    if (!p) return ENOMEM;
+    *out = p;
+    return 0;
+}
+void* valloc(std::size_t size) noexcept {
+    count();
+    return __libc_memalign(std::size_t(sysconf(_SC_PAGESIZE)), size);
+}
+void* pvalloc(std::size_t size) noexcept {
+    count();
+    const std::size_t page = std::size_t(sysconf(_SC_PAGESIZE));
+    return __libc_memalign(page, (size + page - 1) / page * page);
+}
+}
 
 using namespace hairshadow;
 
@@ -65,10 +96,27 @@ TEMPLATE_TEST_CASE("once warm, a frame of moving hair allocates nothing", "[moti
     CHECK(maps.fragment_count() > 0);
 }
 
-TEST_CASE("the allocation counter counts", "[allocation]") {
-    const std::size_t before = allocations.load();
+TEST_CASE("the allocation counter counts every route", "[allocation]") {
+    std::size_t before = allocations.load();
     static std::vector<int>* volatile sink = nullptr; // volatile: the compiler may not elide the pair
     sink = new std::vector<int>(100);                  // one for the vector, one for its elements
     delete sink;
     CHECK(allocations.load() - before == 2);
+    // The maps' route: blocks of 2 MiB and more from std::aligned_alloc, smaller ones from operator new.
+    before = allocations.load();
+    detail::huge_page_allocator<float> maps;
+    constexpr std::size_t large = std::size_t(1) << 20, small = 1000; // 4 MiB and 4000 bytes of floats
+    float* volatile a = maps.allocate(large);
+    float* volatile b = maps.allocate(small);
+    maps.deallocate(a, large);
+    maps.deallocate(b, small);
+    CHECK(allocations.load() - before == 2);
+    // And the C library's own functions, aligned or not.
+    before = allocations.load();
+    void* volatile c = std::malloc(10);
+    void* volatile d = std::aligned_alloc(64, 128);
+    void* e = nullptr;
+    CHECK(posix_memalign(&e, 64, 100) == 0);
+    std::free(c), std::free(d), std::free(e);
+    CHECK(allocations.load() - before == 3);
 }

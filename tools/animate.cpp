@@ -1,9 +1,7 @@
 // The animation of Yuksel & Keyser's claim (section 1: layering artifacts "are especially significant
 // in animated sequences"): every method and the exact reference rebuilt each frame from swaying hair
-// and an orbiting light, rendered side by side, and measured over time. For each method, e(t) =
-// T_method - T_exact at every hair point; the table gives the mean |e| over points and frames, and the
-// flicker, the mean |e(t+1) - e(t)| over points and frame pairs (the last frame to the first as well,
-// since the animation loops): what a viewer sees as crawling or popping layers.
+// and an orbiting light, rendered side by side, and measured over time: the mean error and the flicker
+// at every hair point (reference/temporal_error.hpp).
 #include "animate.hpp"
 
 #include "compare_table.hpp"
@@ -39,8 +37,7 @@ struct track {
     std::unique_ptr<any_shadow_map> map;
     std::vector<double> rebuild_ms; ///< every frame after the first
     double cold_ms = 0;
-    std::vector<float> error, first_error; ///< e(t) of the last frame, and of frame 0 for the loop's last pair
-    double error_sum = 0, flicker_sum = 0;
+    temporal_error errors;
 };
 
 double median(std::vector<double> v) {
@@ -134,8 +131,8 @@ int run_animate(const animate_options& o) {
     box.add(hair_box.min);
     box.add(hair_box.max);
     std::vector<track> tracks;
-    for (auto part : detail::split(o.methods, ',')) tracks.push_back({std::string(part), pretty(std::string(part)), nullptr, {}, 0, {}, {}, 0, 0});
-    tracks.push_back({"dsm", "exact (DSM)", nullptr, {}, 0, {}, {}, 0, 0});
+    for (auto part : detail::split(o.methods, ',')) tracks.push_back({std::string(part), pretty(std::string(part)), nullptr, {}, 0, {}});
+    tracks.push_back({"dsm", "exact (DSM)", nullptr, {}, 0, {}});
     for (auto& t : tracks) t.map = make_shadow_map(t.spec); // throws spec_error for a bad spec, before any work
     const track& exact = tracks.back();
 
@@ -169,15 +166,7 @@ int run_animate(const animate_options& o) {
         exact.map->transmittance(sc.hair.points, reference, {}, o.exec);
         for (auto& tr : tracks) {
             tr.map->transmittance(sc.hair.points, t_method, {}, o.exec);
-            const bool first = tr.error.empty();
-            if (first) tr.error.resize(points);
-            for (std::size_t i = 0; i < points; ++i) {
-                const float e = t_method[i] - reference[i];
-                tr.error_sum += std::abs(e);
-                if (!first) tr.flicker_sum += std::abs(e - tr.error[i]);
-                tr.error[i] = e;
-            }
-            if (first) tr.first_error = tr.error;
+            tr.errors.add_frame(t_method, reference);
         }
         // The frame: every method's render, side by side.
         const depth_shadow_map mesh_shadow(sc.mesh, space, default_mesh_bias, o.exec);
@@ -209,12 +198,6 @@ int run_animate(const animate_options& o) {
         std::fprintf(stderr, "note: no ffmpeg on the PATH, so no animate.mp4 (apt-get install ffmpeg)\n");
     }
 
-    // The loop's last pair, the last frame to the first.
-    for (auto& tr : tracks)
-        if (o.frames > 1)
-            for (std::size_t i = 0; i < points; ++i) tr.flicker_sum += std::abs(tr.first_error[i] - tr.error[i]);
-    const double samples = double(points) * double(o.frames);
-    const double pairs = double(points) * double(o.frames > 1 ? o.frames : 0);
     std::ostringstream md, csv;
     md << "Model `" << o.model << "`" << (o.mesh.empty() ? "" : ", mesh `" + o.mesh + "`") << ", " << o.frames << " frames at " << o.fps
        << " fps, motion `" << (o.motion == motion_kind::sway ? "sway" : o.motion == motion_kind::light ? "light" : "both") << "` (sway up to "
@@ -228,7 +211,7 @@ int run_animate(const animate_options& o) {
     csv << "method,mean_error,flicker,rebuild_median_ms,rebuild_min_ms,rebuild_max_ms,cold_ms\n";
     char line[512];
     for (const auto& tr : tracks) {
-        const double mean = tr.error_sum / samples, flicker = pairs > 0 ? tr.flicker_sum / pairs : 0.0;
+        const double mean = tr.errors.mean_error(), flicker = tr.errors.flicker();
         const double lo = tr.rebuild_ms.empty() ? 0 : *std::min_element(tr.rebuild_ms.begin(), tr.rebuild_ms.end());
         const double hi = tr.rebuild_ms.empty() ? 0 : *std::max_element(tr.rebuild_ms.begin(), tr.rebuild_ms.end());
         char ratio[32] = "-";

@@ -23,7 +23,7 @@ struct animate_options {
     float amplitude = 14.0f; ///< the sway's largest turn of a tip, degrees
     unsigned seed = 1;
     float azimuth = 25.0f, elevation = 10.0f;
-    bool full_colour = false; ///< the APNG in full colour rather than one 256-colour palette (about 3x the size)
+    bool full_colour = false; ///< the APNG in full colour rather than one 256-colour palette (a larger file)
     std::string out = "out/animate";
     hairshadow::execution exec;
 };

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <optional>
@@ -50,6 +51,7 @@ struct row {
     std::string method;
     double cold = 0, median = 0, min = 0, max = 0, gpu_median = 0; ///< gpu_median: by GL timer queries
     std::size_t fragments = 0, map_bytes = 0;
+    std::uint64_t maps_hash = 0; ///< any_shadow_map::maps_hash of the last build (on GL, of its read-back)
     std::optional<double> peak_mib;
 };
 
@@ -83,6 +85,7 @@ int run_bench(const hair_model& model, const light_space& light, const bench_opt
             r.gpu_median = gpu.size() % 2 ? gpu[gpu.size() / 2] : 0.5 * (gpu[gpu.size() / 2 - 1] + gpu[gpu.size() / 2]);
             r.map_bytes = gl->memory_bytes();
             r.fragments = gl_fragments;
+            r.maps_hash = gl->to_cpu()->maps_hash();
         } else {
             auto map = make_shadow_map(spec);
             auto start = now();
@@ -95,8 +98,9 @@ int run_bench(const hair_model& model, const light_space& light, const bench_opt
             }
             r.map_bytes = map->memory_bytes();
             r.fragments = map->fragment_count();
+            r.maps_hash = map->maps_hash();
         }
-        if (const auto hwm = status_kib("VmHWM")) r.peak_mib = *hwm / 1024.0;
+        if (const auto hwm = status_kib("VmHWM")) r.peak_mib = *hwm / 1024.0; // before the hash, which reads back GL's maps
         std::sort(times.begin(), times.end());
         r.min = times.front();
         r.max = times.back();
@@ -113,20 +117,21 @@ int run_bench(const hair_model& model, const light_space& light, const bench_opt
                     resolve(o.raster.instructions) == instruction_set::avx512 ? "AVX-512" : "scalar");
     std::printf("A rebuild is a full build from the model (rasterise and build), the maps and working memory already in place; "
                 "the cold build is the first, which also allocates them%s. Times over %d rebuilds; peak memory is the process's resident "
-                "high-water mark while building%s",
+                "high-water mark while building%s; the maps hash is any_shadow_map::maps_hash, the same for the same maps in any run",
                 gl ? " and compiles the driver's shaders" : "", o.repeat, peak_known ? ", model included" : " (not resettable here: the whole run's)");
     if (baseline_kib) std::printf(" (%.0f MiB resident before the first build)", *baseline_kib / 1024.0);
     std::printf(".\n\n");
-    std::printf("| method | cold (ms) | median (ms) |%s min (ms) | max (ms) | fragments/s | maps (MiB) | peak memory (MiB) |\n",
+    std::printf("| method | cold (ms) | median (ms) |%s min (ms) | max (ms) | fragments/s | maps (MiB) | peak memory (MiB) | maps hash |\n",
                 gl ? " GPU median (ms) |" : "");
-    std::printf("|---|---|---|%s---|---|---|---|---|\n", gl ? "---|" : "");
+    std::printf("|---|---|---|%s---|---|---|---|---|---|\n", gl ? "---|" : "");
     for (const auto& r : rows) {
         std::printf("| %s | %.1f | %.1f | ", r.method.c_str(), r.cold, r.median);
         if (gl) std::printf("%.2f | ", r.gpu_median);
         std::printf("%.1f | %.1f | %.0f M | %.1f | ", r.min, r.max,
                     r.median > 0 ? double(r.fragments) / (r.median * 1e3) : 0.0, double(r.map_bytes) / 1048576.0);
-        if (r.peak_mib) std::printf("%.0f |\n", *r.peak_mib);
-        else std::printf("- |\n");
+        if (r.peak_mib) std::printf("%.0f | ", *r.peak_mib);
+        else std::printf("- | ");
+        std::printf("%016llx |\n", static_cast<unsigned long long>(r.maps_hash));
     }
     if (gl && o.specs.size() >= 2) {
         // Several methods for one light: a light pass each, against one shared, alternated so that

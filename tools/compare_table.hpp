@@ -2,8 +2,9 @@
 // The comparison table shared by `compare` and `figure`: one row per method with its layers, memory,
 // build time, the mean, 95th-percentile and maximum |T - T_exact| at the model's points, and the
 // transmittance-curve error (reference/transmittance_curve_error.hpp) and the image error
-// (shading/image_error.hpp).
+// (shading/image_error.hpp), each measured by the library (reference/, shading/).
 #include <hairshadow/core/error.hpp>
+#include <hairshadow/reference/point_error.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -28,14 +29,8 @@ struct compare_row {
 
 /// Fills the error columns of `row` from a method's and the reference's transmittance.
 inline void set_errors(compare_row& row, std::span<const float> t, std::span<const float> reference) {
-    std::vector<float> error(t.size());
-    double sum = 0;
-    for (std::size_t i = 0; i < t.size(); ++i) sum += error[i] = std::abs(t[i] - reference[i]);
-    if (error.empty()) return;
-    std::sort(error.begin(), error.end());
-    row.mean = sum / double(error.size());
-    row.p95 = error[std::min(error.size() - 1, std::size_t(0.95 * double(error.size())))];
-    row.max = error.back();
+    const auto e = hairshadow::point_error_of(t, reference);
+    row.mean = e.mean, row.p95 = e.p95, row.max = e.max;
 }
 
 /// The table as Markdown (after `preamble`) and as CSV.

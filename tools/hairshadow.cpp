@@ -29,6 +29,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <unistd.h>
+
 namespace {
 
 using namespace hairshadow;
@@ -350,6 +352,12 @@ int run_render(const map_options& o, const render_view& v, const std::string& ou
     return 0;
 }
 
+/// Bytes of physical memory in this machine; 0 where the system does not say.
+std::size_t machine_memory_bytes() {
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+    return pages > 0 && page > 0 ? std::size_t(pages) * std::size_t(page) : 0;
+}
+
 int run_memory(const map_options& o) {
     const auto spec = parse_method(o.method);
     check_resolution(o.resolution);
@@ -357,6 +365,9 @@ int run_memory(const map_options& o) {
         const auto bytes = make_shadow_map(spec)->memory_bytes_at(o.resolution);
         if (!bytes) throw usage_error("the exact map's size depends on the model's fragments: give a MODEL");
         std::printf("%s at %dx%d: %zu bytes (%.2f MiB)\n", spec.text.c_str(), o.resolution, o.resolution, *bytes, double(*bytes) / 1048576.0);
+        // A build of maps that cannot fit fails (out of memory, exit 1); say so before anyone tries.
+        if (const std::size_t machine = machine_memory_bytes(); machine > 0 && *bytes > machine)
+            std::printf("the maps do not fit in this machine's memory (%.1f GiB): a build would fail\n", double(machine) / 1073741824.0);
         return 0;
     }
     const auto s = prepare_scene(o, false);
@@ -567,7 +578,7 @@ int main(int argc, char** argv) {
     animate->add_option("--azimuth", anim.azimuth, "camera azimuth in degrees about +y")->check(finite_number);
     animate->add_option("--elevation", anim.elevation, "camera elevation in degrees")->check(finite_number & CLI::Range(-89.0f, 89.0f));
     animate->add_option("--out", anim.out, "output folder");
-    animate->add_flag("--full-colour", anim.full_colour, "write the animated PNG in full colour, not in one 256-colour palette (about 3x the size)");
+    animate->add_flag("--full-colour", anim.full_colour, "write the animated PNG in full colour, not in one 256-colour palette (a larger file)");
 
     cli::figure_options fig;
     auto* figure = app.add_subcommand("figure", "the comparison figure: shaded hair with each method, crops, error heat maps, ray plots, table");

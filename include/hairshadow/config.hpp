@@ -29,8 +29,8 @@
 #define HAIRSHADOW_MAX_FILE_BYTES (std::uint64_t(8) << 30)
 #endif
 
-/// Forces inlining on the rasteriser's per-fragment path, where a call per fragment costs a third of
-/// the time (measured with perf on GCC 12).
+/// Forces inlining on the rasteriser's per-fragment path, where the compiler may otherwise leave a
+/// call per fragment, which costs more than the fragment's own work.
 #ifndef HAIRSHADOW_ALWAYS_INLINE
 #if defined(__GNUC__) || defined(__clang__)
 #define HAIRSHADOW_ALWAYS_INLINE __attribute__((always_inline))

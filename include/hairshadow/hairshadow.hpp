@@ -40,6 +40,8 @@
 
 #include <hairshadow/reference/compressed_deep_shadow_map.hpp>
 #include <hairshadow/reference/deep_shadow_map.hpp>
+#include <hairshadow/reference/point_error.hpp>
+#include <hairshadow/reference/temporal_error.hpp>
 #include <hairshadow/reference/transmittance_curve_error.hpp>
 
 #include <hairshadow/shading/camera.hpp>

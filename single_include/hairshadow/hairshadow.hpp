@@ -41,8 +41,8 @@
 #define HAIRSHADOW_MAX_FILE_BYTES (std::uint64_t(8) << 30)
 #endif
 
-/// Forces inlining on the rasteriser's per-fragment path, where a call per fragment costs a third of
-/// the time (measured with perf on GCC 12).
+/// Forces inlining on the rasteriser's per-fragment path, where the compiler may otherwise leave a
+/// call per fragment, which costs more than the fragment's own work.
 #ifndef HAIRSHADOW_ALWAYS_INLINE
 #if defined(__GNUC__) || defined(__clang__)
 #define HAIRSHADOW_ALWAYS_INLINE __attribute__((always_inline))
@@ -632,9 +632,9 @@ private:
 
 // ---- begin hairshadow/core/thread_pool.hpp
 /// @file
-/// The persistent worker threads behind parallel_for. Starting threads for every parallel loop cost
-/// about 0.3 ms a loop on the 2-core test machine, more than a whole tile pass of a small map; these
-/// workers start once, at the first loop that wants them, and sleep between loops.
+/// The persistent worker threads behind parallel_for. Starting threads for every parallel loop can
+/// cost more than a whole tile pass of a small map; these workers start once, at the first loop that
+/// wants them, and sleep between loops.
 
 #include <algorithm>
 #include <condition_variable>
@@ -1181,8 +1181,8 @@ inline void write_hair(const hair_model& model, const std::string& path) {
 /// defined, is an io_error naming the line.
 ///
 /// Faces are fanned from their first vertex: exact for the triangles and convex polygons that
-/// exporters write, and linear in the polygon's size (tinyobjloader, used before, triangulated a
-/// 40,000-vertex face in 25 s).
+/// exporters write, and linear in the polygon's size (tinyobjloader, used before, was far slower on
+/// faces of many thousand vertices).
 
 
 #include <charconv>
@@ -2255,11 +2255,10 @@ struct raster_options {
     /// divide the thickness by the texel's footprint at the fragment's depth rather than at mid-range.
     bool depth_weighting = true;
     /// Side of the square tiles that are rasterised (and built) in parallel, in texels. 64 keeps a
-    /// tile's fragments in cache while making fewer segment-tile pairs than 32 or 16 (PERFORMANCE.md).
-    /// At 1024x1024 and above, 128 rebuilds the streamed methods (DOM, OSM, occupancy) 5-14% faster
-    /// on this project's benchmark machine (density clustering up to 5% slower) but holds a dense
-    /// tile's fragments per thread: 16 MiB more at 2048x2048 and 50-56 MiB more at 512x512 on a
-    /// 1.5M-segment model (BENCHMARKS.md, "Tiles of 128").
+    /// tile's fragments in cache while making fewer segment-tile pairs than 32 or 16
+    /// (docs/performance.md). Larger tiles cut fewer segments in two, which can speed up the streamed
+    /// methods (DOM, OSM, occupancy) on large maps, but each thread's store then holds a larger dense
+    /// tile's fragments (BENCHMARKS.md, "Tiles of 128 at large maps").
     int tile_size = 64;
     /// The tiled build's line walk (the fragment_buffer rasteriser is scalar).
     instruction_set instructions = instruction_set::automatic;
@@ -2286,8 +2285,8 @@ struct raster_options {
 /// @file
 /// An allocator for the large arrays of a build (the maps, the prepared segments, the tile stores)
 /// that asks Linux for transparent huge pages. A first build touches every page of its maps for the
-/// first time, and on a virtual machine a first touch costs about 10 us per 4 KiB page: 64 MiB of
-/// maps cost 16,384 faults, and with 2 MiB pages 32.
+/// first time, and each first touch is a page fault, costly on a virtual machine most of all: 64 MiB of
+/// maps are 16,384 faults in 4 KiB pages and 32 in 2 MiB ones.
 
 #include <cstddef>
 #include <cstdlib>
@@ -2325,8 +2324,8 @@ struct huge_page_allocator {
         // Advice only: where it is refused, small pages serve. A huge page is resident whole from its
         // first touch, so the last one, partly used, is advised only where the block fills at least half
         // of it; otherwise it is kept to small pages (even where the system gives huge pages to all):
-        // an array of 2.3 MiB held 4 MiB, and the tiled build's working memory at 2048x2048 7 MiB more
-        // than it used (BENCHMARKS.md, issue 11).
+        // advised whole, an array of 2.3 MiB would hold 4 MiB (BENCHMARKS.md, "Full rebuilds", the
+        // entry on huge pages only where filled).
         const std::size_t advised = huge_pages_advised(bytes);
         ::madvise(p, advised, MADV_HUGEPAGE);
         if (advised < rounded) ::madvise(static_cast<char*>(p) + advised, rounded - advised, MADV_NOHUGEPAGE);
@@ -2349,9 +2348,10 @@ struct huge_page_allocator {
 /// huge_page_allocator for an array whose owner initialises the elements that growing it adds: the
 /// maps, zeroed in parallel by the build's threads. Growing it (vector::resize) leaves the new
 /// elements as allocated, so that their pages are first touched by those threads, not cleared first
-/// on one: on this machine's virtual machine a first touch of memory it has not used lately costs
-/// about 2 ms per MiB on one thread and half that on two (BENCHMARKS.md, issue 11). Only for
-/// trivially copyable types, whose bytes the owner may write.
+/// on one: a first touch of fresh memory is slow (slower still on a virtual machine whose host has
+/// taken its free memory back), and the threads share that cost (BENCHMARKS.md, "Density clustering
+/// walks in any order; the maps cleared by the build's threads"). Only for trivially copyable types,
+/// whose bytes the owner may write.
 template <class T>
 struct overwritten_huge_page_allocator : huge_page_allocator<T> {
     template <class U>
@@ -2471,8 +2471,13 @@ inline float just_above(float hi) noexcept { return std::nextafter(hi, std::nume
 /// @file
 /// Which vector instructions the tiled build runs on this CPU (raster_options::instructions): the
 /// AVX-512 paths are compiled with GCC's or Clang's target attribute and chosen at run time, so a
-/// build for plain x86-64 still uses them where the CPU has them. HAIRSHADOW_NO_AVX512 leaves them out.
+/// build for plain x86-64 still uses them where the CPU has them. The macro HAIRSHADOW_NO_AVX512
+/// leaves them out of a build; the environment variable HAIRSHADOW_NO_AVX512 (set, not empty and not
+/// "0") makes a process act as on a CPU without AVX-512, as the tests do to run the portable paths.
 
+
+#include <cstdlib>
+#include <string_view>
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(HAIRSHADOW_NO_AVX512)
 #define HAIRSHADOW_AVX512_WALK 1
@@ -2497,10 +2502,13 @@ inline float just_above(float hi) noexcept { return std::nextafter(hi, std::nume
 namespace hairshadow {
 
 namespace detail {
-/// Does this CPU (and this compiler) run the AVX-512 paths?
+/// Does this CPU (and this compiler) run the AVX-512 paths, and does the environment let it?
 inline bool cpu_has_avx512() noexcept {
 #if HAIRSHADOW_AVX512_WALK
-    static const bool has = __builtin_cpu_supports("avx512f");
+    static const bool has = [] {
+        const char* off = std::getenv("HAIRSHADOW_NO_AVX512");
+        return __builtin_cpu_supports("avx512f") && !(off && *off && std::string_view(off) != "0");
+    }();
     return has;
 #else
     return false;
@@ -2901,7 +2909,7 @@ private:
     // A segment's entry in first_tile_: its first tile in the low bits, and in the high ones which
     // others it reaches. The two-tile and 2x2 cases (the curly 1.5M model, 64-texel tiles, makes 1.24
     // segment-tile pairs a segment at 512x512, 1.80 at 2048x2048) are written from the entry alone;
-    // only the rest re-read the segment, a cache miss each, which cost half the writing pass.
+    // only the rest re-read the segment, a cache miss each.
     static constexpr std::uint32_t no_tile = std::numeric_limits<std::uint32_t>::max();
     static constexpr std::uint32_t more_tiles = std::uint32_t(1) << 31; ///< others than the flags below say: visit_tiles tells
     static constexpr std::uint32_t and_right = std::uint32_t(1) << 30;  ///< the tile to the right too (and_below: the 2x2 block)
@@ -3017,7 +3025,7 @@ private:
             };
             for (std::size_t seg = first_segment_[chunk_strand_[c]]; seg < end; ++seg) {
                 // The segments re-read below are a few in a hundred, too sparse for the hardware's
-                // prefetcher: each missed the cache (44% of this pass at 2048x2048). Fetch the one
+                // prefetcher: each would miss the cache. Fetch the one
                 // `reread_ahead` on, if it is one; else the entry at hand, already cached (a choice
                 // without a branch).
                 if (seg + reread_ahead < end) {
@@ -3142,8 +3150,8 @@ private:
 
     /// texel / tile_size for a texel of the map, by a multiplication: q = (texel m) >> 32 with
     /// m = floor(2^32 / tile) + 1 is exact for texel < 2^16 and tile <= 2^10 (the error, texel (m tile -
-    /// 2^32) / (tile 2^32) < 2^-16, stays below the gap 1 / tile to the next integer). A division per
-    /// end per segment cost a fifth of the binning.
+    /// 2^32) / (tile 2^32) < 2^-16, stays below the gap 1 / tile to the next integer). It spares the
+    /// binning a division per end per segment.
     HAIRSHADOW_ALWAYS_INLINE int tile_of(std::int64_t texel) const noexcept { return int((std::uint64_t(texel) * tile_magic_) >> 32); }
 
     /// Does the segment's bounding box, widened by `reach`, meet the map? The whole-map extent counts
@@ -3279,8 +3287,8 @@ HAIRSHADOW_AVX512_TARGET inline __m512i snap16(__m512 window) noexcept {
 HAIRSHADOW_AVX512_TARGET inline __mmask16 within(__m512 v, __m512 limit) noexcept { return _mm512_cmp_ps_mask(_mm512_abs_ps(v), limit, _CMP_LE_OQ); }
 
 /// Sixteen lanes' `component` (0: x, 1: y, 2: z) of points[l + shift], from four vectors holding the
-/// 64 floats from points[0].x on: two permutations and a blend in place of a gather, which cost a
-/// quarter of the projection.
+/// 64 floats from points[0].x on: two permutations and a blend in place of a gather, which costs
+/// more.
 HAIRSHADOW_AVX512_TARGET inline __m512 point_component(const __m512 (&v)[4], int component, int shift) noexcept {
     __m512i index = _mm512_set_epi32(45, 42, 39, 36, 33, 30, 27, 24, 21, 18, 15, 12, 9, 6, 3, 0);
     index = _mm512_add_epi32(index, _mm512_set1_epi32(3 * shift + component));
@@ -4721,8 +4729,8 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
         const int steps = side_by_side ? _mm512_mask_reduce_max_epi32(side_by_side, counts) : 0;
         // Every lockstep segment pays for the longest one's steps, and the batch for two transposes:
         // unless most lanes are short (all sixteen for sixteen steps, twelve for eight), they walk
-        // alone. The rule was chosen by measuring on this project's benchmark machine (BENCHMARKS.md,
-        // issue 11); it chooses a path, never a fragment.
+        // alone. The rule was chosen by measurement (BENCHMARKS.md, "Full rebuilds", the entry on
+        // the lockstep walk); it chooses a path, never a fragment.
         if (2 * __builtin_popcount(side_by_side) < steps + 16) side_by_side = 0;
         __mmask16 start_in_row = 0;
         if (side_by_side) {
@@ -4828,8 +4836,8 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_any_order_avx512(const
 
 /// Stores the `keep` lanes of texels and depths at c.n, in lane order, and advances it. Whole vectors,
 /// compressed in registers, where `whole` says 16 slots past c.n are there (a compress straight to
-/// memory measured 1.3x slower on this machine's CPU); near the store's end, compressed to memory, so
-/// that the store grows exactly as the scalar walk's does.
+/// memory is slower on some CPUs: BENCHMARKS.md, "Full rebuilds", the entry on streamed tiles); near
+/// the store's end, compressed to memory, so that the store grows exactly as the scalar walk's does.
 HAIRSHADOW_AVX512_TARGET inline void tile_fragments::store_kept(store_cursor& c, __mmask16 keep, __m512i texels, __m512 depths, __m512 optical,
                                                                 bool whole) noexcept {
     if (whole) {
@@ -4915,8 +4923,8 @@ namespace hairshadow::detail {
 /// A texel's depth range as its nearest depth and minus its furthest. Both bounds then follow from
 /// one packed minimum, {min(d, nearest), min(-d, -furthest)}, with min(a, b) = a < b ? a : b:
 /// add_to_depth_range's comparisons, negated in the second (-max(d, f) = min(-d, -f), signed
-/// zeros alike), and one 8-byte store a fragment where it made two. The pass measured 1.6x faster
-/// (0.78 against 0.48 ns a fragment, in isolation, on a dense 64x64 tile of this machine).
+/// zeros alike), and one 8-byte store a fragment where it made two (BENCHMARKS.md, "Full rebuilds",
+/// the entry on the depth pass in one packed minimum).
 struct negated_range {
     float nearest, neg_furthest;
 };
@@ -4993,9 +5001,9 @@ public:
     }
 
     /// Whether streaming `tile` beats grouping it. Always without per-texel state (nothing but the
-    /// adds); with it, where the tile holds at least `dense` fragments a texel. Measured for dom:3
-    /// (BENCHMARKS.md, issue 11): 1.2x faster streamed at 47 fragments a texel (curly 1.5M, 512x512),
-    /// even at 12, and 1.15x slower at 1 (Sintel, 2048x2048), where the per-texel passes dominate.
+    /// adds); with it, where the tile holds at least `dense` fragments a texel. In a sparse tile the
+    /// per-texel passes, not the grouping, are most of the work, and grouping is the cheaper build
+    /// there (BENCHMARKS.md, "Full rebuilds", the entry on streamed tiles).
     static constexpr std::size_t dense = 4;
     static bool pays(const tile_fragments& tile) noexcept {
         const texel_rect r = tile.rect();
@@ -5336,9 +5344,9 @@ public:
                     for (int x = r.x0; x < r.x1; ++x) build_texel(tile.texel(x, y), texel_out(x, y), instructions);
             };
             // Where the maps do not depend on the fragments' order, the walk stores them in its own
-            // (segments sorted by length, sixteen at a step): dom:3, occ:128:4 and osm:16 on curly
-            // 1.5M built 1.2-1.26x faster at 2048x2048, up to 1.1x at 512x512, dc:4 1.06x at
-            // 2048x2048 (BENCHMARKS.md, issue 11).
+            // (segments sorted by length, sixteen at a step), so that long segments walk side by side
+            // too, in lanes of nearly one length (BENCHMARKS.md, "Tiles walked in any order where the
+            // maps cannot tell").
             const auto order = detail::walks_in_any_order<Placement, Reconstruction>(extent_) ? detail::fragment_order::any
                                                                                                : detail::fragment_order::segment;
             if constexpr (detail::streams_tiles<Placement, Accumulation, Reconstruction>) {
@@ -5358,8 +5366,9 @@ public:
             } else {
 #if HAIRSHADOW_AVX512_WALK
                 // Where every fragment shares one b, the tiles group their depths alone, half the bytes
-                // of the grouping's scatter and of the texels' passes: dc:4 on curly 1.5M at 512x512
-                // built 1.08-1.12x faster (BENCHMARKS.md, issue 11). The same maps, bit for bit.
+                // of the grouping's scatter and of the texels' passes (BENCHMARKS.md, "Density
+                // clustering groups depths alone where a map has one optical depth"). The same maps,
+                // bit for bit.
                 if constexpr (detail::builds_from_depths_avx512<Placement, Accumulation, Reconstruction>) {
                     if (instructions == instruction_set::avx512 && detail::tile_fragments::one_optical_depth(w.bins)) {
                         const float b = optical_depth_of(w.bins.uniform_shader().shade(0.0f).alpha);
@@ -5480,10 +5489,10 @@ private:
 
     /// Resizes the maps to `texels` texels, the new ones zeroed (padding included: the maps' bytes are
     /// the same for any thread count) in parallel, so that the build's threads, not one, first touch
-    /// their pages: on this machine's virtual machine that cut the cost of a cold build's fresh pages,
-    /// which after idle seconds is about 2 ms per MiB on one thread (BENCHMARKS.md, issue 11). The
-    /// bytes are split at 2 MiB boundaries, so that each huge page is first touched by one thread:
-    /// the kernel clears a huge page whole, and a second thread touching it would wait.
+    /// their pages and share the cost of a cold build's fresh memory, high on a virtual machine
+    /// (BENCHMARKS.md, "Density clustering walks in any order; the maps cleared by the build's
+    /// threads"). The bytes are split at 2 MiB boundaries, so that each huge page is first touched by
+    /// one thread: the kernel clears a huge page whole, and a second thread touching it would wait.
     void resize_maps(std::size_t texels, const execution& exec) {
         const std::size_t old = texels_.size();
         texels_.resize(texels); // leaves the new texels as allocated (overwritten_huge_page_allocator)
@@ -6542,14 +6551,17 @@ using gamma_slices = planar_slices<N, gamma_spacing>;
 /// Reconstruction by an assumed fibre density: approximate deep shadow maps, as AMD TressFX ships them
 /// (TressFXLighting.hlsl, ComputeShadowAttenuation). A texel keeps only its first fragment's depth z0
 /// (per_pixel_depth's depth map); a point d world units behind it lies behind
-/// n = d / (fibre spacing x fibre radius) fibres, at least one once d > 1e-5 and at most a cap (50 in
-/// TressFX), and T = (1 - alpha)^n. The measured variant takes the density from the texel's own
+/// n = d / (fibre spacing x fibre radius) fibres, at least one once d > 1e-5, and T = (1 - alpha)^n.
+/// TressFX counts every fibre: its settings hold m_HairMaxShadowFibers = 50 and upload it, but
+/// ComputeShadowAttenuation never reads it, so no cap is the default here; a cap is an option
+/// (fibre_density_parameters::max_fibres). The measured variant takes the density from the texel's own
 /// fragments instead: their count over their depth span (depth_range's nearest and furthest).
 
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <string_view>
@@ -6568,20 +6580,23 @@ struct fibre_density_parameters {
     float spacing = 0.4f;    ///< fibre spacing, in fibre radii
     float radius = 0.0021f;  ///< fibre radius, world units
     float alpha = 0.35f;     ///< opacity of one fibre
-    float max_fibres = 50.0f; ///< fibres counted at most (m_HairMaxShadowFibers)
+    /// Fibres counted at most: a whole number, or infinity for none (TressFX's shader counts them all;
+    /// its unread m_HairMaxShadowFibers is 50).
+    float max_fibres = std::numeric_limits<float>::infinity();
 
     /// World depth per fibre along the light.
     float fibre_step() const noexcept { return spacing * radius; }
     /// -ln(1 - alpha): one fibre's optical depth.
     float fibre_optical_depth() const noexcept { return -std::log1p(-alpha); }
     /// Throws argument_error unless spacing and radius are positive and finite, alpha is in (0, 1)
-    /// and the cap is at least one fibre.
+    /// and the cap is infinite or a whole number of fibres, at least one.
     void check() const {
         const auto positive = [](float v) { return std::isfinite(v) && v > 0.0f; };
         if (!positive(spacing) || !positive(radius) || !positive(fibre_step()))
             throw argument_error("fibre density: spacing and radius must be positive and finite, and so must their product");
         if (!(alpha > 0.0f && alpha < 1.0f)) throw argument_error("fibre density: the fibre alpha must be in (0, 1)");
-        if (!(max_fibres >= 1.0f && std::isfinite(max_fibres))) throw argument_error("fibre density: at least one fibre must count");
+        if (!(max_fibres >= 1.0f && (std::isinf(max_fibres) || max_fibres == std::floor(max_fibres))))
+            throw argument_error("fibre density: the cap must be a whole number of fibres, at least one, or none");
     }
     friend bool operator==(const fibre_density_parameters&, const fibre_density_parameters&) = default;
 };
@@ -6803,8 +6818,9 @@ struct interpolation {
         if (!fragments.empty() && one_optical_depth(fragments)) {
             // Every fragment adds the same b, so a layer's sum is a function of how many it took: counted
             // (sixteen at a time where the placement can), then read from this thread's repeated_sums,
-            // not added fragment by fragment. The same sums, bit for bit: dc:4 on curly 1.5M at 512x512
-            // built 1.10x faster (BENCHMARKS.md, issue 11).
+            // not added fragment by fragment: the same sums, bit for bit, without a chain of dependent
+            // adds per layer (BENCHMARKS.md, "A texel of one optical depth sums its layers from their
+            // counts").
             return finish_counted<Placement, Accumulation>(fragment_optical_depth(fragments[0]),
                                                            detail::layer_counts(placement, state, fragments, instructions), out);
         }
@@ -6884,7 +6900,7 @@ struct interpolation {
     }
     /// finish for several texels, the same values: their running sums advance layer by layer side by
     /// side, so that each texel's chain of dependent adds overlaps the others' (64 opacity maps: a
-    /// chain of 64 adds per texel, which finished one texel at a time took most of the tile's build).
+    /// chain of 64 adds per texel; BENCHMARKS.md, "Many layers streamed").
     template <class Placement, class Accumulation, std::size_t N>
         requires(Placement::cumulative)
     static void finish_several(const std::array<const accumulator<Placement, Accumulation>*, N>& sums,
@@ -7009,9 +7025,10 @@ struct occupancy_bitcount {
     /// The build in pieces, for a build that meets a texel's fragments among other texels' (in each
     /// texel's own order all the same; methods/streamed_tile.hpp): each fragment's bit set and its
     /// optical depth added to its slab's sum, as build does, then stored. The same maps as build, bit
-    /// for bit: build's branch-free loop adds +0 to the other slabs, which changes no sum. Measured,
-    /// this pays once the slices are chosen sixteen fragments at a time (placement/assign_each.hpp);
-    /// before, fragment by fragment, it was up to 1.2x slower than grouping (BENCHMARKS.md, issue 11).
+    /// for bit: build's branch-free loop adds +0 to the other slabs, which changes no sum. It pays
+    /// where the slices are chosen sixteen fragments at a time (placement/assign_each.hpp); with them
+    /// chosen fragment by fragment, grouping was faster (BENCHMARKS.md, "Full rebuilds", the entry on
+    /// layers chosen sixteen fragments at a time).
     template <class Placement, class Accumulation>
     struct accumulator {
         std::array<std::uint32_t, std::size_t(Placement::layer_count / 32)> bits{};
@@ -7162,7 +7179,8 @@ inline constexpr std::string_view method_grammar =
     "osm:N[:uniform|gamma] (N = 1, 2, 4, ..., 512) | dom:K (K = 1..8) | dc:K (K = 1..8) | occ:S:B (S = 32, 64, 128, 256; "
     "B = 1, 2, 4, 8) | docc:S:B (hybrid: occupancy slices from each texel's first fragment) | rosm:N (hybrid: opacity maps in "
     "each texel's depth range, N = 4, 8, ..., 256) | adsm[:SPACING:RADIUS:ALPHA[:MAX]] (TressFX's approximate deep shadow "
-    "maps: fibre spacing in radii, fibre radius in world units, fibre alpha, fibres counted at most; default 0.4:0.0021:0.35:50) | adsm:auto (each texel's "
+    "maps: fibre spacing in radii, fibre radius in world units, fibre alpha, and optionally a cap on the fibres counted, a whole number; default "
+    "0.4:0.0021:0.35 and no cap, as TressFX's shader) | adsm:auto (each texel's "
     "measured fibre density) | dsm (exact) | dsm:EPS (Lokovic-Veach compression, 0 < EPS < 1); "
     "append :8bit to osm, dom, dc or occ for emulated 8-bit accumulation";
 
@@ -7213,7 +7231,9 @@ inline method_spec parse_method_spec(std::string_view text) {
         spec.eight_bit = true;
         parts.pop_back();
     }
+    // A count is a name's part, written as one would say it: no sign and no leading zero (dom:03 is a typo).
     auto number = [&](std::string_view s) {
+        if (s.size() > 1 && s[0] == '0') throw bad("'" + std::string(s) + "' has a leading zero");
         try {
             return detail::parse_number<int>(s, "count");
         } catch (const argument_error&) {
@@ -7259,7 +7279,11 @@ inline method_spec parse_method_spec(std::string_view text) {
             spec.density.spacing = real(parts[1], "spacing");
             spec.density.radius = real(parts[2], "radius");
             spec.density.alpha = real(parts[3], "alpha");
-            if (parts.size() == 5) spec.density.max_fibres = real(parts[4], "count");
+            if (parts.size() == 5) {
+                const int cap = number(parts[4]);
+                if (cap < 1) throw bad("the fibre cap must be at least one fibre");
+                spec.density.max_fibres = float(cap);
+            }
             try {
                 spec.density.check();
             } catch (const argument_error& e) {
@@ -7501,6 +7525,107 @@ private:
 
 } // namespace hairshadow
 // ---- end hairshadow/reference/compressed_deep_shadow_map.hpp
+// ---- begin hairshadow/reference/point_error.hpp
+/// @file
+/// How far a method's transmittance lies from the exact one at a set of points (the hair's own, in
+/// `compare` and the figure): the mean, 95th percentile and maximum of |T_method - T_exact|.
+
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <span>
+#include <vector>
+
+namespace hairshadow {
+
+/// The error of a method's transmittance at some points against the exact transmittance there.
+struct point_error {
+    double mean = 0.0; ///< mean |T - T_exact|
+    double p95 = 0.0;  ///< the error at rank floor(0.95 n) of the n errors sorted (0-based; the largest for n < 20)
+    double max = 0.0;  ///< the largest
+    std::size_t points = 0;
+};
+
+/// The error of `t` against `exact`, point by point; all zero for no points. Throws argument_error
+/// where the two differ in length.
+inline point_error point_error_of(std::span<const float> t, std::span<const float> exact) {
+    if (t.size() != exact.size()) throw argument_error("point error: the method's and the exact transmittance differ in length");
+    point_error e;
+    e.points = t.size();
+    if (t.empty()) return e;
+    std::vector<float> error(t.size());
+    double sum = 0.0;
+    for (std::size_t i = 0; i < t.size(); ++i) sum += error[i] = std::abs(t[i] - exact[i]);
+    std::sort(error.begin(), error.end());
+    e.mean = sum / double(error.size());
+    e.p95 = error[std::min(error.size() - 1, std::size_t(0.95 * double(error.size())))];
+    e.max = error.back();
+    return e;
+}
+
+} // namespace hairshadow
+// ---- end hairshadow/reference/point_error.hpp
+// ---- begin hairshadow/reference/temporal_error.hpp
+/// @file
+/// A method's error over an animation (`hairshadow animate`): e(t) = T_method - T_exact at the same
+/// points in every frame. The mean |e| over points and frames says how wrong the shadow is; the
+/// flicker, the mean |e(t+1) - e(t)| over points and consecutive frames, says how much that error
+/// moves from frame to frame, which a viewer sees as crawling or popping layers (Yuksel & Keyser 2008,
+/// section 1: layering artifacts "are especially significant in animated sequences"). The animation
+/// loops, so the last frame's pair with the first counts too.
+
+
+#include <cmath>
+#include <cstddef>
+#include <span>
+#include <vector>
+
+namespace hairshadow {
+
+/// Sums a method's error frame by frame; keeps the first and the last frame's errors.
+class temporal_error {
+public:
+    /// Adds a frame: the method's and the exact transmittance at the animation's points, in the same
+    /// order every frame. Throws argument_error where the lengths differ from each other or from the
+    /// first frame's.
+    void add_frame(std::span<const float> method, std::span<const float> exact) {
+        if (method.size() != exact.size()) throw argument_error("temporal error: the method's and the exact transmittance differ in length");
+        if (frames_ > 0 && method.size() != last_.size()) throw argument_error("temporal error: a frame with another number of points");
+        const bool first = frames_ == 0;
+        if (first) first_.assign(method.size(), 0.0f), last_.assign(method.size(), 0.0f);
+        for (std::size_t i = 0; i < method.size(); ++i) {
+            const float e = method[i] - exact[i];
+            error_sum_ += std::abs(e);
+            if (first) first_[i] = e;
+            else flicker_sum_ += std::abs(e - last_[i]);
+            last_[i] = e;
+        }
+        ++frames_;
+    }
+
+    std::size_t frames() const noexcept { return frames_; }
+    /// Mean |e| over every point of every frame; 0 before any frame.
+    double mean_error() const noexcept { return samples() > 0 ? error_sum_ / samples() : 0.0; }
+    /// Mean |e(t+1) - e(t)| over every point and each of the loop's frame pairs: frames - 1 in order,
+    /// and the last frame to the first. 0 for fewer than two frames.
+    double flicker() const noexcept {
+        if (frames_ < 2 || last_.empty()) return 0.0;
+        double sum = flicker_sum_;
+        for (std::size_t i = 0; i < last_.size(); ++i) sum += std::abs(first_[i] - last_[i]);
+        return sum / samples(); // frames pairs of points
+    }
+
+private:
+    double samples() const noexcept { return double(last_.size()) * double(frames_); }
+
+    std::vector<float> first_, last_; ///< e of the first frame and of the last one added
+    double error_sum_ = 0.0, flicker_sum_ = 0.0;
+    std::size_t frames_ = 0;
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/reference/temporal_error.hpp
 // ---- begin hairshadow/reference/transmittance_curve_error.hpp
 /// @file
 /// How far a method's transmittance curves lie from the exact ones: for every texel whose fragments

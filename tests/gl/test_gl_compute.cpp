@@ -1,7 +1,8 @@
 // The compute build path (gl::build_path::compute) against the CPU maps built from the same model and
 // light: every published method and hybrid, on Sintel and procedural models, directional and point
-// lights, long segments across many tiles, hair partly outside the map, and an empty map. States are
-// compared bit for bit; sums within 1e-5 relative (8-bit levels exactly).
+// lights, long segments across many tiles, hair partly outside the map, and an empty map. Every texel
+// is compared: which hold a fragment, states bit for bit, float sums within 1e-6 relative (8-bit levels
+// exactly).
 #include "gl_test_context.hpp"
 
 #include <hairshadow/gl.hpp>
@@ -44,25 +45,28 @@ long check_every_method(const hair_model& model, const light_space& light, const
     gl::light_pass pass(gl::build_path::compute);
     pass.run(mesh, light, options);
     const auto range = gl::detail::read_range(*pass.textures());
+    const auto occupied = test::cpu_occupancy(model, light, options);
     detail::segment_bins bins;
     bins.prepare(model, light, options);
     const auto extent = gl::detail::read_extent(*pass.textures());
     CHECK(extent.nearest == bins.extent().nearest); // the whole map's extent, from the segments as on the CPU
     CHECK(extent.furthest == bins.extent().furthest);
-    long occupied = -1;
+    long texels = -1;
     for_every_method([&]<class Method>(const method_spec& spec, Method) {
         Method cpu = hairshadow::detail::method_of<Method>(spec);
         cpu.build(model, light, options);
         auto on_gl = gl::detail::maps_of_spec<Method>(spec);
         on_gl.build(pass);
-        const auto c = test::compare_maps(cpu, on_gl, range, light.resolution());
-        CAPTURE(spec.text, c.occupied, c.state_off, c.data_off, c.worst);
+        const auto c = test::compare_maps(cpu, on_gl, range, occupied, light.resolution());
+        CAPTURE(spec.text, c.occupied, c.occupied_cpu, c.occupancy_off, c.state_off, c.data_off, c.worst);
+        CHECK(c.occupied == c.occupied_cpu);
+        CHECK(c.occupancy_off == 0);
         CHECK(c.state_off == 0);
         CHECK(c.data_off == 0);
-        CHECK(c.worst < 1e-5);
-        occupied = c.occupied;
+        CHECK(c.worst <= test::float_tolerance);
+        texels = c.occupied;
     });
-    return occupied;
+    return texels;
 }
 
 } // namespace

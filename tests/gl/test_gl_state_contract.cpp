@@ -9,6 +9,7 @@
 
 #include "../test_support.hpp"
 
+#include <algorithm>
 #include <array>
 #include <tuple>
 
@@ -20,6 +21,12 @@ namespace {
 struct engine_state {
     GLint program = 0, draw_fbo = 0, read_fbo = 0, vao = 0, array_buffer = 0, active_texture = 0, pack_buffer = 0, storage_buffer = 0;
     std::array<GLint, 4> viewport{}, scissor_box{};
+    /// Every viewport (up to 16, the most the guard saves), with its scissor box, scissor test and depth range.
+    GLint viewport_count = 0;
+    std::array<std::array<GLfloat, 4>, 16> viewports{};
+    std::array<std::array<GLint, 4>, 16> scissor_boxes{};
+    std::array<GLboolean, 16> scissor_tests{};
+    std::array<std::array<GLdouble, 2>, 16> depth_ranges{};
     GLboolean scissor = 0, depth_test = 0, stencil_test = 0, cull = 0, logic_op = 0, discard = 0, dither = 0, depth_clamp = 0, restart = 0,
               line_smooth = 0, clip_distance = 0;
     GLint cull_mode = 0, logic_op_mode = 0, pack_alignment = 0, pack_row_length = 0, clip_origin = 0, clip_depth = 0;
@@ -45,6 +52,14 @@ struct engine_state {
         glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &s.storage_buffer);
         glGetIntegerv(GL_VIEWPORT, s.viewport.data());
         glGetIntegerv(GL_SCISSOR_BOX, s.scissor_box.data());
+        glGetIntegerv(GL_MAX_VIEWPORTS, &s.viewport_count);
+        s.viewport_count = std::min(s.viewport_count, GLint(s.viewports.size()));
+        for (GLuint i = 0; i < GLuint(s.viewport_count); ++i) {
+            glGetFloati_v(GL_VIEWPORT, i, s.viewports[i].data());
+            glGetIntegeri_v(GL_SCISSOR_BOX, i, s.scissor_boxes[i].data());
+            s.scissor_tests[i] = glIsEnabledi(GL_SCISSOR_TEST, i);
+            glGetDoublei_v(GL_DEPTH_RANGE, i, s.depth_ranges[i].data());
+        }
         for (auto [cap, out] : {std::pair{GL_SCISSOR_TEST, &s.scissor}, {GL_DEPTH_TEST, &s.depth_test}, {GL_STENCIL_TEST, &s.stencil_test},
                                 {GL_CULL_FACE, &s.cull}, {GL_COLOR_LOGIC_OP, &s.logic_op}, {GL_RASTERIZER_DISCARD, &s.discard},
                                 {GL_DITHER, &s.dither}, {GL_DEPTH_CLAMP, &s.depth_clamp}, {GL_PRIMITIVE_RESTART, &s.restart},
@@ -123,6 +138,18 @@ public:
         glViewport(3, 5, 17, 19);
         glEnable(GL_SCISSOR_TEST);
         glScissor(0, 0, 64, 64);
+        // Then every other viewport its own rectangle, scissor box, scissor test and depth range (a
+        // layered renderer's cube-map or cascade viewports): the passes' glViewport sets them all.
+        GLint viewports = 0;
+        glGetIntegerv(GL_MAX_VIEWPORTS, &viewports);
+        REQUIRE(viewports >= 16); // GL 4.1's minimum
+        for (GLuint i = 1; i < GLuint(viewports); ++i) {
+            glViewportIndexedf(i, float(2 * i), float(i), float(20 + i), float(30 - i));
+            glScissorIndexed(i, GLint(i), GLint(3 * i), GLsizei(40 - i), GLsizei(10 + i));
+            if (i % 3) glEnablei(GL_SCISSOR_TEST, i);
+            else glDisablei(GL_SCISSOR_TEST, i);
+            glDepthRangeIndexed(i, 0.05 * double(i), 1.0 - 0.01 * double(i));
+        }
         glColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
         glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
         glEnable(GL_BLEND);
@@ -170,6 +197,7 @@ public:
         glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
         glDisable(GL_SCISSOR_TEST);
+        glDepthRange(0.0, 1.0);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         glDisable(GL_BLEND);
         glBlendEquation(GL_FUNC_ADD);

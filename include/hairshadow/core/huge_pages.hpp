@@ -2,8 +2,8 @@
 /// @file
 /// An allocator for the large arrays of a build (the maps, the prepared segments, the tile stores)
 /// that asks Linux for transparent huge pages. A first build touches every page of its maps for the
-/// first time, and on a virtual machine a first touch costs about 10 us per 4 KiB page: 64 MiB of
-/// maps cost 16,384 faults, and with 2 MiB pages 32.
+/// first time, and each first touch is a page fault, costly on a virtual machine most of all: 64 MiB of
+/// maps are 16,384 faults in 4 KiB pages and 32 in 2 MiB ones.
 
 #include <cstddef>
 #include <cstdlib>
@@ -41,8 +41,8 @@ struct huge_page_allocator {
         // Advice only: where it is refused, small pages serve. A huge page is resident whole from its
         // first touch, so the last one, partly used, is advised only where the block fills at least half
         // of it; otherwise it is kept to small pages (even where the system gives huge pages to all):
-        // an array of 2.3 MiB held 4 MiB, and the tiled build's working memory at 2048x2048 7 MiB more
-        // than it used (BENCHMARKS.md, issue 11).
+        // advised whole, an array of 2.3 MiB would hold 4 MiB (BENCHMARKS.md, "Full rebuilds", the
+        // entry on huge pages only where filled).
         const std::size_t advised = huge_pages_advised(bytes);
         ::madvise(p, advised, MADV_HUGEPAGE);
         if (advised < rounded) ::madvise(static_cast<char*>(p) + advised, rounded - advised, MADV_NOHUGEPAGE);
@@ -65,9 +65,10 @@ struct huge_page_allocator {
 /// huge_page_allocator for an array whose owner initialises the elements that growing it adds: the
 /// maps, zeroed in parallel by the build's threads. Growing it (vector::resize) leaves the new
 /// elements as allocated, so that their pages are first touched by those threads, not cleared first
-/// on one: on this machine's virtual machine a first touch of memory it has not used lately costs
-/// about 2 ms per MiB on one thread and half that on two (BENCHMARKS.md, issue 11). Only for
-/// trivially copyable types, whose bytes the owner may write.
+/// on one: a first touch of fresh memory is slow (slower still on a virtual machine whose host has
+/// taken its free memory back), and the threads share that cost (BENCHMARKS.md, "Density clustering
+/// walks in any order; the maps cleared by the build's threads"). Only for trivially copyable types,
+/// whose bytes the owner may write.
 template <class T>
 struct overwritten_huge_page_allocator : huge_page_allocator<T> {
     template <class U>

@@ -1,8 +1,8 @@
 #pragma once
 /// @file
-/// The persistent worker threads behind parallel_for. Starting threads for every parallel loop cost
-/// about 0.3 ms a loop on the 2-core test machine, more than a whole tile pass of a small map; these
-/// workers start once, at the first loop that wants them, and sleep between loops.
+/// The persistent worker threads behind parallel_for. Starting threads for every parallel loop can
+/// cost more than a whole tile pass of a small map; these workers start once, at the first loop that
+/// wants them, and sleep between loops.
 
 #include <algorithm>
 #include <condition_variable>

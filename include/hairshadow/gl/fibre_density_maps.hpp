@@ -7,6 +7,8 @@
 
 #include <hairshadow/gl/interpolated_maps.hpp>
 
+#include <algorithm>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -133,7 +135,9 @@ public:
         const auto& fibres = reconstruction_.parameters();
         binder.set("hs_fibre_step", fibres.fibre_step());
         binder.set("hs_fibre_optical_depth", fibres.fibre_optical_depth());
-        binder.set("hs_max_fibres", fibres.max_fibres);
+        // No cap is infinity on the CPU; GLSL need not keep an infinite uniform, and the largest float
+        // caps nothing a finite count reaches.
+        binder.set("hs_max_fibres", std::min(fibres.max_fibres, std::numeric_limits<float>::max()));
         if constexpr (measured) binder.texture("hs_density_texture", GL_TEXTURE_2D, sums_.get());
     }
 

@@ -11,6 +11,7 @@
 
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <type_traits>
 
 namespace hairshadow::gl {
@@ -72,8 +73,14 @@ public:
     void bind_lookup(GLuint prog, int first_unit, std::string_view prefix) const override { maps_.bind_lookup(prog, first_unit, prefix); }
     int texture_units() const override { return maps<Method>::texture_units; }
     const light_space& light() const override { return maps_.light(); }
+    /// The maps read back, in a map of the CPU registry's making (make_shadow_map): where that registry
+    /// is compiled apart (HAIRSHADOW_SEPARATE_REGISTRY), this file instantiates no CPU build.
     std::unique_ptr<any_shadow_map> to_cpu() override {
-        return std::make_unique<hairshadow::detail::method_map<Method>>(spec(), maps_.to_cpu());
+        auto map = make_shadow_map(spec());
+        Method* method = map->template method_if<Method>();
+        if (!method) throw std::logic_error("the CPU registry made another method for '" + spec().text + "'"); // both visit_method
+        *method = maps_.to_cpu();
+        return map;
     }
 
 private:

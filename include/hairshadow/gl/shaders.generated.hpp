@@ -1495,11 +1495,11 @@ void main() {
 /// shaders/reconstruction/fibre_density.glsl
 inline constexpr std::string_view reconstruction_fibre_density = R"hs_glsl(// Approximate deep shadow maps (AMD TressFX, ComputeShadowAttenuation): a point d world units behind
 // its texel's first fragment lies behind n = d / hs_fibre_step fibres, at least 1 once d > 1e-5 and at
-// most hs_max_fibres, each of optical depth hs_fibre_optical_depth (and never within four float steps
-// of a depth near 1 of the first fragment). HS_MEASURED_DENSITY takes the
-// density from the texel's own fragments: their count over their span (n - 1 gaps), each with their
-// mean optical depth, and all of them behind the last. Mirrors hairshadow::fibre_density; the range
-// map and the light's frustum are lookup/light's.
+// most hs_max_fibres (the largest float where there is no cap: TressFX counts them all), each of
+// optical depth hs_fibre_optical_depth (and never within four float steps of a depth near 1 of the
+// first fragment). HS_MEASURED_DENSITY takes the density from the texel's own fragments: their count
+// over their span (n - 1 gaps), each with their mean optical depth, and all of them behind the last.
+// Mirrors hairshadow::fibre_density; the range map and the light's frustum are lookup/light's.
 uniform float hs_fibre_step;
 uniform float hs_fibre_optical_depth;
 uniform float hs_max_fibres;

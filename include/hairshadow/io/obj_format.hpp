@@ -7,8 +7,8 @@
 /// defined, is an io_error naming the line.
 ///
 /// Faces are fanned from their first vertex: exact for the triangles and convex polygons that
-/// exporters write, and linear in the polygon's size (tinyobjloader, used before, triangulated a
-/// 40,000-vertex face in 25 s).
+/// exporters write, and linear in the polygon's size (tinyobjloader, used before, was far slower on
+/// faces of many thousand vertices).
 
 #include <hairshadow/core/hair_model.hpp>
 #include <hairshadow/core/parse.hpp>

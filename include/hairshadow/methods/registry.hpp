@@ -4,10 +4,12 @@
 /// instantiates every supported size of every method, so include it only where specs are parsed (the
 /// command line, the benchmarks); code that knows its method at compile time uses the templates.
 ///
-/// Each file that includes it takes about two minutes to compile at -O3. A project that parses specs
-/// in several files can compile the registry once: define HAIRSHADOW_SEPARATE_REGISTRY in every file
-/// (make_shadow_map is then only declared), and HAIRSHADOW_REGISTRY_IMPLEMENTATION as well in exactly
-/// one (which then defines it); gl/registry.hpp does the same with HAIRSHADOW_GL_REGISTRY_IMPLEMENTATION.
+/// Each file that includes it compiles every method's builds, which is slow. A project that parses
+/// specs in several files can compile the registry once: define HAIRSHADOW_SEPARATE_REGISTRY in every
+/// file (make_shadow_map is then only declared), and HAIRSHADOW_REGISTRY_IMPLEMENTATION as well in
+/// exactly one (which then defines it); gl/registry.hpp does the same with
+/// HAIRSHADOW_GL_REGISTRY_IMPLEMENTATION, and then instantiates no CPU build (its read-backs go into
+/// maps that make_shadow_map makes).
 
 #include <hairshadow/methods/published.hpp>
 #include <hairshadow/methods/spec.hpp>
@@ -15,6 +17,7 @@
 #include <hairshadow/reference/compressed_deep_shadow_map.hpp>
 #include <hairshadow/reference/deep_shadow_map.hpp>
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <type_traits>
@@ -30,6 +33,20 @@
 #endif
 
 namespace hairshadow {
+
+namespace detail {
+/// One address per type, the same in every translation unit (an inline variable): identifies a type
+/// without RTTI.
+template <class T>
+inline constexpr char type_tag = 0;
+
+/// 64-bit FNV-1a of `size` bytes, continuing from `h`.
+inline std::uint64_t fnv1a(const void* bytes, std::size_t size, std::uint64_t h = 14695981039346656037ull) noexcept {
+    const auto* p = static_cast<const unsigned char*>(bytes);
+    for (std::size_t i = 0; i < size; ++i) h = (h ^ p[i]) * 1099511628211ull;
+    return h;
+}
+} // namespace detail
 
 /// Any shadow map, built from fragments and queried like the others.
 class any_shadow_map : public map_queries<any_shadow_map> {
@@ -54,11 +71,30 @@ public:
     virtual std::size_t fragment_count() const = 0;
     /// Optical depth stored in map k of texel (x, y).
     virtual float stored_optical_depth(int x, int y, int k) const = 0;
+    /// A hash (64-bit FNV-1a) of everything the maps hold, texel by texel: every byte of each texel's
+    /// state and layers and the whole-map extent; for the exact map each texel's fragment depths and
+    /// optical depths, or its compressed function's vertices. Equal maps hash equal in any run, so a
+    /// hash shows that two builds (two versions, two machines of one byte order) made the same maps;
+    /// `hairshadow bench` prints it.
+    virtual std::uint64_t maps_hash() const = 0;
     const method_spec& spec() const noexcept { return spec_; }
     using map_queries<any_shadow_map>::transmittance;
 
+    /// The composition behind this map where it is `Method` (a shadow_method), else null: for code
+    /// that knows the type, such as the GL registry, which puts maps read back from GL into a map the
+    /// CPU registry made rather than instantiating every CPU build a second time.
+    template <class Method>
+    Method* method_if() noexcept {
+        return static_cast<Method*>(method_address(&detail::type_tag<Method>));
+    }
+
 protected:
     explicit any_shadow_map(method_spec spec) : spec_(std::move(spec)) {}
+    /// The address of the composition if `tag` is its detail::type_tag, else null.
+    virtual void* method_address(const void* tag) noexcept {
+        (void)tag;
+        return nullptr;
+    }
 
 private:
     method_spec spec_;
@@ -82,9 +118,19 @@ public:
     int stored_maps() const override { return Method::stored_maps; }
     std::size_t fragment_count() const override { return method_.fragment_count(); }
     float stored_optical_depth(int x, int y, int k) const override { return method_.stored_optical_depth(x, y, k); }
+    std::uint64_t maps_hash() const override {
+        static_assert(std::is_trivially_copyable_v<typename Method::texel_maps>);
+        const int res = method_.light().resolution();
+        std::uint64_t h = fnv1a(&method_.map_extent(), sizeof(depth_extent));
+        for (int y = 0; y < res; ++y)
+            for (int x = 0; x < res; ++x) h = fnv1a(&method_.texel(x, y), sizeof(typename Method::texel_maps), h); // padding zeroed by every build
+        return h;
+    }
     const Method& method() const noexcept { return method_; }
 
 private:
+    void* method_address(const void* tag) noexcept override { return tag == &type_tag<Method> ? &method_ : nullptr; }
+
     Method method_;
 };
 
@@ -117,6 +163,24 @@ public:
     int stored_maps() const override { return 0; }
     std::size_t fragment_count() const override { return exact_ ? exact_->fragment_count() : 0; }
     float stored_optical_depth(int, int, int) const override { return 0.0f; }
+    std::uint64_t maps_hash() const override {
+        std::uint64_t h = detail::fnv1a(nullptr, 0);
+        if (!exact_) return h;
+        const int res = exact_->resolution();
+        for (int y = 0; y < res; ++y)
+            for (int x = 0; x < res; ++x) {
+                if (compressed_) {
+                    const auto v = compressed_->vertices(x, y);
+                    const std::uint64_t n = v.size();
+                    h = detail::fnv1a(v.data(), v.size_bytes(), detail::fnv1a(&n, sizeof n, h)); // two floats a vertex, no padding
+                } else {
+                    const auto d = exact_->depths(x, y), o = exact_->optical_depths(x, y);
+                    const std::uint64_t n = d.size();
+                    h = detail::fnv1a(o.data(), o.size_bytes(), detail::fnv1a(d.data(), d.size_bytes(), detail::fnv1a(&n, sizeof n, h)));
+                }
+            }
+        return h;
+    }
 
 private:
     std::optional<rasterizer> raster_; ///< kept between builds from a model

@@ -88,9 +88,9 @@ public:
                     for (int x = r.x0; x < r.x1; ++x) build_texel(tile.texel(x, y), texel_out(x, y), instructions);
             };
             // Where the maps do not depend on the fragments' order, the walk stores them in its own
-            // (segments sorted by length, sixteen at a step): dom:3, occ:128:4 and osm:16 on curly
-            // 1.5M built 1.2-1.26x faster at 2048x2048, up to 1.1x at 512x512, dc:4 1.06x at
-            // 2048x2048 (BENCHMARKS.md, issue 11).
+            // (segments sorted by length, sixteen at a step), so that long segments walk side by side
+            // too, in lanes of nearly one length (BENCHMARKS.md, "Tiles walked in any order where the
+            // maps cannot tell").
             const auto order = detail::walks_in_any_order<Placement, Reconstruction>(extent_) ? detail::fragment_order::any
                                                                                                : detail::fragment_order::segment;
             if constexpr (detail::streams_tiles<Placement, Accumulation, Reconstruction>) {
@@ -110,8 +110,9 @@ public:
             } else {
 #if HAIRSHADOW_AVX512_WALK
                 // Where every fragment shares one b, the tiles group their depths alone, half the bytes
-                // of the grouping's scatter and of the texels' passes: dc:4 on curly 1.5M at 512x512
-                // built 1.08-1.12x faster (BENCHMARKS.md, issue 11). The same maps, bit for bit.
+                // of the grouping's scatter and of the texels' passes (BENCHMARKS.md, "Density
+                // clustering groups depths alone where a map has one optical depth"). The same maps,
+                // bit for bit.
                 if constexpr (detail::builds_from_depths_avx512<Placement, Accumulation, Reconstruction>) {
                     if (instructions == instruction_set::avx512 && detail::tile_fragments::one_optical_depth(w.bins)) {
                         const float b = optical_depth_of(w.bins.uniform_shader().shade(0.0f).alpha);
@@ -232,10 +233,10 @@ private:
 
     /// Resizes the maps to `texels` texels, the new ones zeroed (padding included: the maps' bytes are
     /// the same for any thread count) in parallel, so that the build's threads, not one, first touch
-    /// their pages: on this machine's virtual machine that cut the cost of a cold build's fresh pages,
-    /// which after idle seconds is about 2 ms per MiB on one thread (BENCHMARKS.md, issue 11). The
-    /// bytes are split at 2 MiB boundaries, so that each huge page is first touched by one thread:
-    /// the kernel clears a huge page whole, and a second thread touching it would wait.
+    /// their pages and share the cost of a cold build's fresh memory, high on a virtual machine
+    /// (BENCHMARKS.md, "Density clustering walks in any order; the maps cleared by the build's
+    /// threads"). The bytes are split at 2 MiB boundaries, so that each huge page is first touched by
+    /// one thread: the kernel clears a huge page whole, and a second thread touching it would wait.
     void resize_maps(std::size_t texels, const execution& exec) {
         const std::size_t old = texels_.size();
         texels_.resize(texels); // leaves the new texels as allocated (overwritten_huge_page_allocator)

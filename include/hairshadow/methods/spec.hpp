@@ -20,7 +20,8 @@ inline constexpr std::string_view method_grammar =
     "osm:N[:uniform|gamma] (N = 1, 2, 4, ..., 512) | dom:K (K = 1..8) | dc:K (K = 1..8) | occ:S:B (S = 32, 64, 128, 256; "
     "B = 1, 2, 4, 8) | docc:S:B (hybrid: occupancy slices from each texel's first fragment) | rosm:N (hybrid: opacity maps in "
     "each texel's depth range, N = 4, 8, ..., 256) | adsm[:SPACING:RADIUS:ALPHA[:MAX]] (TressFX's approximate deep shadow "
-    "maps: fibre spacing in radii, fibre radius in world units, fibre alpha, fibres counted at most; default 0.4:0.0021:0.35:50) | adsm:auto (each texel's "
+    "maps: fibre spacing in radii, fibre radius in world units, fibre alpha, and optionally a cap on the fibres counted, a whole number; default "
+    "0.4:0.0021:0.35 and no cap, as TressFX's shader) | adsm:auto (each texel's "
     "measured fibre density) | dsm (exact) | dsm:EPS (Lokovic-Veach compression, 0 < EPS < 1); "
     "append :8bit to osm, dom, dc or occ for emulated 8-bit accumulation";
 
@@ -71,7 +72,9 @@ inline method_spec parse_method_spec(std::string_view text) {
         spec.eight_bit = true;
         parts.pop_back();
     }
+    // A count is a name's part, written as one would say it: no sign and no leading zero (dom:03 is a typo).
     auto number = [&](std::string_view s) {
+        if (s.size() > 1 && s[0] == '0') throw bad("'" + std::string(s) + "' has a leading zero");
         try {
             return detail::parse_number<int>(s, "count");
         } catch (const argument_error&) {
@@ -117,7 +120,11 @@ inline method_spec parse_method_spec(std::string_view text) {
             spec.density.spacing = real(parts[1], "spacing");
             spec.density.radius = real(parts[2], "radius");
             spec.density.alpha = real(parts[3], "alpha");
-            if (parts.size() == 5) spec.density.max_fibres = real(parts[4], "count");
+            if (parts.size() == 5) {
+                const int cap = number(parts[4]);
+                if (cap < 1) throw bad("the fibre cap must be at least one fibre");
+                spec.density.max_fibres = float(cap);
+            }
             try {
                 spec.density.check();
             } catch (const argument_error& e) {

@@ -29,8 +29,8 @@ namespace hairshadow::detail {
 /// A texel's depth range as its nearest depth and minus its furthest. Both bounds then follow from
 /// one packed minimum, {min(d, nearest), min(-d, -furthest)}, with min(a, b) = a < b ? a : b:
 /// add_to_depth_range's comparisons, negated in the second (-max(d, f) = min(-d, -f), signed
-/// zeros alike), and one 8-byte store a fragment where it made two. The pass measured 1.6x faster
-/// (0.78 against 0.48 ns a fragment, in isolation, on a dense 64x64 tile of this machine).
+/// zeros alike), and one 8-byte store a fragment where it made two (BENCHMARKS.md, "Full rebuilds",
+/// the entry on the depth pass in one packed minimum).
 struct negated_range {
     float nearest, neg_furthest;
 };
@@ -107,9 +107,9 @@ public:
     }
 
     /// Whether streaming `tile` beats grouping it. Always without per-texel state (nothing but the
-    /// adds); with it, where the tile holds at least `dense` fragments a texel. Measured for dom:3
-    /// (BENCHMARKS.md, issue 11): 1.2x faster streamed at 47 fragments a texel (curly 1.5M, 512x512),
-    /// even at 12, and 1.15x slower at 1 (Sintel, 2048x2048), where the per-texel passes dominate.
+    /// adds); with it, where the tile holds at least `dense` fragments a texel. In a sparse tile the
+    /// per-texel passes, not the grouping, are most of the work, and grouping is the cheaper build
+    /// there (BENCHMARKS.md, "Full rebuilds", the entry on streamed tiles).
     static constexpr std::size_t dense = 4;
     static bool pays(const tile_fragments& tile) noexcept {
         const texel_rect r = tile.rect();

@@ -2,10 +2,15 @@
 /// @file
 /// Which vector instructions the tiled build runs on this CPU (raster_options::instructions): the
 /// AVX-512 paths are compiled with GCC's or Clang's target attribute and chosen at run time, so a
-/// build for plain x86-64 still uses them where the CPU has them. HAIRSHADOW_NO_AVX512 leaves them out.
+/// build for plain x86-64 still uses them where the CPU has them. The macro HAIRSHADOW_NO_AVX512
+/// leaves them out of a build; the environment variable HAIRSHADOW_NO_AVX512 (set, not empty and not
+/// "0") makes a process act as on a CPU without AVX-512, as the tests do to run the portable paths.
 
 #include <hairshadow/core/error.hpp>
 #include <hairshadow/raster/raster_options.hpp>
+
+#include <cstdlib>
+#include <string_view>
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(HAIRSHADOW_NO_AVX512)
 #define HAIRSHADOW_AVX512_WALK 1
@@ -30,10 +35,13 @@
 namespace hairshadow {
 
 namespace detail {
-/// Does this CPU (and this compiler) run the AVX-512 paths?
+/// Does this CPU (and this compiler) run the AVX-512 paths, and does the environment let it?
 inline bool cpu_has_avx512() noexcept {
 #if HAIRSHADOW_AVX512_WALK
-    static const bool has = __builtin_cpu_supports("avx512f");
+    static const bool has = [] {
+        const char* off = std::getenv("HAIRSHADOW_NO_AVX512");
+        return __builtin_cpu_supports("avx512f") && !(off && *off && std::string_view(off) != "0");
+    }();
     return has;
 #else
     return false;

@@ -30,11 +30,10 @@ struct raster_options {
     /// divide the thickness by the texel's footprint at the fragment's depth rather than at mid-range.
     bool depth_weighting = true;
     /// Side of the square tiles that are rasterised (and built) in parallel, in texels. 64 keeps a
-    /// tile's fragments in cache while making fewer segment-tile pairs than 32 or 16 (PERFORMANCE.md).
-    /// At 1024x1024 and above, 128 rebuilds the streamed methods (DOM, OSM, occupancy) 5-14% faster
-    /// on this project's benchmark machine (density clustering up to 5% slower) but holds a dense
-    /// tile's fragments per thread: 16 MiB more at 2048x2048 and 50-56 MiB more at 512x512 on a
-    /// 1.5M-segment model (BENCHMARKS.md, "Tiles of 128").
+    /// tile's fragments in cache while making fewer segment-tile pairs than 32 or 16
+    /// (docs/performance.md). Larger tiles cut fewer segments in two, which can speed up the streamed
+    /// methods (DOM, OSM, occupancy) on large maps, but each thread's store then holds a larger dense
+    /// tile's fragments (BENCHMARKS.md, "Tiles of 128 at large maps").
     int tile_size = 64;
     /// The tiled build's line walk (the fragment_buffer rasteriser is scalar).
     instruction_set instructions = instruction_set::automatic;

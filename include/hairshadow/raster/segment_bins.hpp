@@ -162,7 +162,7 @@ private:
     // A segment's entry in first_tile_: its first tile in the low bits, and in the high ones which
     // others it reaches. The two-tile and 2x2 cases (the curly 1.5M model, 64-texel tiles, makes 1.24
     // segment-tile pairs a segment at 512x512, 1.80 at 2048x2048) are written from the entry alone;
-    // only the rest re-read the segment, a cache miss each, which cost half the writing pass.
+    // only the rest re-read the segment, a cache miss each.
     static constexpr std::uint32_t no_tile = std::numeric_limits<std::uint32_t>::max();
     static constexpr std::uint32_t more_tiles = std::uint32_t(1) << 31; ///< others than the flags below say: visit_tiles tells
     static constexpr std::uint32_t and_right = std::uint32_t(1) << 30;  ///< the tile to the right too (and_below: the 2x2 block)
@@ -278,7 +278,7 @@ private:
             };
             for (std::size_t seg = first_segment_[chunk_strand_[c]]; seg < end; ++seg) {
                 // The segments re-read below are a few in a hundred, too sparse for the hardware's
-                // prefetcher: each missed the cache (44% of this pass at 2048x2048). Fetch the one
+                // prefetcher: each would miss the cache. Fetch the one
                 // `reread_ahead` on, if it is one; else the entry at hand, already cached (a choice
                 // without a branch).
                 if (seg + reread_ahead < end) {
@@ -403,8 +403,8 @@ private:
 
     /// texel / tile_size for a texel of the map, by a multiplication: q = (texel m) >> 32 with
     /// m = floor(2^32 / tile) + 1 is exact for texel < 2^16 and tile <= 2^10 (the error, texel (m tile -
-    /// 2^32) / (tile 2^32) < 2^-16, stays below the gap 1 / tile to the next integer). A division per
-    /// end per segment cost a fifth of the binning.
+    /// 2^32) / (tile 2^32) < 2^-16, stays below the gap 1 / tile to the next integer). It spares the
+    /// binning a division per end per segment.
     HAIRSHADOW_ALWAYS_INLINE int tile_of(std::int64_t texel) const noexcept { return int((std::uint64_t(texel) * tile_magic_) >> 32); }
 
     /// Does the segment's bounding box, widened by `reach`, meet the map? The whole-map extent counts

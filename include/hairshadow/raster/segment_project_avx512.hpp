@@ -60,8 +60,8 @@ HAIRSHADOW_AVX512_TARGET inline __m512i snap16(__m512 window) noexcept {
 HAIRSHADOW_AVX512_TARGET inline __mmask16 within(__m512 v, __m512 limit) noexcept { return _mm512_cmp_ps_mask(_mm512_abs_ps(v), limit, _CMP_LE_OQ); }
 
 /// Sixteen lanes' `component` (0: x, 1: y, 2: z) of points[l + shift], from four vectors holding the
-/// 64 floats from points[0].x on: two permutations and a blend in place of a gather, which cost a
-/// quarter of the projection.
+/// 64 floats from points[0].x on: two permutations and a blend in place of a gather, which costs
+/// more.
 HAIRSHADOW_AVX512_TARGET inline __m512 point_component(const __m512 (&v)[4], int component, int shift) noexcept {
     __m512i index = _mm512_set_epi32(45, 42, 39, 36, 33, 30, 27, 24, 21, 18, 15, 12, 9, 6, 3, 0);
     index = _mm512_add_epi32(index, _mm512_set1_epi32(3 * shift + component));

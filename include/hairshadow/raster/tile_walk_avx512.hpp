@@ -440,8 +440,8 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_b
         const int steps = side_by_side ? _mm512_mask_reduce_max_epi32(side_by_side, counts) : 0;
         // Every lockstep segment pays for the longest one's steps, and the batch for two transposes:
         // unless most lanes are short (all sixteen for sixteen steps, twelve for eight), they walk
-        // alone. The rule was chosen by measuring on this project's benchmark machine (BENCHMARKS.md,
-        // issue 11); it chooses a path, never a fragment.
+        // alone. The rule was chosen by measurement (BENCHMARKS.md, "Full rebuilds", the entry on
+        // the lockstep walk); it chooses a path, never a fragment.
         if (2 * __builtin_popcount(side_by_side) < steps + 16) side_by_side = 0;
         __mmask16 start_in_row = 0;
         if (side_by_side) {
@@ -547,8 +547,8 @@ HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_any_order_avx512(const
 
 /// Stores the `keep` lanes of texels and depths at c.n, in lane order, and advances it. Whole vectors,
 /// compressed in registers, where `whole` says 16 slots past c.n are there (a compress straight to
-/// memory measured 1.3x slower on this machine's CPU); near the store's end, compressed to memory, so
-/// that the store grows exactly as the scalar walk's does.
+/// memory is slower on some CPUs: BENCHMARKS.md, "Full rebuilds", the entry on streamed tiles); near
+/// the store's end, compressed to memory, so that the store grows exactly as the scalar walk's does.
 HAIRSHADOW_AVX512_TARGET inline void tile_fragments::store_kept(store_cursor& c, __mmask16 keep, __m512i texels, __m512 depths, __m512 optical,
                                                                 bool whole) noexcept {
     if (whole) {

@@ -3,8 +3,10 @@
 /// Reconstruction by an assumed fibre density: approximate deep shadow maps, as AMD TressFX ships them
 /// (TressFXLighting.hlsl, ComputeShadowAttenuation). A texel keeps only its first fragment's depth z0
 /// (per_pixel_depth's depth map); a point d world units behind it lies behind
-/// n = d / (fibre spacing x fibre radius) fibres, at least one once d > 1e-5 and at most a cap (50 in
-/// TressFX), and T = (1 - alpha)^n. The measured variant takes the density from the texel's own
+/// n = d / (fibre spacing x fibre radius) fibres, at least one once d > 1e-5, and T = (1 - alpha)^n.
+/// TressFX counts every fibre: its settings hold m_HairMaxShadowFibers = 50 and upload it, but
+/// ComputeShadowAttenuation never reads it, so no cap is the default here; a cap is an option
+/// (fibre_density_parameters::max_fibres). The measured variant takes the density from the texel's own
 /// fragments instead: their count over their depth span (depth_range's nearest and furthest).
 
 #include <hairshadow/core/error.hpp>
@@ -14,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <string_view>
@@ -32,20 +35,23 @@ struct fibre_density_parameters {
     float spacing = 0.4f;    ///< fibre spacing, in fibre radii
     float radius = 0.0021f;  ///< fibre radius, world units
     float alpha = 0.35f;     ///< opacity of one fibre
-    float max_fibres = 50.0f; ///< fibres counted at most (m_HairMaxShadowFibers)
+    /// Fibres counted at most: a whole number, or infinity for none (TressFX's shader counts them all;
+    /// its unread m_HairMaxShadowFibers is 50).
+    float max_fibres = std::numeric_limits<float>::infinity();
 
     /// World depth per fibre along the light.
     float fibre_step() const noexcept { return spacing * radius; }
     /// -ln(1 - alpha): one fibre's optical depth.
     float fibre_optical_depth() const noexcept { return -std::log1p(-alpha); }
     /// Throws argument_error unless spacing and radius are positive and finite, alpha is in (0, 1)
-    /// and the cap is at least one fibre.
+    /// and the cap is infinite or a whole number of fibres, at least one.
     void check() const {
         const auto positive = [](float v) { return std::isfinite(v) && v > 0.0f; };
         if (!positive(spacing) || !positive(radius) || !positive(fibre_step()))
             throw argument_error("fibre density: spacing and radius must be positive and finite, and so must their product");
         if (!(alpha > 0.0f && alpha < 1.0f)) throw argument_error("fibre density: the fibre alpha must be in (0, 1)");
-        if (!(max_fibres >= 1.0f && std::isfinite(max_fibres))) throw argument_error("fibre density: at least one fibre must count");
+        if (!(max_fibres >= 1.0f && (std::isinf(max_fibres) || max_fibres == std::floor(max_fibres))))
+            throw argument_error("fibre density: the cap must be a whole number of fibres, at least one, or none");
     }
     friend bool operator==(const fibre_density_parameters&, const fibre_density_parameters&) = default;
 };

@@ -52,8 +52,9 @@ struct interpolation {
         if (!fragments.empty() && one_optical_depth(fragments)) {
             // Every fragment adds the same b, so a layer's sum is a function of how many it took: counted
             // (sixteen at a time where the placement can), then read from this thread's repeated_sums,
-            // not added fragment by fragment. The same sums, bit for bit: dc:4 on curly 1.5M at 512x512
-            // built 1.10x faster (BENCHMARKS.md, issue 11).
+            // not added fragment by fragment: the same sums, bit for bit, without a chain of dependent
+            // adds per layer (BENCHMARKS.md, "A texel of one optical depth sums its layers from their
+            // counts").
             return finish_counted<Placement, Accumulation>(fragment_optical_depth(fragments[0]),
                                                            detail::layer_counts(placement, state, fragments, instructions), out);
         }
@@ -133,7 +134,7 @@ struct interpolation {
     }
     /// finish for several texels, the same values: their running sums advance layer by layer side by
     /// side, so that each texel's chain of dependent adds overlaps the others' (64 opacity maps: a
-    /// chain of 64 adds per texel, which finished one texel at a time took most of the tile's build).
+    /// chain of 64 adds per texel; BENCHMARKS.md, "Many layers streamed").
     template <class Placement, class Accumulation, std::size_t N>
         requires(Placement::cumulative)
     static void finish_several(const std::array<const accumulator<Placement, Accumulation>*, N>& sums,
