@@ -11,9 +11,8 @@
 #include <hairshadow/gl.hpp>
 #include <hairshadow/gl/egl_context.hpp>
 #include <hairshadow/gl/osmesa_context.hpp>
-#include <hairshadow/gl/registry.hpp>
 #include <hairshadow/io/load.hpp>
-#include <hairshadow/methods/registry.hpp>
+#include <hairshadow/methods/spec.hpp>
 
 #include "../tests/gl/compute_comparison.hpp"
 
@@ -57,10 +56,10 @@ struct outcome {
 };
 
 template <class Method>
-void check_and_time(const method_spec& spec, const hair_model& model, const gl::hair_mesh& mesh, const light_space& light, int repeat, GLuint query,
-                    outcome& all) {
+void check_and_time(const Method& method, const method_spec& spec, const hair_model& model, const gl::hair_mesh& mesh, const light_space& light,
+                    int repeat, GLuint query, outcome& all) {
     // The check: compute-built maps against the CPU's.
-    Method cpu = detail::method_of<Method>(spec);
+    Method cpu = method;
     std::vector<double> cpu_times;
     for (int i = 0; i <= repeat; ++i) {
         const auto start = std::chrono::steady_clock::now();
@@ -69,14 +68,14 @@ void check_and_time(const method_spec& spec, const hair_model& model, const gl::
     }
     gl::light_pass pass(gl::build_path::compute);
     pass.run(mesh, light);
-    auto checked = gl::detail::maps_of_spec<Method>(spec);
+    auto checked = gl::detail::maps_of_method(method);
     checked.build(pass);
     const auto c = test::compare_maps(cpu, checked, gl::detail::read_range(*pass.textures()), test::cpu_occupancy(model, light), light.resolution());
     all.exact = all.exact && c.exact();
     // The times: each path's full build (its own light pass included), the first build apart.
     timing times[2] = {{0, 0}, {0, 0}};
     for (const auto path : {gl::build_path::compute, gl::build_path::raster}) {
-        auto maps = gl::detail::maps_of_spec<Method>(spec);
+        auto maps = gl::detail::maps_of_method(method);
         maps.set_build_path(path);
         maps.build(mesh, light);
         glFinish();
@@ -139,10 +138,11 @@ int main(int argc, char** argv) {
                 std::printf("**%s**, %zu segments, %dx%d\n\n| method | compute, timer / wall (ms) | raster, timer / wall (ms) | raster / compute (wall) | CPU tiled (ms) | compute maps against the CPU's |\n"
                             "|---|---|---|---|---|---|\n",
                             name.substr(name.find_last_of('/') + 1).c_str(), model.segment_count(), res, res);
-                for (const char* text : {"dom:3", "occ:128:4", "osm:16", "dc:4", "adsm:auto"}) {
-                    const auto spec = parse_method_spec(text);
-                    detail::visit_method(spec, [&]<class Method>() { check_and_time<Method>(spec, model, mesh, light, repeat, query, all); });
-                }
+                for_each_example([&](const auto& example) { // the methods bench times by default, every family's
+                    using Method = typename std::decay_t<decltype(example)>::method_type;
+                    if constexpr (!std::is_same_v<Method, exact_reference>)
+                        if (example.lists & in_bench) check_and_time(Method(), parse_method_spec(example.spec), model, mesh, light, repeat, query, all);
+                });
                 std::printf("\n");
             }
         }

@@ -88,17 +88,22 @@ TEST_CASE("the measured fibre density equals the exact answer at evenly spaced s
 }
 
 TEST_CASE("adsm specs parse TressFX's parameters and refuse bad ones", "[methods][adsm][spec]") {
-    const auto plain = parse_method_spec("adsm");
-    CHECK(plain.family == method_family::adsm);
-    CHECK(plain.density == fibre_density_parameters{});
-    CHECK_FALSE(plain.measured_density);
-    CHECK(parse_method_spec("adsm:auto").measured_density);
-    CHECK(parse_method_spec("adsm:0.4:0.0021:0.35:8").density.max_fibres == 8.0f);
-    CHECK(std::isinf(parse_method_spec("adsm:0.4:0.0021:0.35").density.max_fibres)); // no cap unless asked
-    const auto given = parse_method_spec("adsm:0.5:0.002:0.3");
-    CHECK(given.density.spacing == 0.5f);
-    CHECK(given.density.radius == 0.002f);
-    CHECK(given.density.alpha == 0.3f);
+    // The parameters the registry builds with: the method it makes, and its reconstruction's.
+    const auto parameters = [](const char* text) {
+        auto map = make_shadow_map(text);
+        REQUIRE(map->method_if<approximate_deep_shadow_maps>() != nullptr);
+        return map->method_if<approximate_deep_shadow_maps>()->reconstruction().parameters();
+    };
+    CHECK(parse_method_spec("adsm").family == "adsm");
+    CHECK(parameters("adsm") == fibre_density_parameters{});
+    CHECK(make_shadow_map("adsm:auto")->method_if<measured_density_shadow_maps>() != nullptr);
+    CHECK(make_shadow_map("adsm")->method_if<measured_density_shadow_maps>() == nullptr);
+    CHECK(parameters("adsm:0.4:0.0021:0.35:8").max_fibres == 8.0f);
+    CHECK(std::isinf(parameters("adsm:0.4:0.0021:0.35").max_fibres)); // no cap unless asked
+    const auto given = parameters("adsm:0.5:0.002:0.3");
+    CHECK(given.spacing == 0.5f);
+    CHECK(given.radius == 0.002f);
+    CHECK(given.alpha == 0.3f);
     for (const char* bad : {"adsm:", "adsm:automatic", "adsm:auto:1", "adsm:1:1", "adsm:0:1:0.5", "adsm:1:-1:0.5", "adsm:1:1:1", "adsm:1:1:0",
                             "adsm:nan:1:0.5", "adsm:1:inf:0.5", "adsm:1:1:0.5:0.5", "adsm:1:1:0.5:inf", "adsm:1:1:0.5:1.5", "adsm:1:1:0.5:0", "adsm:1:1:0.5:08", "adsm:1:1:0.5:2:3", "adsm:8bit", "adsm:1e30:1e30:0.5", "adsm:x:1:0.5"}) {
         CAPTURE(bad);

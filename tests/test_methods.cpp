@@ -203,10 +203,13 @@ TEST_CASE("adopted maps answer like the maps they came from, and must fit the li
 }
 
 TEST_CASE("a method spec's counts are whole numbers written without a sign or a leading zero", "[methods][spec]") {
-    CHECK(parse_method_spec("dom:3").layers == 3);
-    CHECK(parse_method_spec("osm:16:gamma").layers == 16);
-    CHECK(parse_method_spec("occ:128:4:8bit").slabs == 4);
-    CHECK(parse_method_spec("rosm:8").layers == 8);
+    CHECK(parse_method_spec("dom:3").fields == std::vector<std::string>{"3"});
+    CHECK(parse_method_spec("osm:16:gamma").fields == std::vector<std::string>{"16", "gamma"});
+    const auto eight_bit = parse_method_spec("occ:128:4:8bit");
+    CHECK(eight_bit.family == "occ");
+    CHECK(eight_bit.fields == std::vector<std::string>{"128", "4"});
+    CHECK(eight_bit.accumulation == "8bit"); // a parameter like the others
+    CHECK(parse_method_spec("rosm:8").accumulation == "float");
     for (const char* bad : {"dom:03", "dc:04", "osm:016", "occ:0128:4", "occ:128:04", "docc:128:004", "rosm:08", "dom:00", "dom:+3", "dom:3.0",
                             "dom: 3", "dom:3 ", "osm:1e1", "dom:-3"}) {
         CAPTURE(bad);

@@ -2,6 +2,7 @@
 // `hairshadow animate`: the methods side by side over frames of moving hair, as an animated PNG (and an
 // MP4 where ffmpeg is installed), with a table of each method's error and flicker over time.
 #include <hairshadow/core/parallel.hpp>
+#include <hairshadow/methods/spec.hpp>
 
 #include <string>
 
@@ -13,7 +14,7 @@ struct animate_options {
     std::string model;
     std::string mesh;                      ///< an OBJ whose faces are the opaque mesh; procedural models get their sphere
     std::string light = "dir:0.6,-1,0.6";  ///< the light at time 0
-    std::string methods = "osm:16,dc:4,dom:3,occ:128:4";
+    std::string methods = hairshadow::example_spec_list(hairshadow::in_animate); ///< the registered families' animation examples
     motion_kind motion = motion_kind::both;
     int frames = 24;
     int fps = 12;

@@ -1,6 +1,7 @@
 #pragma once
 // `hairshadow figure`: the comparison figure of the papers' Figures 1, 3 and 5 (see figure.cpp).
 #include <hairshadow/core/parallel.hpp>
+#include <hairshadow/methods/spec.hpp>
 
 #include <string>
 
@@ -10,7 +11,7 @@ struct figure_options {
     std::string model = "procedural:curly";
     std::string mesh; ///< an OBJ whose faces are the opaque mesh; procedural models get their sphere
     std::string light = "dir:0.6,-1,0.6"; ///< from above and behind the left: the camera sees the self-shadowed side
-    std::string methods = "osm:16,osm:256,dc:4,dom:3,occ:128:4,adsm";
+    std::string methods = hairshadow::example_spec_list(hairshadow::in_figure); ///< the registered families' figure examples
     int resolution = 512;    ///< shadow maps
     int size = 400;          ///< each panel, in pixels
     int supersample = 3;     ///< render each panel at this many times its size on each side (1 to 8), then average

@@ -235,7 +235,7 @@ method_result evaluate(const method_spec& spec, lit_model& s, const map_options&
 /// A method spec for the chosen back end: the exact reference has no GL twin.
 method_spec parse_method_for(const std::string& text, const map_options& o) {
     auto spec = parse_method(text);
-    if (o.on_gl() && spec.family == method_family::dsm) throw usage_error("the exact reference (dsm) is CPU-only; use --backend cpu");
+    if (o.on_gl() && names_exact_reference(spec)) throw usage_error("the exact reference (" + spec.text + ") is CPU-only; use --backend cpu");
     return spec;
 }
 
@@ -461,7 +461,7 @@ void add_model(CLI::App* cmd, map_options& o, bool required = true) {
 }
 
 void add_map_options(CLI::App* cmd, map_options& o, bool with_method = true) {
-    if (with_method) cmd->add_option("--method", o.method, "method spec: " + std::string(method_grammar));
+    if (with_method) cmd->add_option("--method", o.method, "method spec: " + method_grammar());
     cmd->add_option("--light", o.light, "light spec: " + std::string(light_grammar));
     cmd->add_option("--res", o.resolution, "shadow map resolution")->check(CLI::Range(1, HAIRSHADOW_MAX_RESOLUTION));
     cmd->add_option("--alpha", o.alpha, "use this alpha for every fragment instead of the strand coverage")
@@ -534,23 +534,23 @@ int main(int argc, char** argv) {
     add_model(memory, o, false);
     add_map_options(memory, o);
 
-    std::string methods = "osm:16,osm:64,osm:256,dom:3,dom:4,dc:4,occ:128:4,adsm,adsm:auto,docc:128:4,dom:3:8bit,dsm:0.01";
+    std::string methods = example_spec_list(in_compare); // the registered families' comparison examples
     std::string out_dir;
     auto* compare = app.add_subcommand("compare", "compare methods with the exact reference at the model's points");
     add_model(compare, o);
     add_map_options(compare, o, false);
     add_query_options(compare, o);
     add_backend_options(compare, o);
-    compare->add_option("--methods", methods, "comma-separated method specs");
+    compare->add_option("--methods", methods, "comma-separated method specs")->capture_default_str();
     compare->add_option("--out", out_dir, "also write compare.md and compare.csv into this folder");
 
-    std::string bench_methods = "osm:16,osm:64,dom:3,dc:4,occ:128:4,adsm,adsm:auto,dsm";
+    std::string bench_methods = example_spec_list(in_bench);
     int repeat = 10, tile = raster_options{}.tile_size;
     auto* bench = app.add_subcommand("bench", "time full rebuilds (rasterise and build) of each method's maps on a model: a Markdown table");
     add_model(bench, o);
     add_map_options(bench, o, false);
     add_backend_options(bench, o);
-    bench->add_option("--methods", bench_methods, "comma-separated method specs");
+    bench->add_option("--methods", bench_methods, "comma-separated method specs")->capture_default_str();
     bench->add_option("--repeat", repeat, "rebuilds timed after the cold one, 1 to 10000")->check(CLI::Range(1, 10000));
     bench->add_option("--threads", o.threads, "worker threads; 0 = all cores");
     bench->add_option("--tile", tile,
@@ -565,7 +565,7 @@ int main(int argc, char** argv) {
     animate->add_option("MODEL", anim.model, "a .hair, .tfx, .data or .obj file, or " + std::string(procedural_grammar))->required();
     animate->add_option("--mesh", anim.mesh, "an OBJ whose faces are the opaque mesh (e.g. the Sintel head)");
     animate->add_option("--light", anim.light, "the light at the first frame: " + std::string(light_grammar));
-    animate->add_option("--methods", anim.methods, "comma-separated method specs; the exact reference is always the last panel");
+    animate->add_option("--methods", anim.methods, "comma-separated method specs; the exact reference is always the last panel")->capture_default_str();
     animate->add_option("--frames", anim.frames, "frames, 1 to 1000")->check(CLI::Range(1, 1000));
     animate->add_option("--fps", anim.fps, "frames per second, 1 to 100")->check(CLI::Range(1, 100));
     animate->add_option("--motion", motion, "sway (the hair), light (an orbit) or both")->check(CLI::IsMember({"sway", "light", "both"}));
@@ -585,7 +585,7 @@ int main(int argc, char** argv) {
     figure->add_option("--model", fig.model, "a model file or " + std::string(procedural_grammar) + " (procedural models stand on their sphere)");
     figure->add_option("--mesh", fig.mesh, "an OBJ whose faces are the opaque mesh (e.g. the Sintel head)");
     figure->add_option("--light", fig.light, "light spec: " + std::string(light_grammar));
-    figure->add_option("--methods", fig.methods, "comma-separated method specs between 'no shadows' and the exact reference");
+    figure->add_option("--methods", fig.methods, "comma-separated method specs between 'no shadows' and the exact reference")->capture_default_str();
     figure->add_option("--res", fig.resolution, "shadow map resolution")->check(CLI::Range(1, HAIRSHADOW_MAX_RESOLUTION));
     figure->add_option("--size", fig.size, "panel size in pixels")->check(CLI::Range(16, 4096));
     figure->add_option("--supersample", fig.supersample, "render each panel at N x N samples a pixel (1 to 8; --size times N at most 8192)")

@@ -3656,44 +3656,14 @@ private:
 
 // ---- begin hairshadow/methods/published.hpp
 /// @file
-/// The published methods as compositions of policies, and the hybrids that no paper describes.
+/// The published methods as compositions of policies, each in a header of its own with its
+/// registration, and the hybrids that no paper describes.
 
-// ---- begin hairshadow/accumulation/emulated_8bit.hpp
+// ---- begin hairshadow/methods/approximate_deep_shadow_maps.hpp
 /// @file
-/// Emulated 8-bit accumulation (Kim & Neumann 2001, section 2): an RGBA8 target with additive blending.
-/// Each fragment writes b / kappa, which GL converts to 8 bits (round to nearest) before the blend
-/// adds it with saturation; a stored value q stands for the optical depth kappa * q / 255, with
-/// exp(-kappa) = 2^-8 so that a full texel (q = 255) lets 1/256 of the light through.
+/// Approximate deep shadow maps, as AMD TressFX ships them, and our variant with each texel's fibre
+/// density measured. The spec `adsm[:SPACING:RADIUS:ALPHA[:MAX]]` or `adsm:auto`.
 
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
-#include <numbers>
-#include <string_view>
-
-namespace hairshadow {
-
-/// Every add quantised to 8 bits and saturated, as additive blending into an RGBA8 target does.
-struct emulated_8bit {
-    using value_type = std::uint8_t;
-    using sum_type = std::int32_t; ///< saturated at 255 after every add, exactly as the blend does
-    static constexpr std::string_view name = "8bit";
-    static constexpr std::string_view glsl_name = "accumulation/emulated_8bit";
-    /// exp(-kappa) = 2^-8: kappa = 8 ln 2, about 5.545 (the paper rounds it to 5.56).
-    static constexpr float kappa = 8.0f * std::numbers::ln2_v<float>;
-
-    /// The 8-bit step a fragment of optical depth b adds: its output b / kappa in unorm8.
-    static std::int32_t quantise(float optical_depth) noexcept {
-        return std::int32_t(std::lround(std::clamp(optical_depth / kappa, 0.0f, 1.0f) * 255.0f));
-    }
-    static sum_type add(sum_type sum, float optical_depth) noexcept { return std::min<sum_type>(sum + quantise(optical_depth), 255); }
-    static constexpr sum_type combine(sum_type a, sum_type b) noexcept { return std::min<sum_type>(a + b, 255); }
-    static constexpr value_type store(sum_type sum) noexcept { return value_type(std::min<sum_type>(sum, 255)); }
-    static constexpr float decode(value_type v) noexcept { return kappa * float(v) / 255.0f; }
-};
-
-} // namespace hairshadow
-// ---- end hairshadow/accumulation/emulated_8bit.hpp
 // ---- begin hairshadow/accumulation/float_accumulation.hpp
 /// @file
 /// Float accumulation: optical depths summed in 32-bit floats, as additive blending into RGBA32F does.
@@ -3716,6 +3686,7 @@ struct float_accumulation {
     using value_type = float;  ///< what a map texel stores
     using sum_type = float;    ///< what is summed while building
     static constexpr std::string_view name = "float";
+    static constexpr std::string_view summary = "float sums";
     static constexpr std::string_view glsl_name = "accumulation/float";
 
     /// Adds one fragment's optical depth.
@@ -3730,6 +3701,171 @@ struct float_accumulation {
 
 } // namespace hairshadow
 // ---- end hairshadow/accumulation/float_accumulation.hpp
+// ---- begin hairshadow/methods/method_family.hpp
+/// @file
+/// What a method registers once, beside it: a method family (`dom`, `occ`, ...) names its spec, says
+/// its grammar, checks a spec's fields and turns a spec into the method, with its parameters. The
+/// spec parser, the run-time registries (CPU and GL), the command line's lists, the fuzz dictionary
+/// and the tests' lists of methods all read the families registered in methods/registered.hpp.
+///
+/// A family is a type with:
+/// - `name`: the spec's first field (`"dom"`), and `grammar`: its help text (`"dom:K (K = 1..8)"`);
+/// - `examples`: a tuple of spec_example, specs of it with the methods they make and the command
+///   line's lists they appear in (the tests take every one);
+/// - `keywords`: the words its specs may hold besides numbers (for the fuzz dictionary);
+/// - `takes_accumulation`: whether a spec may end in another accumulation's name (`:8bit`);
+/// - `check(fields)`: throws spec_error unless the fields after the name are valid;
+/// - `visit<Accumulation>(fields, visit)`: calls visit(method) with the method of valid fields,
+///   made with their parameters (a shadow_method, or exact_reference for the exact map).
+
+
+#include <array>
+#include <concepts>
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace hairshadow {
+
+/// A bad method spec; what() quotes the valid grammar.
+class spec_error : public argument_error {
+public:
+    using argument_error::argument_error;
+};
+
+/// A parsed method spec: the family's name, the fields after it as written, and the accumulation, a
+/// parameter like the others: a registered accumulation's name, the default one's ("float") unless
+/// the spec ends in another's (`:8bit`).
+struct method_spec {
+    std::string text;                ///< the spec as given
+    std::string family;              ///< a registered family's name
+    std::vector<std::string> fields; ///< the fields after the name, the accumulation's left out ("128", "4" for occ:128:4:8bit)
+    std::string accumulation;        ///< a registered accumulation's name ("float", "8bit")
+    friend bool operator==(const method_spec&, const method_spec&) = default;
+};
+
+/// The exact reference, as a family's visit gives it: a deep shadow map, compressed to `tolerance`
+/// (Lokovic-Veach) where one is given.
+struct exact_reference {
+    std::optional<float> tolerance;
+};
+
+/// Where a family's example spec appears, besides the tests (which take every example).
+enum spec_lists : unsigned {
+    in_tests = 0,       ///< the tests' lists only
+    in_compare = 1,     ///< `hairshadow compare`'s default methods
+    in_bench = 2,       ///< `hairshadow bench`'s
+    in_figure = 4,      ///< the comparison figure's panels
+    in_animate = 8,     ///< `hairshadow animate`'s panels
+};
+
+/// A spec a family gives as an example, the method it makes (with default parameters, which the
+/// spec's must be) and the command line's default lists it is in (spec_lists).
+template <class Method>
+struct spec_example {
+    using method_type = Method;
+    std::string_view spec;
+    unsigned lists = in_tests;
+};
+
+/// The fields of a spec after its name, read for a family: each reader throws spec_error with the
+/// family's reason and the grammar where a field is not what the family needs.
+class spec_fields {
+public:
+    spec_fields(std::string_view text, std::span<const std::string> fields, std::string_view grammar) noexcept
+        : text_(text), fields_(fields), grammar_(grammar) {}
+
+    std::size_t size() const noexcept { return fields_.size(); }
+    std::string_view operator[](std::size_t i) const noexcept { return fields_[i]; }
+
+    /// A spec_error saying why the spec is bad, with the valid grammar.
+    spec_error bad(const std::string& why) const {
+        return spec_error("bad method spec '" + std::string(text_) + "': " + why + "; valid: " + std::string(grammar_));
+    }
+    /// Field i as a count: a whole number written as one would say it, with no sign and no leading
+    /// zero (dom:03 is a typo).
+    int whole(std::size_t i) const {
+        const std::string_view s = fields_[i];
+        if (s.size() > 1 && s[0] == '0') throw bad("'" + std::string(s) + "' has a leading zero");
+        try {
+            return detail::parse_number<int>(s, "count");
+        } catch (const argument_error&) {
+            throw bad("'" + std::string(s) + "' is not a whole number");
+        }
+    }
+    /// Field i as a finite real number; `what` names it in the error.
+    float real(std::size_t i, std::string_view what) const {
+        try {
+            return detail::parse_number<float>(fields_[i], what);
+        } catch (const argument_error&) {
+            throw bad("the " + std::string(what) + " '" + std::string(fields_[i]) + "' is not a number");
+        }
+    }
+
+private:
+    std::string_view text_;
+    std::span<const std::string> fields_;
+    std::string_view grammar_;
+};
+
+/// Allowed values of a family's size parameter, in a list that with_size dispatches on.
+template <int... Sizes>
+struct size_list {
+    static constexpr std::array<int, sizeof...(Sizes)> values{Sizes...};
+    static constexpr bool contains(int n) noexcept { return ((n == Sizes) || ...); }
+};
+
+/// Calls visit(std::integral_constant<int, n>) for the n of `Sizes` equal to `value`; false if none is.
+template <class Sizes, std::size_t I = 0, class Visit>
+bool with_size(int value, Visit&& visit) {
+    if constexpr (I == Sizes::values.size()) {
+        return false;
+    } else {
+        if (value == Sizes::values[I]) return visit(std::integral_constant<int, Sizes::values[I]>{}), true;
+        return with_size<Sizes, I + 1>(value, visit);
+    }
+}
+
+/// What a method family provides (see the file's comment).
+template <class F>
+concept method_family = requires(const spec_fields& fields) {
+    { F::name } -> std::convertible_to<std::string_view>;
+    { F::grammar } -> std::convertible_to<std::string_view>;
+    { F::takes_accumulation } -> std::convertible_to<bool>;
+    std::tuple_size<std::remove_const_t<decltype(F::examples)>>::value;
+    F::keywords.size();
+    F::check(fields);
+};
+
+/// The families a registry knows, in the order its lists give them.
+template <method_family... Families>
+struct family_list {
+    /// Calls f.template operator()<Family>() for each family, in order, until it returns true;
+    /// whether one did.
+    template <class F>
+    static bool any(F&& f) {
+        return (f.template operator()<Families>() || ...);
+    }
+};
+
+/// The accumulations a spec may name by their `name` as its last field (the first is the default,
+/// written without one).
+template <class... Accumulations>
+struct accumulation_list {
+    template <class F>
+    static bool any(F&& f) {
+        return (f.template operator()<Accumulations>() || ...);
+    }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/methods/method_family.hpp
 // ---- begin hairshadow/methods/shadow_method.hpp
 /// @file
 /// A shadow method composed of a placement, an accumulation and a reconstruction policy, with its
@@ -5536,6 +5672,866 @@ private:
 
 } // namespace hairshadow
 // ---- end hairshadow/methods/shadow_method.hpp
+// ---- begin hairshadow/placement/depth_range.hpp
+/// @file
+/// Occupancy maps' per-texel depth range (Sintorn & Assarsson 2009, section 3.1): the nearest and
+/// furthest fragment of each texel bound S equal slices, so that every slice lies inside the hair.
+
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+namespace hairshadow {
+
+/// S slices between each texel's nearest and furthest fragment.
+/// @tparam S number of slices (128 in the paper)
+template <int S>
+class depth_range {
+    static_assert(S >= 1, "depth_range needs at least one slice");
+
+public:
+    static constexpr int layer_count = S;
+    static constexpr bool cumulative = true; ///< read as opacity slices when interpolated
+    /// Each texel's state depends on its fragments' depths as a set (nearest and furthest), not their
+    /// order (order_free_maps).
+    static constexpr bool fragment_order_free = true;
+    static constexpr bool contiguous = true;
+    static constexpr std::string_view name = "depth_range";
+    static constexpr std::string_view glsl_name = "placement/depth_range";
+    /// The depth-range map (MIN / MAX blending on GL).
+    struct texel_state {
+        float nearest = 0.0f;
+        float furthest = 0.0f;
+        friend bool operator==(const texel_state&, const texel_state&) = default;
+    };
+
+    void prepare(const fragment_buffer&) const noexcept {}
+    void prepare(const depth_extent&) const noexcept {}
+    template <class Fragment>
+    void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
+        if (fragments.empty()) return;
+        const auto range = detail::depth_range_of(fragments);
+        texel_state_from(range.nearest, range.furthest, s);
+    }
+    /// The texel's state from its nearest and furthest fragment (per_pixel_depth::texel_state_from).
+    void texel_state_from(float nearest, float furthest, texel_state& s) const noexcept { s.nearest = nearest, s.furthest = furthest; }
+    /// Depth of slice boundary k in [0, S] (never a fused multiply-add, so that every build, and
+    /// assign_each_avx512, places a boundary on the same float).
+    float boundary(const texel_state& s, int k) const noexcept {
+        return s.nearest + detail::rounded((s.furthest - s.nearest) * (float(k) / float(S)));
+    }
+    /// The slice floor(S (z - near) / (far - near)) of the paper, the furthest fragment in the last.
+    int assign(const texel_state& s, float depth) const noexcept {
+        if (!(s.furthest > s.nearest)) return 0;
+        return std::clamp(slice_of(s, depth), 0, S - 1);
+    }
+#if HAIRSHADOW_AVX512_WALK
+    /// assign() for fragment i of a tile, layers[i] = assign(states[texels[i]], depths[i]), sixteen at
+    /// a time (placement/assign_each.hpp): the same estimate, settled against the same boundaries,
+    /// lane by lane, one step at a time while any lane still moves.
+    HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state* states, std::span<const std::uint32_t> texels,
+                                                     std::span<const float> depths, std::int32_t* layers) const noexcept {
+        static_assert(sizeof(texel_state) == 2 * sizeof(float) && offsetof(texel_state, furthest) == sizeof(float));
+        const float* ranges = reinterpret_cast<const float*>(states);
+        const __m512 slices = _mm512_set1_ps(float(S));
+        for (std::size_t i = 0; i < texels.size(); i += 16) {
+            const __mmask16 lanes = detail::avx512::first_lanes(texels.size() - i);
+            const __m512i texel = _mm512_maskz_loadu_epi32(lanes, texels.data() + i);
+            const __m512 depth = _mm512_maskz_loadu_ps(lanes, depths.data() + i);
+            const __m512 nearest = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, texel, ranges, 8);
+            const __m512 furthest = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, texel, ranges + 1, 8);
+            const __m512 span = _mm512_sub_ps(furthest, nearest);
+            const __mmask16 ranged = _mm512_mask_cmp_ps_mask(lanes, furthest, nearest, _CMP_GT_OQ); // else slice 0
+            // settle_layer: the estimate's whole part (0 for NaN and negatives), then down and up.
+            const __m512 estimate = _mm512_mul_ps(_mm512_div_ps(_mm512_sub_ps(depth, nearest), span), slices);
+            const __mmask16 positive = _mm512_mask_cmp_ps_mask(ranged, estimate, _mm512_setzero_ps(), _CMP_GT_OQ);
+            __m512i k = _mm512_maskz_cvttps_epi32(positive, _mm512_min_ps(estimate, slices));
+            k = detail::avx512::settle_layers(k, depth, ranged, S, [=](__m512i j, __mmask16) HAIRSHADOW_AVX512_TARGET {
+                return boundary_avx512(nearest, span, j);
+            });
+            k = _mm512_min_epi32(k, _mm512_set1_epi32(S - 1)); // never negative: it starts at 0 or above and stops there
+            _mm512_mask_storeu_epi32(layers + i, lanes, k);
+        }
+    }
+#endif
+    layer_position locate(const texel_state& s, float depth) const noexcept {
+        if (!(s.furthest > s.nearest)) return depth > s.nearest ? layer_position{S, 0.0f} : layer_position{-1, 0.0f};
+        if (!(depth >= s.nearest)) return {-1, 0.0f};
+        const int k = slice_of(s, depth);
+        if (k >= S) return {S, 0.0f};
+        return detail::position_in(k, depth, boundary(s, k), boundary(s, k + 1));
+    }
+    static constexpr std::size_t global_bytes() noexcept { return 0; }
+
+private:
+#if HAIRSHADOW_AVX512_WALK
+    /// boundary(k) for each lane's texel (nearest, and span = furthest - nearest) and k.
+    HAIRSHADOW_AVX512_TARGET static __m512 boundary_avx512(__m512 nearest, __m512 span, __m512i k) noexcept {
+        const __m512 fraction = _mm512_div_ps(_mm512_cvtepi32_ps(k), _mm512_set1_ps(float(S)));
+        return _mm512_add_ps(nearest, detail::avx512::rounded(_mm512_mul_ps(span, fraction)));
+    }
+#endif
+    /// The k with boundary(k) <= depth < boundary(k + 1), or S past the furthest boundary, settled
+    /// against the boundaries so that slab boundaries are exact.
+    int slice_of(const texel_state& s, float depth) const noexcept {
+        return detail::settle_layer((depth - s.nearest) / (s.furthest - s.nearest) * float(S), S, depth,
+                                    [&](int i) { return boundary(s, i); });
+    }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/placement/depth_range.hpp
+// ---- begin hairshadow/placement/per_pixel_depth.hpp
+/// @file
+/// Deep opacity maps' per-pixel layers (Yuksel & Keyser 2008, section 3): a depth pass gives each
+/// texel the depth z0 of its first fragment; layer k spans [z0 + d_{k-1}, z0 + d_k) with d_0 = 0, the
+/// same d_k for every texel. A fragment adds to its layer and every later one.
+
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <type_traits>
+#include <span>
+#include <string_view>
+
+namespace hairshadow {
+
+/// How layer sizes grow with depth.
+enum class layer_sizes {
+    linear,  ///< layer k is k times as deep as the first (the paper's choice, section 5)
+    uniform, ///< all layers equally deep
+};
+
+/// What happens to fragments beyond the last layer, z0 + d_K (Yuksel & Keyser, section 3).
+enum class beyond_last_layer {
+    ignore, ///< they cast no shadow
+    clamp,  ///< they join the last layer (the paper's choice: "usually gave reasonable results")
+    extend, ///< each texel's layers are stretched to reach its last fragment
+};
+
+/// K layers starting at each texel's first fragment.
+/// @tparam K number of layers
+/// @tparam Sizes how layer depths grow
+/// @tparam Beyond what happens to fragments beyond the last layer
+template <int K, layer_sizes Sizes = layer_sizes::linear, beyond_last_layer Beyond = beyond_last_layer::clamp>
+class per_pixel_depth {
+    static_assert(K >= 1, "per_pixel_depth needs at least one layer");
+
+public:
+    static constexpr int layer_count = K;
+    static constexpr bool cumulative = true;
+    /// Each texel's state depends on its fragments' depths as a set (nearest and furthest), not their
+    /// order (order_free_maps).
+    static constexpr bool fragment_order_free = true;
+    static constexpr bool contiguous = true;
+    static constexpr std::string_view name = "per_pixel_depth";
+    static constexpr std::string_view glsl_name = "placement/per_pixel_depth";
+
+    /// The depth map (z0), plus the stretch factor when layers extend to the last fragment.
+    struct z0_only {
+        float z0 = 0.0f;
+        friend bool operator==(const z0_only&, const z0_only&) = default;
+    };
+    struct z0_and_scale {
+        float z0 = 0.0f;
+        float scale = 1.0f;
+        friend bool operator==(const z0_and_scale&, const z0_and_scale&) = default;
+    };
+    using texel_state = std::conditional_t<Beyond == beyond_last_layer::extend, z0_and_scale, z0_only>;
+    static_assert(sizeof(z0_only) == sizeof(float) && sizeof(z0_and_scale) == 2 * sizeof(float) && offsetof(z0_and_scale, scale) == sizeof(float),
+                  "assign_each_avx512 gathers z0 and the stretch as floats");
+
+    /// Layers covering `extent` in linear depth in total (d_K); by default half the depth range of the
+    /// whole map, a choice of ours: the paper leaves d_k to the user.
+    per_pixel_depth() = default;
+    explicit per_pixel_depth(float extent) : requested_extent_(extent) {
+        if (!(extent > 0.0f && extent <= 1.0f)) throw argument_error("per_pixel_depth: the layer extent must be in (0, 1]");
+    }
+
+    void prepare(const fragment_buffer& fragments) noexcept { prepare(extent_of(fragments)); }
+    /// The same from the map's depth extent (the GL back end reduces it from its depth-range map).
+    void prepare(const depth_extent& e) noexcept {
+        extent_ = requested_extent_ ? *requested_extent_ : std::max(0.5f * (e.furthest - e.nearest), 1e-6f);
+    }
+    /// The depth pass: z0 is the nearest fragment (and, to extend, the furthest sets the stretch).
+    template <class Fragment>
+    void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
+        if (fragments.empty()) return;
+        const auto range = detail::depth_range_of(fragments);
+        texel_state_from(range.nearest, range.furthest, s);
+    }
+    /// The texel's state from its nearest and furthest fragment: all the depth pass needs, so that a
+    /// build which sees the texel's fragments among other texels' can reduce them as they come.
+    void texel_state_from(float nearest, float furthest, texel_state& s) const noexcept {
+        s.z0 = nearest;
+        if constexpr (Beyond == beyond_last_layer::extend) s.scale = std::max(1.0f, detail::just_above(furthest - nearest) / extent_);
+        else (void)furthest;
+    }
+
+    /// d_k / d_K for layer boundary k in [0, K].
+    static constexpr float relative_boundary(int k) noexcept {
+        if constexpr (Sizes == layer_sizes::linear) return float(k * (k + 1)) / float(K * (K + 1));
+        else return float(k) / float(K);
+    }
+    /// relative_boundary(k) for k in [0, K], computed once.
+    static constexpr std::array<float, std::size_t(K) + 1> relative_boundaries = [] {
+        std::array<float, std::size_t(K) + 1> b{};
+        for (int k = 0; k <= K; ++k) b[std::size_t(k)] = relative_boundary(k);
+        return b;
+    }();
+    /// Depth of boundary k in [0, K] of a texel: z0 + d_k.
+    float boundary(const texel_state& s, int k) const noexcept { return s.z0 + span_of(s) * relative_boundary(k); }
+
+    int assign(const texel_state& s, float depth) const noexcept {
+        if constexpr (K <= 8) {
+            // The layer locate() settles on, counted without a branch (the build calls this for every
+            // fragment, and which layer comes next is anybody's guess): the boundaries d_1..d_K the
+            // depth has reached. They increase, so the count is the one k with d_k <= rel < d_k+1; K
+            // means beyond the last layer; NaN and depths in front reach none.
+            const float rel = (depth - s.z0) / span_of(s);
+            int k = 0;
+            for (int i = 1; i <= K; ++i) k += int(rel >= relative_boundaries[std::size_t(i)]);
+            if constexpr (Beyond == beyond_last_layer::ignore) return k == K ? -1 : k;
+            else return std::min(k, K - 1);
+        } else {
+            const auto p = locate(s, depth);
+            if (p.index < 0) return 0;
+            if (p.index >= K) return Beyond == beyond_last_layer::ignore ? -1 : K - 1;
+            return p.index;
+        }
+    }
+#if HAIRSHADOW_AVX512_WALK
+    /// assign() for fragment i of a tile, layers[i] = assign(states[texels[i]], depths[i]), sixteen at
+    /// a time (placement/assign_each.hpp): z0 (and the stretch) gathered from the texels' states, the
+    /// same subtraction and division lane by lane, then assign's boundary count (K <= 8) or locate's
+    /// estimate settled against the same boundaries. The settled layer does not depend on the
+    /// estimate, only on the boundaries, so the estimate need not match locate's to the bit.
+    HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state* states, std::span<const std::uint32_t> texels,
+                                                     std::span<const float> depths, std::int32_t* layers) const noexcept {
+        constexpr int stride = int(sizeof(texel_state)); // the gathers' scale: 4 or 8 bytes a texel
+        const float* z0s = reinterpret_cast<const float*>(states);
+        const __m512 extent = _mm512_set1_ps(extent_);
+        for (std::size_t i = 0; i < texels.size(); i += 16) {
+            const __mmask16 lanes = detail::avx512::first_lanes(texels.size() - i);
+            const __m512i texel = _mm512_maskz_loadu_epi32(lanes, texels.data() + i);
+            const __m512 depth = _mm512_maskz_loadu_ps(lanes, depths.data() + i);
+            const __m512 z0 = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, texel, z0s, stride);
+            __m512 span = extent;
+            if constexpr (Beyond == beyond_last_layer::extend)
+                span = _mm512_mul_ps(extent, _mm512_mask_i32gather_ps(_mm512_set1_ps(1.0f), lanes, texel, z0s + 1, stride));
+            const __m512 rel = _mm512_div_ps(_mm512_sub_ps(depth, z0), span);
+            __m512i layer; // the boundaries d_1..d_K reached: K beyond the last layer, 0 in front and for NaN
+            if constexpr (K <= 8) layer = detail::avx512::boundaries_reached<K>(rel, relative_boundaries.data() + 1);
+            else layer = settled_layer_avx512(rel, lanes);
+            if constexpr (Beyond == beyond_last_layer::ignore)
+                layer = _mm512_mask_set1_epi32(layer, _mm512_cmpeq_epi32_mask(layer, _mm512_set1_epi32(K)), -1);
+            else layer = _mm512_min_epi32(layer, _mm512_set1_epi32(K - 1));
+            _mm512_mask_storeu_epi32(layers + i, lanes, layer);
+        }
+    }
+#endif
+    layer_position locate(const texel_state& s, float depth) const noexcept {
+        const float rel = (depth - s.z0) / span_of(s);
+        if (!(rel >= 0.0f)) return {-1, 0.0f};
+        if (rel >= 1.0f) return {K, 0.0f};
+        float estimate; // closed form of the layer, settled against the boundaries below
+        if constexpr (Sizes == layer_sizes::linear) estimate = (std::sqrt(1.0f + 4.0f * rel * float(K * (K + 1))) - 1.0f) * 0.5f;
+        else estimate = rel * float(K);
+        const int k = detail::settle_layer(estimate, K - 1, rel, [](int i) { return relative_boundaries[std::size_t(i)]; });
+        return detail::position_in(k, rel, relative_boundaries[std::size_t(k)], relative_boundaries[std::size_t(k + 1)]);
+    }
+    static constexpr std::size_t global_bytes() noexcept { return sizeof(float); }
+    /// d_K in linear depth.
+    float extent() const noexcept { return extent_; }
+    /// d_K as given to the constructor; none: half the map's depth range.
+    std::optional<float> requested_extent() const noexcept { return requested_extent_; }
+
+private:
+#if HAIRSHADOW_AVX512_WALK
+    /// For K > 8, per lane, locate()'s layer of `rel`: 0 in front (and for NaN), K from 1 on, else the
+    /// k with d_k <= rel < d_k+1, settled from the closed-form estimate one step at a time.
+    HAIRSHADOW_AVX512_TARGET static __m512i settled_layer_avx512(__m512 rel, __mmask16 lanes) noexcept {
+        const __m512 last = _mm512_set1_ps(float(K - 1));
+        const float* d = relative_boundaries.data();
+        const __mmask16 inside = _mm512_mask_cmp_ps_mask(_mm512_mask_cmp_ps_mask(lanes, rel, _mm512_setzero_ps(), _CMP_GE_OQ), rel,
+                                                         _mm512_set1_ps(1.0f), _CMP_LT_OQ);
+        __m512 estimate;
+        if constexpr (Sizes == layer_sizes::linear) {
+            const __m512 root = _mm512_sqrt_ps(_mm512_add_ps(_mm512_set1_ps(1.0f), _mm512_mul_ps(rel, _mm512_set1_ps(4.0f * float(K * (K + 1))))));
+            estimate = _mm512_mul_ps(_mm512_sub_ps(root, _mm512_set1_ps(1.0f)), _mm512_set1_ps(0.5f));
+        } else {
+            estimate = _mm512_mul_ps(rel, _mm512_set1_ps(float(K)));
+        }
+        const __mmask16 positive = _mm512_mask_cmp_ps_mask(inside, estimate, _mm512_setzero_ps(), _CMP_GT_OQ);
+        __m512i k = _mm512_maskz_cvttps_epi32(positive, _mm512_min_ps(estimate, last));
+        k = detail::avx512::settle_layers(k, rel, inside, K - 1, [=](__m512i j, __mmask16 movable) HAIRSHADOW_AVX512_TARGET {
+            return _mm512_mask_i32gather_ps(rel, movable, j, d, 4);
+        });
+        // Beyond the last boundary (rel >= 1): K; in front or NaN: 0, as assign maps locate's -1.
+        const __mmask16 beyond = _mm512_mask_cmp_ps_mask(lanes, rel, _mm512_set1_ps(1.0f), _CMP_GE_OQ);
+        return _mm512_mask_mov_epi32(_mm512_maskz_mov_epi32(inside, k), beyond, _mm512_set1_epi32(K));
+    }
+#endif
+    float span_of(const texel_state& s) const noexcept {
+        if constexpr (Beyond == beyond_last_layer::extend) return extent_ * s.scale;
+        else return extent_;
+    }
+    std::optional<float> requested_extent_;
+    float extent_ = 1.0f;
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/placement/per_pixel_depth.hpp
+// ---- begin hairshadow/reconstruction/fibre_density.hpp
+/// @file
+/// Reconstruction by an assumed fibre density: approximate deep shadow maps, as AMD TressFX ships them
+/// (TressFXLighting.hlsl, ComputeShadowAttenuation). A texel keeps only its first fragment's depth z0
+/// (per_pixel_depth's depth map); a point d world units behind it lies behind
+/// n = d / (fibre spacing x fibre radius) fibres, at least one once d > 1e-5, and T = (1 - alpha)^n.
+/// TressFX counts every fibre: its settings hold m_HairMaxShadowFibers = 50 and upload it, but
+/// ComputeShadowAttenuation never reads it, so no cap is the default here; a cap is an option
+/// (fibre_density_parameters::max_fibres). The measured variant takes the density from the texel's own
+/// fragments instead: their count over their depth span (depth_range's nearest and furthest).
+
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string>
+#include <string_view>
+#include <type_traits>
+
+namespace hairshadow {
+
+/// Where the fibre density comes from.
+enum class fibre_density_source {
+    fixed,    ///< the parameters' constant density, TressFX's model
+    measured, ///< each texel's fragment count over its depth span, with the fragments' mean opacity
+};
+
+/// TressFX's hair shadow parameters (TressFXSettings.h defaults), in the model's world units.
+struct fibre_density_parameters {
+    float spacing = 0.4f;    ///< fibre spacing, in fibre radii
+    float radius = 0.0021f;  ///< fibre radius, world units
+    float alpha = 0.35f;     ///< opacity of one fibre
+    /// Fibres counted at most: a whole number, or infinity for none (TressFX's shader counts them all;
+    /// its unread m_HairMaxShadowFibers is 50).
+    float max_fibres = std::numeric_limits<float>::infinity();
+
+    /// World depth per fibre along the light.
+    float fibre_step() const noexcept { return spacing * radius; }
+    /// -ln(1 - alpha): one fibre's optical depth.
+    float fibre_optical_depth() const noexcept { return -std::log1p(-alpha); }
+    /// Throws argument_error unless spacing and radius are positive and finite, alpha is in (0, 1)
+    /// and the cap is infinite or a whole number of fibres, at least one.
+    void check() const {
+        const auto positive = [](float v) { return std::isfinite(v) && v > 0.0f; };
+        if (!positive(spacing) || !positive(radius) || !positive(fibre_step()))
+            throw argument_error("fibre density: spacing and radius must be positive and finite, and so must their product");
+        if (!(alpha > 0.0f && alpha < 1.0f)) throw argument_error("fibre density: the fibre alpha must be in (0, 1)");
+        if (!(max_fibres >= 1.0f && (std::isinf(max_fibres) || max_fibres == std::floor(max_fibres))))
+            throw argument_error("fibre density: the cap must be a whole number of fibres, at least one, or none");
+    }
+    friend bool operator==(const fibre_density_parameters&, const fibre_density_parameters&) = default;
+};
+
+namespace detail {
+/// A point this little behind the first fragment is still on it: TressFX's 1e-5 world units, and at
+/// least four float steps of a linear depth near 1, so that rounding never puts a point on the first
+/// fibre behind it (CPU and GL compute depths in their own order).
+inline constexpr float on_first_fibre = 1e-5f;
+inline constexpr float on_first_fibre_depth = 2.5e-7f;
+
+template <class P>
+concept first_fragment_state = requires(const typename P::texel_state& s) { s.z0; } || requires(const typename P::texel_state& s) { s.nearest; };
+template <class P>
+concept fragment_span_state = requires(const typename P::texel_state& s) {
+    s.nearest;
+    s.furthest;
+};
+} // namespace detail
+
+/// Optical depth from an assumed density of fibres behind each texel's first fragment.
+/// @tparam Source the parameters' constant density (TressFX) or each texel's measured one
+template <fibre_density_source Source = fibre_density_source::fixed>
+class fibre_density {
+public:
+    static constexpr std::string_view name = "fibre_density";
+    static constexpr std::string_view glsl_name = "reconstruction/fibre_density";
+
+    /// The fixed density needs the first fragment (per_pixel_depth's z0 or depth_range's nearest); the
+    /// measured one also the last (depth_range).
+    template <class Placement>
+    static constexpr bool accepts =
+        Source == fibre_density_source::fixed ? detail::first_fragment_state<Placement> : detail::fragment_span_state<Placement>;
+
+    struct covered {
+        bool any = false; ///< the texel has a fragment (else it casts no shadow)
+        friend bool operator==(const covered&, const covered&) = default;
+    };
+    template <class Accumulation>
+    struct measured {
+        typename Accumulation::value_type optical_depth{}; ///< sum of the fragments' b
+        std::uint32_t fragments = 0;
+        friend bool operator==(const measured&, const measured&) = default;
+    };
+    /// Fixed density: only whether the texel is covered; measured: the texel's fragments summed.
+    template <class Placement, class Accumulation>
+    using storage = std::conditional_t<Source == fibre_density_source::fixed, covered, measured<Accumulation>>;
+
+    explicit fibre_density(fibre_density_parameters parameters = {}) : parameters_(parameters) { parameters_.check(); }
+
+    /// The light's world depth per unit of linear depth, which turns depths into fibre counts.
+    void prepare(const light_space& light) noexcept { depth_scale_ = light.far_plane() - light.near_plane(); }
+
+    template <class Placement, class Accumulation, class Fragment>
+    static void build(const Placement&, const typename Placement::texel_state&, std::span<const Fragment> fragments,
+                      storage<Placement, Accumulation>& out) {
+        if constexpr (Source == fibre_density_source::fixed) {
+            out.any = !fragments.empty();
+        } else {
+            typename Accumulation::sum_type sum{};
+            for (const auto& f : fragments) sum = Accumulation::add(sum, fragment_optical_depth(f));
+            out.optical_depth = Accumulation::store(sum);
+            out.fragments = std::uint32_t(fragments.size());
+        }
+    }
+
+    /// Fibres in front of linear depth `depth`, and the optical depth each one has.
+    template <class Placement, class Accumulation>
+    float optical_depth(const Placement& placement, const typename Placement::texel_state& state, const storage<Placement, Accumulation>& in,
+                        float depth) const noexcept {
+        const float z0 = placement.boundary(state, 0); // the first fragment
+        const float behind = (depth - z0) * depth_scale_;  // world units behind it
+        if (!(behind > detail::on_first_fibre) || !(depth - z0 > detail::on_first_fibre_depth)) return 0.0f;
+        if constexpr (Source == fibre_density_source::fixed) {
+            if (!in.any) return 0.0f;
+            const float fibres = std::clamp(behind / parameters_.fibre_step(), 1.0f, parameters_.max_fibres);
+            return fibres * parameters_.fibre_optical_depth();
+        } else {
+            if (in.fragments == 0) return 0.0f;
+            // n fragments over the span from first to last: n - 1 gaps, so the k-th fragment behind the
+            // first is reached at k gaps and a point on it has k fibres in front, as the exact map says
+            // for evenly spaced fragments; behind the last all n are in front.
+            const float count = float(in.fragments);
+            const float span = state.furthest - state.nearest;
+            const float fibres = span > 0.0f && depth <= state.furthest ? std::clamp((depth - z0) / span * (count - 1.0f), 1.0f, count) : count;
+            return fibres * (Accumulation::decode(in.optical_depth) / count);
+        }
+    }
+
+    /// Maps a texel stores, for inspection: none for the fixed density, the texel's summed optical
+    /// depth for the measured one.
+    template <class Placement>
+    static constexpr int stored_maps = Source == fibre_density_source::fixed ? 0 : 1;
+    template <class Placement, class Accumulation>
+    static float stored_optical_depth(const storage<Placement, Accumulation>& in, int) noexcept {
+        if constexpr (Source == fibre_density_source::fixed) return 0.0f;
+        else return Accumulation::decode(in.optical_depth);
+    }
+
+    const fibre_density_parameters& parameters() const noexcept { return parameters_; }
+    /// World units per unit of linear depth, from the last prepare().
+    float depth_scale() const noexcept { return depth_scale_; }
+
+private:
+    fibre_density_parameters parameters_;
+    float depth_scale_ = 1.0f;
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/reconstruction/fibre_density.hpp
+
+namespace hairshadow {
+
+/// Approximate deep shadow maps, as AMD TressFX ships them: one depth map (deep opacity maps' z0, no
+/// layers) and a constant density of fibres behind the first (fibre_density_parameters).
+using approximate_deep_shadow_maps = shadow_method<per_pixel_depth<1>, float_accumulation, fibre_density<fibre_density_source::fixed>>;
+
+/// Approximate deep shadow maps with each texel's density measured: occupancy maps' depth range and
+/// the texel's summed optical depth (one opacity layer), spread over its fragment count.
+using measured_density_shadow_maps = shadow_method<depth_range<1>, float_accumulation, fibre_density<fibre_density_source::measured>>;
+
+/// The registration of both (methods/method_family.hpp): `adsm` with TressFX's parameters, or given
+/// ones, and `adsm:auto` with each texel's measured density.
+struct approximate_deep_shadow_maps_family {
+    static constexpr std::string_view name = "adsm";
+    static constexpr std::string_view grammar =
+        "adsm[:SPACING:RADIUS:ALPHA[:MAX]] (TressFX's approximate deep shadow maps: fibre spacing in radii, fibre radius in world "
+        "units, fibre alpha, and optionally a cap on the fibres counted, a whole number; default 0.4:0.0021:0.35 and no cap, as "
+        "TressFX's shader) | adsm:auto (each texel's measured fibre density)";
+    static constexpr bool takes_accumulation = false;
+    static constexpr auto examples = std::make_tuple(spec_example<approximate_deep_shadow_maps>{"adsm", in_compare | in_bench | in_figure},
+                                                     spec_example<measured_density_shadow_maps>{"adsm:auto", in_compare | in_bench});
+    static constexpr auto keywords = std::to_array<std::string_view>({"auto"});
+
+    /// The fibre parameters of valid fields (TressFX's where none are given).
+    static fibre_density_parameters parameters(const spec_fields& f) {
+        fibre_density_parameters p;
+        if (f.size() < 3) return p;
+        p.spacing = f.real(0, "fibre spacing");
+        p.radius = f.real(1, "fibre radius");
+        p.alpha = f.real(2, "fibre alpha");
+        if (f.size() == 4) {
+            const int cap = f.whole(3);
+            if (cap < 1) throw f.bad("the fibre cap must be at least one fibre");
+            p.max_fibres = float(cap);
+        }
+        return p;
+    }
+    static void check(const spec_fields& f) {
+        if (f.size() == 1) {
+            if (f[0] != "auto") throw f.bad("adsm takes auto or SPACING:RADIUS:ALPHA[:MAX]");
+            return;
+        }
+        if (f.size() != 0 && f.size() != 3 && f.size() != 4) throw f.bad("adsm takes auto or SPACING:RADIUS:ALPHA[:MAX]");
+        try {
+            parameters(f).check();
+        } catch (const spec_error&) {
+            throw;
+        } catch (const argument_error& e) {
+            throw f.bad(e.what());
+        }
+    }
+    template <class Accumulation, class Visit>
+    static bool visit(const spec_fields& f, Visit&& visit) {
+        if (f.size() == 1) visit(measured_density_shadow_maps());
+        else visit(approximate_deep_shadow_maps(per_pixel_depth<1>(), fibre_density<>(parameters(f))));
+        return true;
+    }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/methods/approximate_deep_shadow_maps.hpp
+// ---- begin hairshadow/methods/deep_opacity_maps.hpp
+/// @file
+/// Deep opacity maps (Yuksel & Keyser 2008): K layers from each texel's first fragment. The spec
+/// `dom:K`.
+
+// ---- begin hairshadow/accumulation/emulated_8bit.hpp
+/// @file
+/// Emulated 8-bit accumulation (Kim & Neumann 2001, section 2): an RGBA8 target with additive blending.
+/// Each fragment writes b / kappa, which GL converts to 8 bits (round to nearest) before the blend
+/// adds it with saturation; a stored value q stands for the optical depth kappa * q / 255, with
+/// exp(-kappa) = 2^-8 so that a full texel (q = 255) lets 1/256 of the light through.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <string_view>
+
+namespace hairshadow {
+
+/// Every add quantised to 8 bits and saturated, as additive blending into an RGBA8 target does.
+struct emulated_8bit {
+    using value_type = std::uint8_t;
+    using sum_type = std::int32_t; ///< saturated at 255 after every add, exactly as the blend does
+    static constexpr std::string_view name = "8bit";
+    static constexpr std::string_view summary = "emulated 8-bit accumulation";
+    static constexpr std::string_view glsl_name = "accumulation/emulated_8bit";
+    /// exp(-kappa) = 2^-8: kappa = 8 ln 2, about 5.545 (the paper rounds it to 5.56).
+    static constexpr float kappa = 8.0f * std::numbers::ln2_v<float>;
+
+    /// The 8-bit step a fragment of optical depth b adds: its output b / kappa in unorm8.
+    static std::int32_t quantise(float optical_depth) noexcept {
+        return std::int32_t(std::lround(std::clamp(optical_depth / kappa, 0.0f, 1.0f) * 255.0f));
+    }
+    static sum_type add(sum_type sum, float optical_depth) noexcept { return std::min<sum_type>(sum + quantise(optical_depth), 255); }
+    static constexpr sum_type combine(sum_type a, sum_type b) noexcept { return std::min<sum_type>(a + b, 255); }
+    static constexpr value_type store(sum_type sum) noexcept { return value_type(std::min<sum_type>(sum, 255)); }
+    static constexpr float decode(value_type v) noexcept { return kappa * float(v) / 255.0f; }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/accumulation/emulated_8bit.hpp
+// ---- begin hairshadow/reconstruction/interpolation.hpp
+/// @file
+/// Reconstruction by interpolation: each layer (opacity map, deep opacity layer or density cluster bin)
+/// stores its optical depth, and the optical depth at a query depth rises linearly across the layer it
+/// falls in (Kim & Neumann 2001 section 2; Yuksel & Keyser 2008 section 3; Mertens et al. 2004 section
+/// 3.2: piecewise-constant density, piecewise-linear optical depth).
+
+// ---- begin hairshadow/accumulation/repeated_sums.hpp
+/// @file
+/// The sum of n fragments of one optical depth b, as an accumulation adds them one by one: a pure
+/// function of n, kept in a table. A texel whose fragments all share b (a model of one alpha, the
+/// common case) then sums each layer from its count, with no chain of dependent adds per texel once
+/// the table holds its counts: the same value, bit for bit, as adding them in order, since every add
+/// is the same.
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+
+namespace hairshadow::detail {
+
+/// sums(n) = b added n times to a zero sum by Accumulation::add. The first `tabled` are kept,
+/// filled as counts reach them and started afresh when b changes; larger counts go on adding from the
+/// last. A fixed array: a build that uses it allocates nothing.
+template <class Accumulation>
+class repeated_sums {
+public:
+    using sum_type = typename Accumulation::sum_type;
+    static constexpr std::size_t tabled = 1024;
+
+    /// Uses b (bit for bit) from now on.
+    void use(float b) noexcept {
+        if (filled_ > 0 && std::bit_cast<std::uint32_t>(b) == b_bits_) return;
+        b_ = b, b_bits_ = std::bit_cast<std::uint32_t>(b);
+        sums_[0] = sum_type{};
+        filled_ = 1;
+    }
+    /// n fragments of b, added one by one.
+    sum_type operator()(std::size_t n) noexcept {
+        if (n < filled_) return sums_[n];
+        const std::size_t last = std::min(n, tabled - 1);
+        for (; filled_ <= last; ++filled_) sums_[filled_] = Accumulation::add(sums_[filled_ - 1], b_);
+        sum_type sum = sums_[last];
+        for (std::size_t i = last; i < n; ++i) sum = Accumulation::add(sum, b_);
+        return sum;
+    }
+
+private:
+    std::array<sum_type, tabled> sums_;
+    std::size_t filled_ = 0; ///< sums_[0, filled_) hold the sums for b_
+    float b_ = 0.0f;
+    std::uint32_t b_bits_ = 0;
+};
+
+/// This thread's repeated_sums for Accumulation, set to b. A cache of a pure function, one per thread
+/// so that builds on any number of threads share nothing and give the same sums, and held in the
+/// thread's own storage so that no build allocates for it.
+template <class Accumulation>
+repeated_sums<Accumulation>& repeated_sums_of(float b) noexcept {
+    thread_local repeated_sums<Accumulation> sums;
+    sums.use(b);
+    return sums;
+}
+
+} // namespace hairshadow::detail
+// ---- end hairshadow/accumulation/repeated_sums.hpp
+
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <cmath>
+#include <span>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+namespace hairshadow {
+
+/// Optical depth interpolated linearly inside each layer.
+struct interpolation {
+    static constexpr std::string_view name = "interpolation";
+    static constexpr std::string_view glsl_name = "reconstruction/interpolation";
+
+    /// Any placement's layers can be interpolated.
+    template <class Placement>
+    static constexpr bool accepts = Placement::layer_count >= 1;
+
+    /// A texel's maps depend on its fragments as a set where they share one optical depth: every sum
+    /// then adds the same b, whatever the order (order_free_maps).
+    static constexpr bool fragment_order_free = true;
+
+    /// One value per layer: cumulative (the optical depth in front of the layer's end) when the
+    /// placement's layers are opacity maps, per bin when they are histogram bins.
+    template <class Placement, class Accumulation>
+    struct storage {
+        std::array<typename Accumulation::value_type, std::size_t(Placement::layer_count)> layers{};
+        friend bool operator==(const storage&, const storage&) = default;
+    };
+
+    /// Sums the texel's fragments into its layers; `instructions` (resolved) chooses how the layers
+    /// are found (placement/assign_each.hpp), which changes no bit.
+    template <class Placement, class Accumulation, class Fragment>
+    static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const Fragment> fragments,
+                      storage<Placement, Accumulation>& out, instruction_set instructions = instruction_set::scalar) {
+        constexpr int L = Placement::layer_count;
+        std::array<typename Accumulation::sum_type, std::size_t(L)> sums{};
+        if (!fragments.empty() && one_optical_depth(fragments)) {
+            // Every fragment adds the same b, so a layer's sum is a function of how many it took: counted
+            // (sixteen at a time where the placement can), then read from this thread's repeated_sums,
+            // not added fragment by fragment: the same sums, bit for bit, without a chain of dependent
+            // adds per layer (BENCHMARKS.md, "A texel of one optical depth sums its layers from their
+            // counts").
+            return finish_counted<Placement, Accumulation>(fragment_optical_depth(fragments[0]),
+                                                           detail::layer_counts(placement, state, fragments, instructions), out);
+        }
+        detail::for_each_layer(placement, state, fragments, instructions, [&sums](int k, const Fragment& f) {
+            if constexpr (std::is_same_v<Accumulation, float_accumulation> && L <= 16) {
+                // Every layer's sum takes b or +0 for every fragment: the same sums, bit for bit (x + 0 == x
+                // for the sums, which are never -0), without a store and reload of one layer's sum per
+                // fragment; the layers' adds are independent and vectorise.
+                const float b = fragment_optical_depth(f);
+                for (int j = 0; j < L; ++j) sums[std::size_t(j)] += detail::keep_if(k == j, b);
+            } else {
+                if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], fragment_optical_depth(f));
+            }
+        });
+        finish<Placement, Accumulation>(sums, out);
+    }
+
+#if HAIRSHADOW_AVX512_WALK
+    /// build for a texel whose fragments all have optical depth b, given by their depths alone
+    /// (tile_fragments::group_depths): build's branch for one optical depth, the same maps bit for bit.
+    template <class Placement, class Accumulation>
+        requires requires(const Placement& p, const typename Placement::texel_state& s, std::span<const float> depths,
+                          std::array<std::uint32_t, std::size_t(Placement::layer_count)>& counts) { p.count_texel_avx512(s, depths, counts); }
+    static void build_from_depths(const Placement& placement, const typename Placement::texel_state& state, std::span<const float> depths, float b,
+                                  storage<Placement, Accumulation>& out) {
+        std::array<std::uint32_t, std::size_t(Placement::layer_count)> counts{};
+        placement.count_texel_avx512(state, depths, counts);
+        finish_counted<Placement, Accumulation>(b, counts, out);
+    }
+#endif
+
+    /// Whether every fragment's optical depth is the first one's: their alphas (or optical depths) are,
+    /// bit for bit. Without a branch per fragment, so that the loop vectorises.
+    template <class Fragment>
+    static bool one_optical_depth(std::span<const Fragment> fragments) noexcept {
+        const auto source = [](const Fragment& f) {
+            if constexpr (requires { f.alpha; }) return std::bit_cast<std::uint32_t>(f.alpha);
+            else return std::bit_cast<std::uint32_t>(f.optical_depth);
+        };
+        const std::uint32_t first = source(fragments[0]);
+        std::uint32_t other = 0;
+        for (const auto& f : fragments) other |= source(f) ^ first;
+        return other == 0;
+    }
+
+    /// The maps of a texel whose fragments all add b, counts[k] of them in layer k.
+    template <class Placement, class Accumulation>
+    static void finish_counted(float b, const std::array<std::uint32_t, std::size_t(Placement::layer_count)>& counts,
+                               storage<Placement, Accumulation>& out) {
+        auto& repeats = detail::repeated_sums_of<Accumulation>(b);
+        std::array<typename Accumulation::sum_type, std::size_t(Placement::layer_count)> sums{};
+        for (std::size_t k = 0; k < sums.size(); ++k) sums[k] = repeats(counts[k]);
+        finish<Placement, Accumulation>(sums, out);
+    }
+
+    /// The build in pieces, for a build that meets a texel's fragments among other texels' (in each
+    /// texel's own order all the same): one accumulator per texel, each fragment accumulated into its
+    /// layer k (as assign gives it), then finished. The same maps as build, bit for bit: build's
+    /// branch-free loop adds +0 to the other layers, which changes no sum.
+    template <class Placement, class Accumulation>
+    using accumulator = std::array<typename Accumulation::sum_type, std::size_t(Placement::layer_count)>;
+    template <class Placement, class Accumulation>
+    static void accumulate(accumulator<Placement, Accumulation>& sums, int k, float optical_depth) noexcept {
+        if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], optical_depth);
+    }
+    template <class Placement, class Accumulation>
+    static void finish(const accumulator<Placement, Accumulation>& sums, storage<Placement, Accumulation>& out) noexcept {
+        typename Accumulation::sum_type running{};
+        for (std::size_t k = 0; k < std::size_t(Placement::layer_count); ++k) {
+            if constexpr (Placement::cumulative) {
+                running = Accumulation::combine(running, sums[k]);
+                out.layers[k] = Accumulation::store(running);
+            } else {
+                out.layers[k] = Accumulation::store(sums[k]);
+            }
+        }
+    }
+    /// finish for several texels, the same values: their running sums advance layer by layer side by
+    /// side, so that each texel's chain of dependent adds overlaps the others' (64 opacity maps: a
+    /// chain of 64 adds per texel; BENCHMARKS.md, "Many layers streamed").
+    template <class Placement, class Accumulation, std::size_t N>
+        requires(Placement::cumulative)
+    static void finish_several(const std::array<const accumulator<Placement, Accumulation>*, N>& sums,
+                               const std::array<storage<Placement, Accumulation>*, N>& out) noexcept {
+        std::array<typename Accumulation::sum_type, N> running{};
+        for (std::size_t k = 0; k < std::size_t(Placement::layer_count); ++k)
+            for (std::size_t t = 0; t < N; ++t) {
+                running[t] = Accumulation::combine(running[t], (*sums[t])[k]);
+                out[t]->layers[k] = Accumulation::store(running[t]);
+            }
+    }
+
+    /// Optical depth in front of the end of layer k.
+    template <class Placement, class Accumulation>
+    static float through_layer(const storage<Placement, Accumulation>& in, int k) noexcept {
+        if (k < 0) return 0.0f;
+        if constexpr (Placement::cumulative) {
+            return Accumulation::decode(in.layers[std::size_t(k)]);
+        } else {
+            float sum = 0.0f;
+            for (int i = 0; i <= k; ++i) sum += Accumulation::decode(in.layers[std::size_t(i)]);
+            return sum;
+        }
+    }
+
+    /// Maps a texel stores, for inspection: one per layer.
+    template <class Placement>
+    static constexpr int stored_maps = Placement::layer_count;
+    /// Optical depth stored through map k (the end of layer k).
+    template <class Placement, class Accumulation>
+    static float stored_optical_depth(const storage<Placement, Accumulation>& in, int k) noexcept {
+        return through_layer<Placement, Accumulation>(in, k);
+    }
+
+    template <class Placement, class Accumulation>
+    static float optical_depth(const Placement& placement, const typename Placement::texel_state& state,
+                               const storage<Placement, Accumulation>& in, float depth) noexcept {
+        constexpr int L = Placement::layer_count;
+        const layer_position p = placement.locate(state, depth);
+        if (p.index < 0) return 0.0f;
+        if (p.index >= L) return through_layer<Placement, Accumulation>(in, L - 1);
+        const float before = through_layer<Placement, Accumulation>(in, p.index - 1);
+        const float after = through_layer<Placement, Accumulation>(in, p.index);
+        return before + p.fraction * (after - before);
+    }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/reconstruction/interpolation.hpp
+
+namespace hairshadow {
+
+/// Deep opacity maps (Yuksel & Keyser 2008): K layers from each texel's first fragment.
+template <int K, class Accumulation = float_accumulation>
+using deep_opacity_maps = shadow_method<per_pixel_depth<K>, Accumulation, interpolation>;
+
+/// The registration of deep opacity maps (methods/method_family.hpp).
+struct deep_opacity_maps_family {
+    static constexpr std::string_view name = "dom";
+    static constexpr std::string_view grammar = "dom:K (K = 1..8)";
+    static constexpr bool takes_accumulation = true;
+    static constexpr auto examples = std::make_tuple(spec_example<deep_opacity_maps<3>>{"dom:3", in_compare | in_bench | in_figure | in_animate},
+                                                     spec_example<deep_opacity_maps<4>>{"dom:4", in_compare},
+                                                     spec_example<deep_opacity_maps<3, emulated_8bit>>{"dom:3:8bit", in_compare},
+                                                     spec_example<deep_opacity_maps<4, emulated_8bit>>{"dom:4:8bit"});
+    static constexpr std::array<std::string_view, 0> keywords{};
+    using sizes = size_list<1, 2, 3, 4, 5, 6, 7, 8>;
+
+    static void check(const spec_fields& f) {
+        if (f.size() != 1) throw f.bad("dom takes K");
+        if (!sizes::contains(f.whole(0))) throw f.bad("dom needs K = 1..8");
+    }
+    template <class Accumulation, class Visit>
+    static bool visit(const spec_fields& f, Visit&& visit) {
+        return with_size<sizes>(f.whole(0), [&](auto k) { visit(deep_opacity_maps<k(), Accumulation>()); });
+    }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/methods/deep_opacity_maps.hpp
+// ---- begin hairshadow/methods/density_clustering.hpp
+/// @file
+/// Density clustering (Mertens et al. 2004): K k-means clusters of each texel's fragments as histogram
+/// bins. The spec `dc:K`.
+
 // ---- begin hairshadow/placement/clustered.hpp
 /// @file
 /// Density clustering's per-texel bins (Mertens et al. 2004, sections 3.2-3.3). Fragment depths are
@@ -6079,877 +7075,45 @@ private:
 
 } // namespace hairshadow
 // ---- end hairshadow/placement/clustered.hpp
-// ---- begin hairshadow/placement/depth_range.hpp
-/// @file
-/// Occupancy maps' per-texel depth range (Sintorn & Assarsson 2009, section 3.1): the nearest and
-/// furthest fragment of each texel bound S equal slices, so that every slice lies inside the hair.
-
-
-#include <cmath>
-#include <cstddef>
-#include <cstdint>
-#include <span>
-#include <string_view>
 
 namespace hairshadow {
 
-/// S slices between each texel's nearest and furthest fragment.
-/// @tparam S number of slices (128 in the paper)
-template <int S>
-class depth_range {
-    static_assert(S >= 1, "depth_range needs at least one slice");
+/// Density clustering (Mertens et al. 2004): K k-means clusters per texel as histogram bins.
+template <int K, class Accumulation = float_accumulation>
+using density_clustering = shadow_method<clustered<K>, Accumulation, interpolation>;
 
-public:
-    static constexpr int layer_count = S;
-    static constexpr bool cumulative = true; ///< read as opacity slices when interpolated
-    /// Each texel's state depends on its fragments' depths as a set (nearest and furthest), not their
-    /// order (order_free_maps).
-    static constexpr bool fragment_order_free = true;
-    static constexpr bool contiguous = true;
-    static constexpr std::string_view name = "depth_range";
-    static constexpr std::string_view glsl_name = "placement/depth_range";
-    /// The depth-range map (MIN / MAX blending on GL).
-    struct texel_state {
-        float nearest = 0.0f;
-        float furthest = 0.0f;
-        friend bool operator==(const texel_state&, const texel_state&) = default;
-    };
+/// The registration of density clustering (methods/method_family.hpp).
+struct density_clustering_family {
+    static constexpr std::string_view name = "dc";
+    static constexpr std::string_view grammar = "dc:K (K = 1..8)";
+    static constexpr bool takes_accumulation = true;
+    static constexpr auto examples = std::make_tuple(spec_example<density_clustering<4>>{"dc:4", in_compare | in_bench | in_figure | in_animate},
+                                                     spec_example<density_clustering<8, emulated_8bit>>{"dc:8:8bit"});
+    static constexpr std::array<std::string_view, 0> keywords{};
+    using sizes = size_list<1, 2, 3, 4, 5, 6, 7, 8>;
 
-    void prepare(const fragment_buffer&) const noexcept {}
-    void prepare(const depth_extent&) const noexcept {}
-    template <class Fragment>
-    void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
-        if (fragments.empty()) return;
-        const auto range = detail::depth_range_of(fragments);
-        texel_state_from(range.nearest, range.furthest, s);
+    static void check(const spec_fields& f) {
+        if (f.size() != 1) throw f.bad("dc takes K");
+        if (!sizes::contains(f.whole(0))) throw f.bad("dc needs K = 1..8");
     }
-    /// The texel's state from its nearest and furthest fragment (per_pixel_depth::texel_state_from).
-    void texel_state_from(float nearest, float furthest, texel_state& s) const noexcept { s.nearest = nearest, s.furthest = furthest; }
-    /// Depth of slice boundary k in [0, S] (never a fused multiply-add, so that every build, and
-    /// assign_each_avx512, places a boundary on the same float).
-    float boundary(const texel_state& s, int k) const noexcept {
-        return s.nearest + detail::rounded((s.furthest - s.nearest) * (float(k) / float(S)));
-    }
-    /// The slice floor(S (z - near) / (far - near)) of the paper, the furthest fragment in the last.
-    int assign(const texel_state& s, float depth) const noexcept {
-        if (!(s.furthest > s.nearest)) return 0;
-        return std::clamp(slice_of(s, depth), 0, S - 1);
-    }
-#if HAIRSHADOW_AVX512_WALK
-    /// assign() for fragment i of a tile, layers[i] = assign(states[texels[i]], depths[i]), sixteen at
-    /// a time (placement/assign_each.hpp): the same estimate, settled against the same boundaries,
-    /// lane by lane, one step at a time while any lane still moves.
-    HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state* states, std::span<const std::uint32_t> texels,
-                                                     std::span<const float> depths, std::int32_t* layers) const noexcept {
-        static_assert(sizeof(texel_state) == 2 * sizeof(float) && offsetof(texel_state, furthest) == sizeof(float));
-        const float* ranges = reinterpret_cast<const float*>(states);
-        const __m512 slices = _mm512_set1_ps(float(S));
-        for (std::size_t i = 0; i < texels.size(); i += 16) {
-            const __mmask16 lanes = detail::avx512::first_lanes(texels.size() - i);
-            const __m512i texel = _mm512_maskz_loadu_epi32(lanes, texels.data() + i);
-            const __m512 depth = _mm512_maskz_loadu_ps(lanes, depths.data() + i);
-            const __m512 nearest = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, texel, ranges, 8);
-            const __m512 furthest = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, texel, ranges + 1, 8);
-            const __m512 span = _mm512_sub_ps(furthest, nearest);
-            const __mmask16 ranged = _mm512_mask_cmp_ps_mask(lanes, furthest, nearest, _CMP_GT_OQ); // else slice 0
-            // settle_layer: the estimate's whole part (0 for NaN and negatives), then down and up.
-            const __m512 estimate = _mm512_mul_ps(_mm512_div_ps(_mm512_sub_ps(depth, nearest), span), slices);
-            const __mmask16 positive = _mm512_mask_cmp_ps_mask(ranged, estimate, _mm512_setzero_ps(), _CMP_GT_OQ);
-            __m512i k = _mm512_maskz_cvttps_epi32(positive, _mm512_min_ps(estimate, slices));
-            k = detail::avx512::settle_layers(k, depth, ranged, S, [=](__m512i j, __mmask16) HAIRSHADOW_AVX512_TARGET {
-                return boundary_avx512(nearest, span, j);
-            });
-            k = _mm512_min_epi32(k, _mm512_set1_epi32(S - 1)); // never negative: it starts at 0 or above and stops there
-            _mm512_mask_storeu_epi32(layers + i, lanes, k);
-        }
-    }
-#endif
-    layer_position locate(const texel_state& s, float depth) const noexcept {
-        if (!(s.furthest > s.nearest)) return depth > s.nearest ? layer_position{S, 0.0f} : layer_position{-1, 0.0f};
-        if (!(depth >= s.nearest)) return {-1, 0.0f};
-        const int k = slice_of(s, depth);
-        if (k >= S) return {S, 0.0f};
-        return detail::position_in(k, depth, boundary(s, k), boundary(s, k + 1));
-    }
-    static constexpr std::size_t global_bytes() noexcept { return 0; }
-
-private:
-#if HAIRSHADOW_AVX512_WALK
-    /// boundary(k) for each lane's texel (nearest, and span = furthest - nearest) and k.
-    HAIRSHADOW_AVX512_TARGET static __m512 boundary_avx512(__m512 nearest, __m512 span, __m512i k) noexcept {
-        const __m512 fraction = _mm512_div_ps(_mm512_cvtepi32_ps(k), _mm512_set1_ps(float(S)));
-        return _mm512_add_ps(nearest, detail::avx512::rounded(_mm512_mul_ps(span, fraction)));
-    }
-#endif
-    /// The k with boundary(k) <= depth < boundary(k + 1), or S past the furthest boundary, settled
-    /// against the boundaries so that slab boundaries are exact.
-    int slice_of(const texel_state& s, float depth) const noexcept {
-        return detail::settle_layer((depth - s.nearest) / (s.furthest - s.nearest) * float(S), S, depth,
-                                    [&](int i) { return boundary(s, i); });
+    template <class Accumulation, class Visit>
+    static bool visit(const spec_fields& f, Visit&& visit) {
+        return with_size<sizes>(f.whole(0), [&](auto k) { visit(density_clustering<k(), Accumulation>()); });
     }
 };
 
 } // namespace hairshadow
-// ---- end hairshadow/placement/depth_range.hpp
-// ---- begin hairshadow/placement/per_pixel_depth.hpp
+// ---- end hairshadow/methods/density_clustering.hpp
+// ---- begin hairshadow/methods/hybrids.hpp
 /// @file
-/// Deep opacity maps' per-pixel layers (Yuksel & Keyser 2008, section 3): a depth pass gives each
-/// texel the depth z0 of its first fragment; layer k spans [z0 + d_{k-1}, z0 + d_k) with d_0 = 0, the
-/// same d_k for every texel. A fragment adds to its layer and every later one.
+/// Compositions no paper describes, and the registrations of those the specs name (`docc:S:B`,
+/// `rosm:N`).
 
-
-#include <array>
-#include <cmath>
-#include <cstddef>
-#include <cstdint>
-#include <optional>
-#include <type_traits>
-#include <span>
-#include <string_view>
-
-namespace hairshadow {
-
-/// How layer sizes grow with depth.
-enum class layer_sizes {
-    linear,  ///< layer k is k times as deep as the first (the paper's choice, section 5)
-    uniform, ///< all layers equally deep
-};
-
-/// What happens to fragments beyond the last layer, z0 + d_K (Yuksel & Keyser, section 3).
-enum class beyond_last_layer {
-    ignore, ///< they cast no shadow
-    clamp,  ///< they join the last layer (the paper's choice: "usually gave reasonable results")
-    extend, ///< each texel's layers are stretched to reach its last fragment
-};
-
-/// K layers starting at each texel's first fragment.
-/// @tparam K number of layers
-/// @tparam Sizes how layer depths grow
-/// @tparam Beyond what happens to fragments beyond the last layer
-template <int K, layer_sizes Sizes = layer_sizes::linear, beyond_last_layer Beyond = beyond_last_layer::clamp>
-class per_pixel_depth {
-    static_assert(K >= 1, "per_pixel_depth needs at least one layer");
-
-public:
-    static constexpr int layer_count = K;
-    static constexpr bool cumulative = true;
-    /// Each texel's state depends on its fragments' depths as a set (nearest and furthest), not their
-    /// order (order_free_maps).
-    static constexpr bool fragment_order_free = true;
-    static constexpr bool contiguous = true;
-    static constexpr std::string_view name = "per_pixel_depth";
-    static constexpr std::string_view glsl_name = "placement/per_pixel_depth";
-
-    /// The depth map (z0), plus the stretch factor when layers extend to the last fragment.
-    struct z0_only {
-        float z0 = 0.0f;
-        friend bool operator==(const z0_only&, const z0_only&) = default;
-    };
-    struct z0_and_scale {
-        float z0 = 0.0f;
-        float scale = 1.0f;
-        friend bool operator==(const z0_and_scale&, const z0_and_scale&) = default;
-    };
-    using texel_state = std::conditional_t<Beyond == beyond_last_layer::extend, z0_and_scale, z0_only>;
-    static_assert(sizeof(z0_only) == sizeof(float) && sizeof(z0_and_scale) == 2 * sizeof(float) && offsetof(z0_and_scale, scale) == sizeof(float),
-                  "assign_each_avx512 gathers z0 and the stretch as floats");
-
-    /// Layers covering `extent` in linear depth in total (d_K); by default half the depth range of the
-    /// whole map, a choice of ours: the paper leaves d_k to the user.
-    per_pixel_depth() = default;
-    explicit per_pixel_depth(float extent) : requested_extent_(extent) {
-        if (!(extent > 0.0f && extent <= 1.0f)) throw argument_error("per_pixel_depth: the layer extent must be in (0, 1]");
-    }
-
-    void prepare(const fragment_buffer& fragments) noexcept { prepare(extent_of(fragments)); }
-    /// The same from the map's depth extent (the GL back end reduces it from its depth-range map).
-    void prepare(const depth_extent& e) noexcept {
-        extent_ = requested_extent_ ? *requested_extent_ : std::max(0.5f * (e.furthest - e.nearest), 1e-6f);
-    }
-    /// The depth pass: z0 is the nearest fragment (and, to extend, the furthest sets the stretch).
-    template <class Fragment>
-    void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
-        if (fragments.empty()) return;
-        const auto range = detail::depth_range_of(fragments);
-        texel_state_from(range.nearest, range.furthest, s);
-    }
-    /// The texel's state from its nearest and furthest fragment: all the depth pass needs, so that a
-    /// build which sees the texel's fragments among other texels' can reduce them as they come.
-    void texel_state_from(float nearest, float furthest, texel_state& s) const noexcept {
-        s.z0 = nearest;
-        if constexpr (Beyond == beyond_last_layer::extend) s.scale = std::max(1.0f, detail::just_above(furthest - nearest) / extent_);
-        else (void)furthest;
-    }
-
-    /// d_k / d_K for layer boundary k in [0, K].
-    static constexpr float relative_boundary(int k) noexcept {
-        if constexpr (Sizes == layer_sizes::linear) return float(k * (k + 1)) / float(K * (K + 1));
-        else return float(k) / float(K);
-    }
-    /// relative_boundary(k) for k in [0, K], computed once.
-    static constexpr std::array<float, std::size_t(K) + 1> relative_boundaries = [] {
-        std::array<float, std::size_t(K) + 1> b{};
-        for (int k = 0; k <= K; ++k) b[std::size_t(k)] = relative_boundary(k);
-        return b;
-    }();
-    /// Depth of boundary k in [0, K] of a texel: z0 + d_k.
-    float boundary(const texel_state& s, int k) const noexcept { return s.z0 + span_of(s) * relative_boundary(k); }
-
-    int assign(const texel_state& s, float depth) const noexcept {
-        if constexpr (K <= 8) {
-            // The layer locate() settles on, counted without a branch (the build calls this for every
-            // fragment, and which layer comes next is anybody's guess): the boundaries d_1..d_K the
-            // depth has reached. They increase, so the count is the one k with d_k <= rel < d_k+1; K
-            // means beyond the last layer; NaN and depths in front reach none.
-            const float rel = (depth - s.z0) / span_of(s);
-            int k = 0;
-            for (int i = 1; i <= K; ++i) k += int(rel >= relative_boundaries[std::size_t(i)]);
-            if constexpr (Beyond == beyond_last_layer::ignore) return k == K ? -1 : k;
-            else return std::min(k, K - 1);
-        } else {
-            const auto p = locate(s, depth);
-            if (p.index < 0) return 0;
-            if (p.index >= K) return Beyond == beyond_last_layer::ignore ? -1 : K - 1;
-            return p.index;
-        }
-    }
-#if HAIRSHADOW_AVX512_WALK
-    /// assign() for fragment i of a tile, layers[i] = assign(states[texels[i]], depths[i]), sixteen at
-    /// a time (placement/assign_each.hpp): z0 (and the stretch) gathered from the texels' states, the
-    /// same subtraction and division lane by lane, then assign's boundary count (K <= 8) or locate's
-    /// estimate settled against the same boundaries. The settled layer does not depend on the
-    /// estimate, only on the boundaries, so the estimate need not match locate's to the bit.
-    HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state* states, std::span<const std::uint32_t> texels,
-                                                     std::span<const float> depths, std::int32_t* layers) const noexcept {
-        constexpr int stride = int(sizeof(texel_state)); // the gathers' scale: 4 or 8 bytes a texel
-        const float* z0s = reinterpret_cast<const float*>(states);
-        const __m512 extent = _mm512_set1_ps(extent_);
-        for (std::size_t i = 0; i < texels.size(); i += 16) {
-            const __mmask16 lanes = detail::avx512::first_lanes(texels.size() - i);
-            const __m512i texel = _mm512_maskz_loadu_epi32(lanes, texels.data() + i);
-            const __m512 depth = _mm512_maskz_loadu_ps(lanes, depths.data() + i);
-            const __m512 z0 = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, texel, z0s, stride);
-            __m512 span = extent;
-            if constexpr (Beyond == beyond_last_layer::extend)
-                span = _mm512_mul_ps(extent, _mm512_mask_i32gather_ps(_mm512_set1_ps(1.0f), lanes, texel, z0s + 1, stride));
-            const __m512 rel = _mm512_div_ps(_mm512_sub_ps(depth, z0), span);
-            __m512i layer; // the boundaries d_1..d_K reached: K beyond the last layer, 0 in front and for NaN
-            if constexpr (K <= 8) layer = detail::avx512::boundaries_reached<K>(rel, relative_boundaries.data() + 1);
-            else layer = settled_layer_avx512(rel, lanes);
-            if constexpr (Beyond == beyond_last_layer::ignore)
-                layer = _mm512_mask_set1_epi32(layer, _mm512_cmpeq_epi32_mask(layer, _mm512_set1_epi32(K)), -1);
-            else layer = _mm512_min_epi32(layer, _mm512_set1_epi32(K - 1));
-            _mm512_mask_storeu_epi32(layers + i, lanes, layer);
-        }
-    }
-#endif
-    layer_position locate(const texel_state& s, float depth) const noexcept {
-        const float rel = (depth - s.z0) / span_of(s);
-        if (!(rel >= 0.0f)) return {-1, 0.0f};
-        if (rel >= 1.0f) return {K, 0.0f};
-        float estimate; // closed form of the layer, settled against the boundaries below
-        if constexpr (Sizes == layer_sizes::linear) estimate = (std::sqrt(1.0f + 4.0f * rel * float(K * (K + 1))) - 1.0f) * 0.5f;
-        else estimate = rel * float(K);
-        const int k = detail::settle_layer(estimate, K - 1, rel, [](int i) { return relative_boundaries[std::size_t(i)]; });
-        return detail::position_in(k, rel, relative_boundaries[std::size_t(k)], relative_boundaries[std::size_t(k + 1)]);
-    }
-    static constexpr std::size_t global_bytes() noexcept { return sizeof(float); }
-    /// d_K in linear depth.
-    float extent() const noexcept { return extent_; }
-    /// d_K as given to the constructor; none: half the map's depth range.
-    std::optional<float> requested_extent() const noexcept { return requested_extent_; }
-
-private:
-#if HAIRSHADOW_AVX512_WALK
-    /// For K > 8, per lane, locate()'s layer of `rel`: 0 in front (and for NaN), K from 1 on, else the
-    /// k with d_k <= rel < d_k+1, settled from the closed-form estimate one step at a time.
-    HAIRSHADOW_AVX512_TARGET static __m512i settled_layer_avx512(__m512 rel, __mmask16 lanes) noexcept {
-        const __m512 last = _mm512_set1_ps(float(K - 1));
-        const float* d = relative_boundaries.data();
-        const __mmask16 inside = _mm512_mask_cmp_ps_mask(_mm512_mask_cmp_ps_mask(lanes, rel, _mm512_setzero_ps(), _CMP_GE_OQ), rel,
-                                                         _mm512_set1_ps(1.0f), _CMP_LT_OQ);
-        __m512 estimate;
-        if constexpr (Sizes == layer_sizes::linear) {
-            const __m512 root = _mm512_sqrt_ps(_mm512_add_ps(_mm512_set1_ps(1.0f), _mm512_mul_ps(rel, _mm512_set1_ps(4.0f * float(K * (K + 1))))));
-            estimate = _mm512_mul_ps(_mm512_sub_ps(root, _mm512_set1_ps(1.0f)), _mm512_set1_ps(0.5f));
-        } else {
-            estimate = _mm512_mul_ps(rel, _mm512_set1_ps(float(K)));
-        }
-        const __mmask16 positive = _mm512_mask_cmp_ps_mask(inside, estimate, _mm512_setzero_ps(), _CMP_GT_OQ);
-        __m512i k = _mm512_maskz_cvttps_epi32(positive, _mm512_min_ps(estimate, last));
-        k = detail::avx512::settle_layers(k, rel, inside, K - 1, [=](__m512i j, __mmask16 movable) HAIRSHADOW_AVX512_TARGET {
-            return _mm512_mask_i32gather_ps(rel, movable, j, d, 4);
-        });
-        // Beyond the last boundary (rel >= 1): K; in front or NaN: 0, as assign maps locate's -1.
-        const __mmask16 beyond = _mm512_mask_cmp_ps_mask(lanes, rel, _mm512_set1_ps(1.0f), _CMP_GE_OQ);
-        return _mm512_mask_mov_epi32(_mm512_maskz_mov_epi32(inside, k), beyond, _mm512_set1_epi32(K));
-    }
-#endif
-    float span_of(const texel_state& s) const noexcept {
-        if constexpr (Beyond == beyond_last_layer::extend) return extent_ * s.scale;
-        else return extent_;
-    }
-    std::optional<float> requested_extent_;
-    float extent_ = 1.0f;
-};
-
-} // namespace hairshadow
-// ---- end hairshadow/placement/per_pixel_depth.hpp
-// ---- begin hairshadow/placement/planar_slices.hpp
+// ---- begin hairshadow/methods/occupancy_maps.hpp
 /// @file
-/// Opacity shadow maps' planar slices (Kim & Neumann 2001, section 2): N maps at depths D_1..D_N
-/// between the nearest fragment D_0 and the furthest, the same for every texel. A fragment adds to the
-/// map of its slice and to every later one (each map holds the opacity in front of its depth); a query
-/// interpolates linearly in depth between the maps that enclose it.
+/// Occupancy maps (Sintorn & Assarsson 2009): S one-bit slices in each texel's depth range and B slabs
+/// of exact sums. The spec `occ:S:B`.
 
-
-#include <algorithm>
-#include <array>
-#include <cmath>
-#include <cstddef>
-#include <cstdint>
-#include <iterator>
-#include <limits>
-#include <span>
-#include <string_view>
-
-namespace hairshadow {
-
-/// Slices of equal thickness (Kim & Neumann Fig. 3a).
-struct uniform_spacing {
-    static constexpr std::string_view name = "uniform";
-    static constexpr float boundary(float t) noexcept { return t; }
-    static float inverse(float u) noexcept { return u; }
-};
-
-/// Slices growing with depth, denser near the light, "analogous to gamma correction" (Kim & Neumann
-/// Fig. 3c). The paper gives no formula; we use D_i = D_0 + (D_N - D_0) (i / N)^2.
-struct gamma_spacing {
-    static constexpr std::string_view name = "gamma";
-    static constexpr float gamma = 2.0f;
-    static constexpr float boundary(float t) noexcept { return t * t; }
-    static float inverse(float u) noexcept { return std::sqrt(u); }
-};
-
-/// N planar slices between the nearest and furthest fragment of the whole map.
-/// @tparam N number of opacity maps
-/// @tparam Spacing uniform_spacing or gamma_spacing
-template <int N, class Spacing = uniform_spacing>
-class planar_slices {
-    static_assert(N >= 1, "planar_slices needs at least one slice");
-
-public:
-    static constexpr int layer_count = N;
-    static constexpr bool cumulative = true; ///< each map holds the opacity in front of its depth
-    /// Each texel's state depends on nothing of its fragments, in any order (order_free_maps).
-    static constexpr bool fragment_order_free = true;
-    static constexpr bool contiguous = true; ///< the slices tile [D_0, D_N) without gaps
-    static constexpr std::string_view name = Spacing::name;
-    static constexpr std::string_view glsl_name = "placement/planar_slices";
-    struct texel_state {
-        friend bool operator==(const texel_state&, const texel_state&) = default;
-    };
-
-    /// Global pre-pass: D_0 is the nearest fragment, D_N just beyond the furthest.
-    void prepare(const fragment_buffer& fragments) noexcept { prepare(extent_of(fragments)); }
-    /// The same from the map's depth extent (the GL back end reduces it from its depth-range map).
-    void prepare(const depth_extent& e) noexcept {
-        near_ = e.nearest;
-        far_ = detail::just_above(e.furthest);
-        for (int i = 0; i < N; ++i) boundaries_[std::size_t(i)] = near_ + (far_ - near_) * Spacing::boundary(float(i) / float(N));
-        boundaries_[std::size_t(N)] = far_;
-    }
-    template <class Fragment>
-    void prepare_texel(std::span<const Fragment>, texel_state&) const noexcept {}
-    /// No per-texel state (per_pixel_depth::texel_state_from).
-    void texel_state_from(float, float, texel_state&) const noexcept {}
-
-    /// Depth of map i, i in [0, N] (D_0 .. D_N): D_0 + (D_N - D_0) spacing(i / N), computed once per build.
-    float boundary(const texel_state&, int i) const noexcept { return boundaries_[std::size_t(std::clamp(i, 0, N))]; }
-    /// The slice a fragment at `depth` falls in: D_k <= depth < D_{k+1}.
-    int assign(const texel_state&, float depth) const noexcept { return std::min(reached(depth), N - 1); }
-#if HAIRSHADOW_AVX512_WALK
-    /// assign() for each depth, sixteen at a time (placement/assign_each.hpp): the same comparisons
-    /// with D_1..D_N lane by lane. For the branch-free count's N only.
-    HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state*, std::span<const std::uint32_t> texels, std::span<const float> depths,
-                                                     std::int32_t* layers) const noexcept
-        requires(N <= 16)
-    {
-        for (std::size_t i = 0; i < texels.size(); i += 16) {
-            const __mmask16 lanes = detail::avx512::first_lanes(texels.size() - i);
-            const __m512i reached = detail::avx512::boundaries_reached<N>(_mm512_maskz_loadu_ps(lanes, depths.data() + i), boundaries_.data() + 1);
-            _mm512_mask_storeu_epi32(layers + i, lanes, _mm512_min_epi32(reached, _mm512_set1_epi32(N - 1)));
-        }
-    }
-    /// The same for 17 to 64 maps, by bisection in registers: assign's min(reached, N - 1) is the
-    /// number of D_1..D_{N-1} at or below the depth, and since they never decrease, six halvings of a
-    /// table of them (padded with NaN, which no depth reaches) find it, as reached's upper_bound does.
-    /// A NaN depth reaches none, as in reached.
-    HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state*, std::span<const std::uint32_t> texels, std::span<const float> depths,
-                                                     std::int32_t* layers) const noexcept
-        requires(N > 16 && N <= 64)
-    {
-        alignas(64) float table[64];
-        std::fill(std::begin(table), std::end(table), std::numeric_limits<float>::quiet_NaN());
-        std::copy(boundaries_.begin() + 1, boundaries_.begin() + N, table); // D_1 .. D_{N-1}
-        const __m512 t0 = _mm512_load_ps(table), t1 = _mm512_load_ps(table + 16), t2 = _mm512_load_ps(table + 32), t3 = _mm512_load_ps(table + 48);
-        for (std::size_t i = 0; i < texels.size(); i += 16) {
-            const __mmask16 lanes = detail::avx512::first_lanes(texels.size() - i);
-            const __m512 depth = _mm512_maskz_loadu_ps(lanes, depths.data() + i);
-            __m512i below = _mm512_setzero_si512(); // table entries known to be at or below the depth
-            for (int step = 32; step >= 1; step /= 2) {
-                const __m512i probe = _mm512_add_epi32(below, _mm512_set1_epi32(step - 1));
-                const __m512 low_half = _mm512_permutex2var_ps(t0, probe, t1), high_half = _mm512_permutex2var_ps(t2, probe, t3);
-                const __m512 entry = _mm512_mask_blend_ps(_mm512_test_epi32_mask(probe, _mm512_set1_epi32(32)), low_half, high_half);
-                below = _mm512_mask_add_epi32(below, _mm512_cmp_ps_mask(entry, depth, _CMP_LE_OQ), below, _mm512_set1_epi32(step));
-            }
-            _mm512_mask_storeu_epi32(layers + i, lanes, below);
-        }
-    }
-#endif
-    layer_position locate(const texel_state&, float depth) const noexcept {
-        if (!(depth >= near_)) return {-1, 0.0f};
-        if (depth >= far_) return {N, 0.0f};
-        const int k = reached(depth);
-        return detail::position_in(k, depth, boundaries_[std::size_t(k)], boundaries_[std::size_t(k + 1)]);
-    }
-    /// Bytes of global state the maps need besides their texels (D_0 .. D_N, and D_0 and D_N apart).
-    static constexpr std::size_t global_bytes() noexcept { return (std::size_t(N) + 3) * sizeof(float); }
-    float nearest() const noexcept { return near_; }
-    float furthest() const noexcept { return far_; }
-
-private:
-    /// How many of D_1..D_N lie at or before `depth` (0 for NaN): the k with D_k <= depth < D_k+1 where
-    /// depth is in [D_0, D_N), since the boundaries never decrease. Without a branch for a few maps
-    /// (the build calls this for every fragment), by bisection for many.
-    int reached(float depth) const noexcept {
-        if constexpr (N <= 16) {
-            int k = 0;
-            for (int i = 1; i <= N; ++i) k += int(boundaries_[std::size_t(i)] <= depth);
-            return k;
-        } else {
-            if (!(depth >= near_)) return 0; // NaN too
-            return int(std::upper_bound(boundaries_.begin() + 1, boundaries_.end(), depth) - (boundaries_.begin() + 1));
-        }
-    }
-
-    float near_ = 0.0f, far_ = 0.0f;
-    std::array<float, std::size_t(N) + 1> boundaries_{};
-};
-
-/// Uniformly spaced opacity maps (Kim & Neumann Fig. 3a).
-template <int N>
-using uniform_slices = planar_slices<N, uniform_spacing>;
-/// Opacity maps spaced like gamma correction (Kim & Neumann Fig. 3c).
-template <int N>
-using gamma_slices = planar_slices<N, gamma_spacing>;
-
-} // namespace hairshadow
-// ---- end hairshadow/placement/planar_slices.hpp
-// ---- begin hairshadow/reconstruction/fibre_density.hpp
-/// @file
-/// Reconstruction by an assumed fibre density: approximate deep shadow maps, as AMD TressFX ships them
-/// (TressFXLighting.hlsl, ComputeShadowAttenuation). A texel keeps only its first fragment's depth z0
-/// (per_pixel_depth's depth map); a point d world units behind it lies behind
-/// n = d / (fibre spacing x fibre radius) fibres, at least one once d > 1e-5, and T = (1 - alpha)^n.
-/// TressFX counts every fibre: its settings hold m_HairMaxShadowFibers = 50 and upload it, but
-/// ComputeShadowAttenuation never reads it, so no cap is the default here; a cap is an option
-/// (fibre_density_parameters::max_fibres). The measured variant takes the density from the texel's own
-/// fragments instead: their count over their depth span (depth_range's nearest and furthest).
-
-
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
-#include <limits>
-#include <span>
-#include <string>
-#include <string_view>
-#include <type_traits>
-
-namespace hairshadow {
-
-/// Where the fibre density comes from.
-enum class fibre_density_source {
-    fixed,    ///< the parameters' constant density, TressFX's model
-    measured, ///< each texel's fragment count over its depth span, with the fragments' mean opacity
-};
-
-/// TressFX's hair shadow parameters (TressFXSettings.h defaults), in the model's world units.
-struct fibre_density_parameters {
-    float spacing = 0.4f;    ///< fibre spacing, in fibre radii
-    float radius = 0.0021f;  ///< fibre radius, world units
-    float alpha = 0.35f;     ///< opacity of one fibre
-    /// Fibres counted at most: a whole number, or infinity for none (TressFX's shader counts them all;
-    /// its unread m_HairMaxShadowFibers is 50).
-    float max_fibres = std::numeric_limits<float>::infinity();
-
-    /// World depth per fibre along the light.
-    float fibre_step() const noexcept { return spacing * radius; }
-    /// -ln(1 - alpha): one fibre's optical depth.
-    float fibre_optical_depth() const noexcept { return -std::log1p(-alpha); }
-    /// Throws argument_error unless spacing and radius are positive and finite, alpha is in (0, 1)
-    /// and the cap is infinite or a whole number of fibres, at least one.
-    void check() const {
-        const auto positive = [](float v) { return std::isfinite(v) && v > 0.0f; };
-        if (!positive(spacing) || !positive(radius) || !positive(fibre_step()))
-            throw argument_error("fibre density: spacing and radius must be positive and finite, and so must their product");
-        if (!(alpha > 0.0f && alpha < 1.0f)) throw argument_error("fibre density: the fibre alpha must be in (0, 1)");
-        if (!(max_fibres >= 1.0f && (std::isinf(max_fibres) || max_fibres == std::floor(max_fibres))))
-            throw argument_error("fibre density: the cap must be a whole number of fibres, at least one, or none");
-    }
-    friend bool operator==(const fibre_density_parameters&, const fibre_density_parameters&) = default;
-};
-
-namespace detail {
-/// A point this little behind the first fragment is still on it: TressFX's 1e-5 world units, and at
-/// least four float steps of a linear depth near 1, so that rounding never puts a point on the first
-/// fibre behind it (CPU and GL compute depths in their own order).
-inline constexpr float on_first_fibre = 1e-5f;
-inline constexpr float on_first_fibre_depth = 2.5e-7f;
-
-template <class P>
-concept first_fragment_state = requires(const typename P::texel_state& s) { s.z0; } || requires(const typename P::texel_state& s) { s.nearest; };
-template <class P>
-concept fragment_span_state = requires(const typename P::texel_state& s) {
-    s.nearest;
-    s.furthest;
-};
-} // namespace detail
-
-/// Optical depth from an assumed density of fibres behind each texel's first fragment.
-/// @tparam Source the parameters' constant density (TressFX) or each texel's measured one
-template <fibre_density_source Source = fibre_density_source::fixed>
-class fibre_density {
-public:
-    static constexpr std::string_view name = "fibre_density";
-    static constexpr std::string_view glsl_name = "reconstruction/fibre_density";
-
-    /// The fixed density needs the first fragment (per_pixel_depth's z0 or depth_range's nearest); the
-    /// measured one also the last (depth_range).
-    template <class Placement>
-    static constexpr bool accepts =
-        Source == fibre_density_source::fixed ? detail::first_fragment_state<Placement> : detail::fragment_span_state<Placement>;
-
-    struct covered {
-        bool any = false; ///< the texel has a fragment (else it casts no shadow)
-        friend bool operator==(const covered&, const covered&) = default;
-    };
-    template <class Accumulation>
-    struct measured {
-        typename Accumulation::value_type optical_depth{}; ///< sum of the fragments' b
-        std::uint32_t fragments = 0;
-        friend bool operator==(const measured&, const measured&) = default;
-    };
-    /// Fixed density: only whether the texel is covered; measured: the texel's fragments summed.
-    template <class Placement, class Accumulation>
-    using storage = std::conditional_t<Source == fibre_density_source::fixed, covered, measured<Accumulation>>;
-
-    explicit fibre_density(fibre_density_parameters parameters = {}) : parameters_(parameters) { parameters_.check(); }
-
-    /// The light's world depth per unit of linear depth, which turns depths into fibre counts.
-    void prepare(const light_space& light) noexcept { depth_scale_ = light.far_plane() - light.near_plane(); }
-
-    template <class Placement, class Accumulation, class Fragment>
-    static void build(const Placement&, const typename Placement::texel_state&, std::span<const Fragment> fragments,
-                      storage<Placement, Accumulation>& out) {
-        if constexpr (Source == fibre_density_source::fixed) {
-            out.any = !fragments.empty();
-        } else {
-            typename Accumulation::sum_type sum{};
-            for (const auto& f : fragments) sum = Accumulation::add(sum, fragment_optical_depth(f));
-            out.optical_depth = Accumulation::store(sum);
-            out.fragments = std::uint32_t(fragments.size());
-        }
-    }
-
-    /// Fibres in front of linear depth `depth`, and the optical depth each one has.
-    template <class Placement, class Accumulation>
-    float optical_depth(const Placement& placement, const typename Placement::texel_state& state, const storage<Placement, Accumulation>& in,
-                        float depth) const noexcept {
-        const float z0 = placement.boundary(state, 0); // the first fragment
-        const float behind = (depth - z0) * depth_scale_;  // world units behind it
-        if (!(behind > detail::on_first_fibre) || !(depth - z0 > detail::on_first_fibre_depth)) return 0.0f;
-        if constexpr (Source == fibre_density_source::fixed) {
-            if (!in.any) return 0.0f;
-            const float fibres = std::clamp(behind / parameters_.fibre_step(), 1.0f, parameters_.max_fibres);
-            return fibres * parameters_.fibre_optical_depth();
-        } else {
-            if (in.fragments == 0) return 0.0f;
-            // n fragments over the span from first to last: n - 1 gaps, so the k-th fragment behind the
-            // first is reached at k gaps and a point on it has k fibres in front, as the exact map says
-            // for evenly spaced fragments; behind the last all n are in front.
-            const float count = float(in.fragments);
-            const float span = state.furthest - state.nearest;
-            const float fibres = span > 0.0f && depth <= state.furthest ? std::clamp((depth - z0) / span * (count - 1.0f), 1.0f, count) : count;
-            return fibres * (Accumulation::decode(in.optical_depth) / count);
-        }
-    }
-
-    /// Maps a texel stores, for inspection: none for the fixed density, the texel's summed optical
-    /// depth for the measured one.
-    template <class Placement>
-    static constexpr int stored_maps = Source == fibre_density_source::fixed ? 0 : 1;
-    template <class Placement, class Accumulation>
-    static float stored_optical_depth(const storage<Placement, Accumulation>& in, int) noexcept {
-        if constexpr (Source == fibre_density_source::fixed) return 0.0f;
-        else return Accumulation::decode(in.optical_depth);
-    }
-
-    const fibre_density_parameters& parameters() const noexcept { return parameters_; }
-    /// World units per unit of linear depth, from the last prepare().
-    float depth_scale() const noexcept { return depth_scale_; }
-
-private:
-    fibre_density_parameters parameters_;
-    float depth_scale_ = 1.0f;
-};
-
-} // namespace hairshadow
-// ---- end hairshadow/reconstruction/fibre_density.hpp
-// ---- begin hairshadow/reconstruction/interpolation.hpp
-/// @file
-/// Reconstruction by interpolation: each layer (opacity map, deep opacity layer or density cluster bin)
-/// stores its optical depth, and the optical depth at a query depth rises linearly across the layer it
-/// falls in (Kim & Neumann 2001 section 2; Yuksel & Keyser 2008 section 3; Mertens et al. 2004 section
-/// 3.2: piecewise-constant density, piecewise-linear optical depth).
-
-// ---- begin hairshadow/accumulation/repeated_sums.hpp
-/// @file
-/// The sum of n fragments of one optical depth b, as an accumulation adds them one by one: a pure
-/// function of n, kept in a table. A texel whose fragments all share b (a model of one alpha, the
-/// common case) then sums each layer from its count, with no chain of dependent adds per texel once
-/// the table holds its counts: the same value, bit for bit, as adding them in order, since every add
-/// is the same.
-
-#include <algorithm>
-#include <array>
-#include <bit>
-#include <cstddef>
-#include <cstdint>
-
-namespace hairshadow::detail {
-
-/// sums(n) = b added n times to a zero sum by Accumulation::add. The first `tabled` are kept,
-/// filled as counts reach them and started afresh when b changes; larger counts go on adding from the
-/// last. A fixed array: a build that uses it allocates nothing.
-template <class Accumulation>
-class repeated_sums {
-public:
-    using sum_type = typename Accumulation::sum_type;
-    static constexpr std::size_t tabled = 1024;
-
-    /// Uses b (bit for bit) from now on.
-    void use(float b) noexcept {
-        if (filled_ > 0 && std::bit_cast<std::uint32_t>(b) == b_bits_) return;
-        b_ = b, b_bits_ = std::bit_cast<std::uint32_t>(b);
-        sums_[0] = sum_type{};
-        filled_ = 1;
-    }
-    /// n fragments of b, added one by one.
-    sum_type operator()(std::size_t n) noexcept {
-        if (n < filled_) return sums_[n];
-        const std::size_t last = std::min(n, tabled - 1);
-        for (; filled_ <= last; ++filled_) sums_[filled_] = Accumulation::add(sums_[filled_ - 1], b_);
-        sum_type sum = sums_[last];
-        for (std::size_t i = last; i < n; ++i) sum = Accumulation::add(sum, b_);
-        return sum;
-    }
-
-private:
-    std::array<sum_type, tabled> sums_;
-    std::size_t filled_ = 0; ///< sums_[0, filled_) hold the sums for b_
-    float b_ = 0.0f;
-    std::uint32_t b_bits_ = 0;
-};
-
-/// This thread's repeated_sums for Accumulation, set to b. A cache of a pure function, one per thread
-/// so that builds on any number of threads share nothing and give the same sums, and held in the
-/// thread's own storage so that no build allocates for it.
-template <class Accumulation>
-repeated_sums<Accumulation>& repeated_sums_of(float b) noexcept {
-    thread_local repeated_sums<Accumulation> sums;
-    sums.use(b);
-    return sums;
-}
-
-} // namespace hairshadow::detail
-// ---- end hairshadow/accumulation/repeated_sums.hpp
-
-#include <array>
-#include <bit>
-#include <cstdint>
-#include <cmath>
-#include <span>
-#include <string_view>
-#include <type_traits>
-#include <vector>
-
-namespace hairshadow {
-
-/// Optical depth interpolated linearly inside each layer.
-struct interpolation {
-    static constexpr std::string_view name = "interpolation";
-    static constexpr std::string_view glsl_name = "reconstruction/interpolation";
-
-    /// Any placement's layers can be interpolated.
-    template <class Placement>
-    static constexpr bool accepts = Placement::layer_count >= 1;
-
-    /// A texel's maps depend on its fragments as a set where they share one optical depth: every sum
-    /// then adds the same b, whatever the order (order_free_maps).
-    static constexpr bool fragment_order_free = true;
-
-    /// One value per layer: cumulative (the optical depth in front of the layer's end) when the
-    /// placement's layers are opacity maps, per bin when they are histogram bins.
-    template <class Placement, class Accumulation>
-    struct storage {
-        std::array<typename Accumulation::value_type, std::size_t(Placement::layer_count)> layers{};
-        friend bool operator==(const storage&, const storage&) = default;
-    };
-
-    /// Sums the texel's fragments into its layers; `instructions` (resolved) chooses how the layers
-    /// are found (placement/assign_each.hpp), which changes no bit.
-    template <class Placement, class Accumulation, class Fragment>
-    static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const Fragment> fragments,
-                      storage<Placement, Accumulation>& out, instruction_set instructions = instruction_set::scalar) {
-        constexpr int L = Placement::layer_count;
-        std::array<typename Accumulation::sum_type, std::size_t(L)> sums{};
-        if (!fragments.empty() && one_optical_depth(fragments)) {
-            // Every fragment adds the same b, so a layer's sum is a function of how many it took: counted
-            // (sixteen at a time where the placement can), then read from this thread's repeated_sums,
-            // not added fragment by fragment: the same sums, bit for bit, without a chain of dependent
-            // adds per layer (BENCHMARKS.md, "A texel of one optical depth sums its layers from their
-            // counts").
-            return finish_counted<Placement, Accumulation>(fragment_optical_depth(fragments[0]),
-                                                           detail::layer_counts(placement, state, fragments, instructions), out);
-        }
-        detail::for_each_layer(placement, state, fragments, instructions, [&sums](int k, const Fragment& f) {
-            if constexpr (std::is_same_v<Accumulation, float_accumulation> && L <= 16) {
-                // Every layer's sum takes b or +0 for every fragment: the same sums, bit for bit (x + 0 == x
-                // for the sums, which are never -0), without a store and reload of one layer's sum per
-                // fragment; the layers' adds are independent and vectorise.
-                const float b = fragment_optical_depth(f);
-                for (int j = 0; j < L; ++j) sums[std::size_t(j)] += detail::keep_if(k == j, b);
-            } else {
-                if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], fragment_optical_depth(f));
-            }
-        });
-        finish<Placement, Accumulation>(sums, out);
-    }
-
-#if HAIRSHADOW_AVX512_WALK
-    /// build for a texel whose fragments all have optical depth b, given by their depths alone
-    /// (tile_fragments::group_depths): build's branch for one optical depth, the same maps bit for bit.
-    template <class Placement, class Accumulation>
-        requires requires(const Placement& p, const typename Placement::texel_state& s, std::span<const float> depths,
-                          std::array<std::uint32_t, std::size_t(Placement::layer_count)>& counts) { p.count_texel_avx512(s, depths, counts); }
-    static void build_from_depths(const Placement& placement, const typename Placement::texel_state& state, std::span<const float> depths, float b,
-                                  storage<Placement, Accumulation>& out) {
-        std::array<std::uint32_t, std::size_t(Placement::layer_count)> counts{};
-        placement.count_texel_avx512(state, depths, counts);
-        finish_counted<Placement, Accumulation>(b, counts, out);
-    }
-#endif
-
-    /// Whether every fragment's optical depth is the first one's: their alphas (or optical depths) are,
-    /// bit for bit. Without a branch per fragment, so that the loop vectorises.
-    template <class Fragment>
-    static bool one_optical_depth(std::span<const Fragment> fragments) noexcept {
-        const auto source = [](const Fragment& f) {
-            if constexpr (requires { f.alpha; }) return std::bit_cast<std::uint32_t>(f.alpha);
-            else return std::bit_cast<std::uint32_t>(f.optical_depth);
-        };
-        const std::uint32_t first = source(fragments[0]);
-        std::uint32_t other = 0;
-        for (const auto& f : fragments) other |= source(f) ^ first;
-        return other == 0;
-    }
-
-    /// The maps of a texel whose fragments all add b, counts[k] of them in layer k.
-    template <class Placement, class Accumulation>
-    static void finish_counted(float b, const std::array<std::uint32_t, std::size_t(Placement::layer_count)>& counts,
-                               storage<Placement, Accumulation>& out) {
-        auto& repeats = detail::repeated_sums_of<Accumulation>(b);
-        std::array<typename Accumulation::sum_type, std::size_t(Placement::layer_count)> sums{};
-        for (std::size_t k = 0; k < sums.size(); ++k) sums[k] = repeats(counts[k]);
-        finish<Placement, Accumulation>(sums, out);
-    }
-
-    /// The build in pieces, for a build that meets a texel's fragments among other texels' (in each
-    /// texel's own order all the same): one accumulator per texel, each fragment accumulated into its
-    /// layer k (as assign gives it), then finished. The same maps as build, bit for bit: build's
-    /// branch-free loop adds +0 to the other layers, which changes no sum.
-    template <class Placement, class Accumulation>
-    using accumulator = std::array<typename Accumulation::sum_type, std::size_t(Placement::layer_count)>;
-    template <class Placement, class Accumulation>
-    static void accumulate(accumulator<Placement, Accumulation>& sums, int k, float optical_depth) noexcept {
-        if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], optical_depth);
-    }
-    template <class Placement, class Accumulation>
-    static void finish(const accumulator<Placement, Accumulation>& sums, storage<Placement, Accumulation>& out) noexcept {
-        typename Accumulation::sum_type running{};
-        for (std::size_t k = 0; k < std::size_t(Placement::layer_count); ++k) {
-            if constexpr (Placement::cumulative) {
-                running = Accumulation::combine(running, sums[k]);
-                out.layers[k] = Accumulation::store(running);
-            } else {
-                out.layers[k] = Accumulation::store(sums[k]);
-            }
-        }
-    }
-    /// finish for several texels, the same values: their running sums advance layer by layer side by
-    /// side, so that each texel's chain of dependent adds overlaps the others' (64 opacity maps: a
-    /// chain of 64 adds per texel; BENCHMARKS.md, "Many layers streamed").
-    template <class Placement, class Accumulation, std::size_t N>
-        requires(Placement::cumulative)
-    static void finish_several(const std::array<const accumulator<Placement, Accumulation>*, N>& sums,
-                               const std::array<storage<Placement, Accumulation>*, N>& out) noexcept {
-        std::array<typename Accumulation::sum_type, N> running{};
-        for (std::size_t k = 0; k < std::size_t(Placement::layer_count); ++k)
-            for (std::size_t t = 0; t < N; ++t) {
-                running[t] = Accumulation::combine(running[t], (*sums[t])[k]);
-                out[t]->layers[k] = Accumulation::store(running[t]);
-            }
-    }
-
-    /// Optical depth in front of the end of layer k.
-    template <class Placement, class Accumulation>
-    static float through_layer(const storage<Placement, Accumulation>& in, int k) noexcept {
-        if (k < 0) return 0.0f;
-        if constexpr (Placement::cumulative) {
-            return Accumulation::decode(in.layers[std::size_t(k)]);
-        } else {
-            float sum = 0.0f;
-            for (int i = 0; i <= k; ++i) sum += Accumulation::decode(in.layers[std::size_t(i)]);
-            return sum;
-        }
-    }
-
-    /// Maps a texel stores, for inspection: one per layer.
-    template <class Placement>
-    static constexpr int stored_maps = Placement::layer_count;
-    /// Optical depth stored through map k (the end of layer k).
-    template <class Placement, class Accumulation>
-    static float stored_optical_depth(const storage<Placement, Accumulation>& in, int k) noexcept {
-        return through_layer<Placement, Accumulation>(in, k);
-    }
-
-    template <class Placement, class Accumulation>
-    static float optical_depth(const Placement& placement, const typename Placement::texel_state& state,
-                               const storage<Placement, Accumulation>& in, float depth) noexcept {
-        constexpr int L = Placement::layer_count;
-        const layer_position p = placement.locate(state, depth);
-        if (p.index < 0) return 0.0f;
-        if (p.index >= L) return through_layer<Placement, Accumulation>(in, L - 1);
-        const float before = through_layer<Placement, Accumulation>(in, p.index - 1);
-        const float after = through_layer<Placement, Accumulation>(in, p.index);
-        return before + p.fraction * (after - before);
-    }
-};
-
-} // namespace hairshadow
-// ---- end hairshadow/reconstruction/interpolation.hpp
 // ---- begin hairshadow/reconstruction/occupancy_bitcount.hpp
 /// @file
 /// Occupancy-map reconstruction (Sintorn & Assarsson 2009, sections 3.1-3.3): one bit per slice says
@@ -7116,33 +7280,50 @@ struct occupancy_bitcount {
 
 namespace hairshadow {
 
-/// Opacity shadow maps (Kim & Neumann 2001): N planar slices, float sums, linear interpolation.
-/// @tparam N number of maps
-/// @tparam Spacing uniform_spacing (Fig. 3a) or gamma_spacing (Fig. 3c)
-template <int N, class Spacing = uniform_spacing, class Accumulation = float_accumulation>
-using opacity_shadow_maps = shadow_method<planar_slices<N, Spacing>, Accumulation, interpolation>;
-
-/// Deep opacity maps (Yuksel & Keyser 2008): K layers from each texel's first fragment.
-template <int K, class Accumulation = float_accumulation>
-using deep_opacity_maps = shadow_method<per_pixel_depth<K>, Accumulation, interpolation>;
-
-/// Density clustering (Mertens et al. 2004): K k-means clusters per texel as histogram bins.
-template <int K, class Accumulation = float_accumulation>
-using density_clustering = shadow_method<clustered<K>, Accumulation, interpolation>;
-
 /// Occupancy maps (Sintorn & Assarsson 2009): S one-bit slices in each texel's depth range, B slabs.
 template <int S, int B, class Accumulation = float_accumulation>
 using occupancy_maps = shadow_method<depth_range<S>, Accumulation, occupancy_bitcount<B>>;
 
-/// Approximate deep shadow maps, as AMD TressFX ships them: one depth map (deep opacity maps' z0, no
-/// layers) and a constant density of fibres behind the first (fibre_density_parameters).
-using approximate_deep_shadow_maps = shadow_method<per_pixel_depth<1>, float_accumulation, fibre_density<fibre_density_source::fixed>>;
+namespace detail {
+/// occ's and docc's slices and slabs.
+struct occupancy_sizes {
+    using slices = size_list<32, 64, 128, 256>;
+    using slabs = size_list<1, 2, 4, 8>;
+    static void check(const spec_fields& f, std::string_view name) {
+        if (f.size() != 2 || !slices::contains(f.whole(0)) || !slabs::contains(f.whole(1)))
+            throw f.bad(std::string(name) + " needs S = 32, 64, 128 or 256 slices and B = 1, 2, 4 or 8 slabs");
+    }
+    /// Calls visit(s, b) with the spec's sizes as integral constants.
+    template <class Visit>
+    static bool with_sizes(const spec_fields& f, Visit&& visit) {
+        bool found = false;
+        with_size<slices>(f.whole(0), [&](auto s) { found = with_size<slabs>(f.whole(1), [&](auto b) { visit(s, b); }); });
+        return found;
+    }
+};
+} // namespace detail
 
-/// Approximate deep shadow maps with each texel's density measured: occupancy maps' depth range and
-/// the texel's summed optical depth (one opacity layer), spread over its fragment count.
-using measured_density_shadow_maps = shadow_method<depth_range<1>, float_accumulation, fibre_density<fibre_density_source::measured>>;
+/// The registration of occupancy maps (methods/method_family.hpp).
+struct occupancy_maps_family {
+    static constexpr std::string_view name = "occ";
+    static constexpr std::string_view grammar = "occ:S:B (S = 32, 64, 128, 256; B = 1, 2, 4, 8)";
+    static constexpr bool takes_accumulation = true;
+    static constexpr auto examples = std::make_tuple(spec_example<occupancy_maps<128, 4>>{"occ:128:4", in_compare | in_bench | in_figure | in_animate},
+                                                     spec_example<occupancy_maps<32, 1, emulated_8bit>>{"occ:32:1:8bit"},
+                                                     spec_example<occupancy_maps<256, 8>>{"occ:256:8"});
+    static constexpr std::array<std::string_view, 0> keywords{};
 
-// Hybrids: compositions no paper describes.
+    static void check(const spec_fields& f) { detail::occupancy_sizes::check(f, name); }
+    template <class Accumulation, class Visit>
+    static bool visit(const spec_fields& f, Visit&& visit) {
+        return detail::occupancy_sizes::with_sizes(f, [&](auto s, auto b) { visit(occupancy_maps<s(), b(), Accumulation>()); });
+    }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/methods/occupancy_maps.hpp
+
+namespace hairshadow {
 
 /// Deep opacity maps accumulated the way an RGBA8 target would (Kim & Neumann's 8-bit buffers).
 template <int K>
@@ -7158,171 +7339,409 @@ using deep_occupancy_maps = shadow_method<per_pixel_depth<S, layer_sizes::unifor
 template <int N>
 using range_opacity_maps = shadow_method<depth_range<N>, float_accumulation, interpolation>;
 
+/// The registration of deep occupancy maps (methods/method_family.hpp).
+struct deep_occupancy_maps_family {
+    static constexpr std::string_view name = "docc";
+    static constexpr std::string_view grammar = "docc:S:B (hybrid: occupancy slices from each texel's first fragment)";
+    static constexpr bool takes_accumulation = false;
+    static constexpr auto examples = std::make_tuple(spec_example<deep_occupancy_maps<128, 4>>{"docc:128:4", in_compare});
+    static constexpr std::array<std::string_view, 0> keywords{};
+
+    static void check(const spec_fields& f) { detail::occupancy_sizes::check(f, name); }
+    template <class Accumulation, class Visit>
+    static bool visit(const spec_fields& f, Visit&& visit) {
+        return detail::occupancy_sizes::with_sizes(f, [&](auto s, auto b) { visit(deep_occupancy_maps<s(), b()>()); });
+    }
+};
+
+/// The registration of range opacity maps (methods/method_family.hpp).
+struct range_opacity_maps_family {
+    static constexpr std::string_view name = "rosm";
+    static constexpr std::string_view grammar = "rosm:N (hybrid: opacity maps in each texel's depth range, N = 4, 8, ..., 256)";
+    static constexpr bool takes_accumulation = false;
+    static constexpr auto examples = std::make_tuple(spec_example<range_opacity_maps<16>>{"rosm:16"});
+    static constexpr std::array<std::string_view, 0> keywords{};
+    using sizes = size_list<4, 8, 16, 32, 64, 128, 256>;
+
+    static void check(const spec_fields& f) {
+        if (f.size() != 1) throw f.bad("rosm takes N");
+        if (!sizes::contains(f.whole(0))) throw f.bad("rosm needs N = 4, 8, ..., 256");
+    }
+    template <class Accumulation, class Visit>
+    static bool visit(const spec_fields& f, Visit&& visit) {
+        return with_size<sizes>(f.whole(0), [&](auto n) { visit(range_opacity_maps<n()>()); });
+    }
+};
+
 } // namespace hairshadow
-// ---- end hairshadow/methods/published.hpp
-// ---- begin hairshadow/methods/spec.hpp
+// ---- end hairshadow/methods/hybrids.hpp
+// ---- begin hairshadow/methods/opacity_shadow_maps.hpp
 /// @file
-/// Method specs: the text form of a method (`osm:16`, `dom:3`, `occ:128:4:8bit`, `dsm`, ...).
+/// Opacity shadow maps (Kim & Neumann 2001): N planar slices, summed, interpolated linearly. The spec
+/// `osm:N[:uniform|gamma]`.
+
+// ---- begin hairshadow/placement/planar_slices.hpp
+/// @file
+/// Opacity shadow maps' planar slices (Kim & Neumann 2001, section 2): N maps at depths D_1..D_N
+/// between the nearest fragment D_0 and the furthest, the same for every texel. A fragment adds to the
+/// map of its slice and to every later one (each map holds the opacity in front of its depth); a query
+/// interpolates linearly in depth between the maps that enclose it.
 
 
 #include <algorithm>
 #include <array>
-#include <optional>
-#include <string>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <iterator>
+#include <limits>
+#include <span>
 #include <string_view>
-#include <type_traits>
 
 namespace hairshadow {
 
-/// The grammar of method specs.
-inline constexpr std::string_view method_grammar =
-    "osm:N[:uniform|gamma] (N = 1, 2, 4, ..., 512) | dom:K (K = 1..8) | dc:K (K = 1..8) | occ:S:B (S = 32, 64, 128, 256; "
-    "B = 1, 2, 4, 8) | docc:S:B (hybrid: occupancy slices from each texel's first fragment) | rosm:N (hybrid: opacity maps in "
-    "each texel's depth range, N = 4, 8, ..., 256) | adsm[:SPACING:RADIUS:ALPHA[:MAX]] (TressFX's approximate deep shadow "
-    "maps: fibre spacing in radii, fibre radius in world units, fibre alpha, and optionally a cap on the fibres counted, a whole number; default "
-    "0.4:0.0021:0.35 and no cap, as TressFX's shader) | adsm:auto (each texel's "
-    "measured fibre density) | dsm (exact) | dsm:EPS (Lokovic-Veach compression, 0 < EPS < 1); "
-    "append :8bit to osm, dom, dc or occ for emulated 8-bit accumulation";
+/// Slices of equal thickness (Kim & Neumann Fig. 3a).
+struct uniform_spacing {
+    static constexpr std::string_view name = "uniform";
+    static constexpr float boundary(float t) noexcept { return t; }
+    static float inverse(float u) noexcept { return u; }
+};
 
-/// A bad method spec; what() quotes the valid grammar.
-class spec_error : public argument_error {
+/// Slices growing with depth, denser near the light, "analogous to gamma correction" (Kim & Neumann
+/// Fig. 3c). The paper gives no formula; we use D_i = D_0 + (D_N - D_0) (i / N)^2.
+struct gamma_spacing {
+    static constexpr std::string_view name = "gamma";
+    static constexpr float gamma = 2.0f;
+    static constexpr float boundary(float t) noexcept { return t * t; }
+    static float inverse(float u) noexcept { return std::sqrt(u); }
+};
+
+/// N planar slices between the nearest and furthest fragment of the whole map.
+/// @tparam N number of opacity maps
+/// @tparam Spacing uniform_spacing or gamma_spacing
+template <int N, class Spacing = uniform_spacing>
+class planar_slices {
+    static_assert(N >= 1, "planar_slices needs at least one slice");
+
 public:
-    using argument_error::argument_error;
+    static constexpr int layer_count = N;
+    static constexpr bool cumulative = true; ///< each map holds the opacity in front of its depth
+    /// Each texel's state depends on nothing of its fragments, in any order (order_free_maps).
+    static constexpr bool fragment_order_free = true;
+    static constexpr bool contiguous = true; ///< the slices tile [D_0, D_N) without gaps
+    static constexpr std::string_view name = Spacing::name;
+    static constexpr std::string_view glsl_name = "placement/planar_slices";
+    struct texel_state {
+        friend bool operator==(const texel_state&, const texel_state&) = default;
+    };
+
+    /// Global pre-pass: D_0 is the nearest fragment, D_N just beyond the furthest.
+    void prepare(const fragment_buffer& fragments) noexcept { prepare(extent_of(fragments)); }
+    /// The same from the map's depth extent (the GL back end reduces it from its depth-range map).
+    void prepare(const depth_extent& e) noexcept {
+        near_ = e.nearest;
+        far_ = detail::just_above(e.furthest);
+        for (int i = 0; i < N; ++i) boundaries_[std::size_t(i)] = near_ + (far_ - near_) * Spacing::boundary(float(i) / float(N));
+        boundaries_[std::size_t(N)] = far_;
+    }
+    template <class Fragment>
+    void prepare_texel(std::span<const Fragment>, texel_state&) const noexcept {}
+    /// No per-texel state (per_pixel_depth::texel_state_from).
+    void texel_state_from(float, float, texel_state&) const noexcept {}
+
+    /// Depth of map i, i in [0, N] (D_0 .. D_N): D_0 + (D_N - D_0) spacing(i / N), computed once per build.
+    float boundary(const texel_state&, int i) const noexcept { return boundaries_[std::size_t(std::clamp(i, 0, N))]; }
+    /// The slice a fragment at `depth` falls in: D_k <= depth < D_{k+1}.
+    int assign(const texel_state&, float depth) const noexcept { return std::min(reached(depth), N - 1); }
+#if HAIRSHADOW_AVX512_WALK
+    /// assign() for each depth, sixteen at a time (placement/assign_each.hpp): the same comparisons
+    /// with D_1..D_N lane by lane. For the branch-free count's N only.
+    HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state*, std::span<const std::uint32_t> texels, std::span<const float> depths,
+                                                     std::int32_t* layers) const noexcept
+        requires(N <= 16)
+    {
+        for (std::size_t i = 0; i < texels.size(); i += 16) {
+            const __mmask16 lanes = detail::avx512::first_lanes(texels.size() - i);
+            const __m512i reached = detail::avx512::boundaries_reached<N>(_mm512_maskz_loadu_ps(lanes, depths.data() + i), boundaries_.data() + 1);
+            _mm512_mask_storeu_epi32(layers + i, lanes, _mm512_min_epi32(reached, _mm512_set1_epi32(N - 1)));
+        }
+    }
+    /// The same for 17 to 64 maps, by bisection in registers: assign's min(reached, N - 1) is the
+    /// number of D_1..D_{N-1} at or below the depth, and since they never decrease, six halvings of a
+    /// table of them (padded with NaN, which no depth reaches) find it, as reached's upper_bound does.
+    /// A NaN depth reaches none, as in reached.
+    HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state*, std::span<const std::uint32_t> texels, std::span<const float> depths,
+                                                     std::int32_t* layers) const noexcept
+        requires(N > 16 && N <= 64)
+    {
+        alignas(64) float table[64];
+        std::fill(std::begin(table), std::end(table), std::numeric_limits<float>::quiet_NaN());
+        std::copy(boundaries_.begin() + 1, boundaries_.begin() + N, table); // D_1 .. D_{N-1}
+        const __m512 t0 = _mm512_load_ps(table), t1 = _mm512_load_ps(table + 16), t2 = _mm512_load_ps(table + 32), t3 = _mm512_load_ps(table + 48);
+        for (std::size_t i = 0; i < texels.size(); i += 16) {
+            const __mmask16 lanes = detail::avx512::first_lanes(texels.size() - i);
+            const __m512 depth = _mm512_maskz_loadu_ps(lanes, depths.data() + i);
+            __m512i below = _mm512_setzero_si512(); // table entries known to be at or below the depth
+            for (int step = 32; step >= 1; step /= 2) {
+                const __m512i probe = _mm512_add_epi32(below, _mm512_set1_epi32(step - 1));
+                const __m512 low_half = _mm512_permutex2var_ps(t0, probe, t1), high_half = _mm512_permutex2var_ps(t2, probe, t3);
+                const __m512 entry = _mm512_mask_blend_ps(_mm512_test_epi32_mask(probe, _mm512_set1_epi32(32)), low_half, high_half);
+                below = _mm512_mask_add_epi32(below, _mm512_cmp_ps_mask(entry, depth, _CMP_LE_OQ), below, _mm512_set1_epi32(step));
+            }
+            _mm512_mask_storeu_epi32(layers + i, lanes, below);
+        }
+    }
+#endif
+    layer_position locate(const texel_state&, float depth) const noexcept {
+        if (!(depth >= near_)) return {-1, 0.0f};
+        if (depth >= far_) return {N, 0.0f};
+        const int k = reached(depth);
+        return detail::position_in(k, depth, boundaries_[std::size_t(k)], boundaries_[std::size_t(k + 1)]);
+    }
+    /// Bytes of global state the maps need besides their texels (D_0 .. D_N, and D_0 and D_N apart).
+    static constexpr std::size_t global_bytes() noexcept { return (std::size_t(N) + 3) * sizeof(float); }
+    float nearest() const noexcept { return near_; }
+    float furthest() const noexcept { return far_; }
+
+private:
+    /// How many of D_1..D_N lie at or before `depth` (0 for NaN): the k with D_k <= depth < D_k+1 where
+    /// depth is in [D_0, D_N), since the boundaries never decrease. Without a branch for a few maps
+    /// (the build calls this for every fragment), by bisection for many.
+    int reached(float depth) const noexcept {
+        if constexpr (N <= 16) {
+            int k = 0;
+            for (int i = 1; i <= N; ++i) k += int(boundaries_[std::size_t(i)] <= depth);
+            return k;
+        } else {
+            if (!(depth >= near_)) return 0; // NaN too
+            return int(std::upper_bound(boundaries_.begin() + 1, boundaries_.end(), depth) - (boundaries_.begin() + 1));
+        }
+    }
+
+    float near_ = 0.0f, far_ = 0.0f;
+    std::array<float, std::size_t(N) + 1> boundaries_{};
 };
 
-/// The method families.
-enum class method_family { osm, dom, dc, occ, docc, rosm, adsm, dsm };
+/// Uniformly spaced opacity maps (Kim & Neumann Fig. 3a).
+template <int N>
+using uniform_slices = planar_slices<N, uniform_spacing>;
+/// Opacity maps spaced like gamma correction (Kim & Neumann Fig. 3c).
+template <int N>
+using gamma_slices = planar_slices<N, gamma_spacing>;
 
-/// A parsed method spec.
-struct method_spec {
-    std::string text;
-    method_family family = method_family::dsm;
-    int layers = 0;                 ///< N, K or S
-    int slabs = 0;                  ///< B (occ, docc)
-    bool gamma = false;             ///< osm: gamma spacing
-    bool eight_bit = false;         ///< emulated 8-bit accumulation
-    std::optional<float> tolerance; ///< dsm: compression tolerance
-    fibre_density_parameters density; ///< adsm: TressFX's fibre parameters
-    bool measured_density = false;    ///< adsm:auto
+} // namespace hairshadow
+// ---- end hairshadow/placement/planar_slices.hpp
+
+namespace hairshadow {
+
+/// Opacity shadow maps (Kim & Neumann 2001): N planar slices, float sums, linear interpolation.
+/// @tparam N number of maps
+/// @tparam Spacing uniform_spacing (Fig. 3a) or gamma_spacing (Fig. 3c)
+template <int N, class Spacing = uniform_spacing, class Accumulation = float_accumulation>
+using opacity_shadow_maps = shadow_method<planar_slices<N, Spacing>, Accumulation, interpolation>;
+
+/// The registration of opacity shadow maps (methods/method_family.hpp).
+struct opacity_shadow_maps_family {
+    static constexpr std::string_view name = "osm";
+    static constexpr std::string_view grammar = "osm:N[:uniform|gamma] (N = 1, 2, 4, ..., 512)";
+    static constexpr bool takes_accumulation = true;
+    static constexpr auto examples = std::make_tuple(spec_example<opacity_shadow_maps<16>>{"osm:16", in_compare | in_bench | in_figure | in_animate},
+                                                     spec_example<opacity_shadow_maps<64>>{"osm:64", in_compare | in_bench},
+                                                     spec_example<opacity_shadow_maps<256>>{"osm:256", in_compare | in_figure},
+                                                     spec_example<opacity_shadow_maps<8, gamma_spacing>>{"osm:8:gamma"},
+                                                     spec_example<opacity_shadow_maps<4, uniform_spacing, emulated_8bit>>{"osm:4:8bit"});
+    static constexpr auto keywords = std::to_array<std::string_view>({"uniform", "gamma"});
+    using sizes = size_list<1, 2, 4, 8, 16, 32, 64, 128, 256, 512>;
+
+    static void check(const spec_fields& f) {
+        if (f.size() < 1 || f.size() > 2) throw f.bad("osm takes N and an optional spacing");
+        if (!sizes::contains(f.whole(0))) throw f.bad("osm needs N = 1, 2, 4, ..., 512");
+        if (f.size() == 2 && f[1] != "gamma" && f[1] != "uniform") throw f.bad("osm spacing must be uniform or gamma");
+    }
+    template <class Accumulation, class Visit>
+    static bool visit(const spec_fields& f, Visit&& visit) {
+        const bool gamma = f.size() == 2 && f[1] == "gamma";
+        return with_size<sizes>(f.whole(0), [&](auto n) {
+            if (gamma) visit(opacity_shadow_maps<n(), gamma_spacing, Accumulation>());
+            else visit(opacity_shadow_maps<n(), uniform_spacing, Accumulation>());
+        });
+    }
 };
+
+} // namespace hairshadow
+// ---- end hairshadow/methods/opacity_shadow_maps.hpp
+// ---- end hairshadow/methods/published.hpp
+// ---- begin hairshadow/methods/spec.hpp
+/// @file
+/// Method specs, the text form of a method (`osm:16`, `dom:3`, `occ:128:4:8bit`, `dsm`, ...): parsed,
+/// described and turned into methods through the registered families (methods/registered.hpp).
+
+// ---- begin hairshadow/methods/registered.hpp
+/// @file
+/// The methods and accumulations the run-time registries, the spec parser, the command line, the fuzz
+/// dictionary and the tests know: one line each. A new method adds its family here (its header
+/// declares everything else: methods/method_family.hpp).
+
+// ---- begin hairshadow/methods/exact_reference.hpp
+/// @file
+/// The registration of the exact reference, a deep shadow map (Lokovic & Veach 2000), and its
+/// compression: the spec `dsm` or `dsm:EPS`. The maps themselves are reference/deep_shadow_map.hpp
+/// and reference/compressed_deep_shadow_map.hpp; a family's visit gives exact_reference.
+
+
+namespace hairshadow {
+
+/// The registration of the exact reference (methods/method_family.hpp).
+struct exact_reference_family {
+    static constexpr std::string_view name = "dsm";
+    static constexpr std::string_view grammar = "dsm (exact) | dsm:EPS (Lokovic-Veach compression, 0 < EPS < 1)";
+    static constexpr bool takes_accumulation = false;
+    static constexpr auto examples = std::make_tuple(spec_example<exact_reference>{"dsm", in_bench}, spec_example<exact_reference>{"dsm:0.01", in_compare});
+    static constexpr std::array<std::string_view, 0> keywords{};
+
+    static void check(const spec_fields& f) {
+        if (f.size() > 1) throw f.bad("dsm takes an optional tolerance");
+        if (f.size() == 1) {
+            const float eps = f.real(0, "tolerance");
+            if (!(eps > 0.0f && eps < 1.0f)) throw f.bad("the tolerance must be in (0, 1)");
+        }
+    }
+    template <class Accumulation, class Visit>
+    static bool visit(const spec_fields& f, Visit&& visit) {
+        visit(exact_reference{f.size() == 1 ? std::optional<float>(f.real(0, "tolerance")) : std::nullopt});
+        return true;
+    }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/methods/exact_reference.hpp
+
+namespace hairshadow {
+
+/// Every registered method family, in the order the command line lists them (the papers' years, then
+/// ours, then the exact reference).
+using registered_families =
+    family_list<opacity_shadow_maps_family, density_clustering_family, deep_opacity_maps_family, occupancy_maps_family,
+                approximate_deep_shadow_maps_family, deep_occupancy_maps_family, range_opacity_maps_family, exact_reference_family>;
+
+/// Every registered accumulation; the first is the default.
+using registered_accumulations = accumulation_list<float_accumulation, emulated_8bit>;
+
+} // namespace hairshadow
+// ---- end hairshadow/methods/registered.hpp
+
+#include <string>
+#include <tuple>
+#include <string_view>
+#include <vector>
+
+namespace hairshadow {
 
 namespace detail {
-inline constexpr std::array<int, 10> osm_sizes{1, 2, 4, 8, 16, 32, 64, 128, 256, 512};
-inline constexpr std::array<int, 8> small_sizes{1, 2, 3, 4, 5, 6, 7, 8};
-inline constexpr std::array<int, 4> slice_sizes{32, 64, 128, 256};
-inline constexpr std::array<int, 4> slab_sizes{1, 2, 4, 8};
-inline constexpr std::array<int, 7> rosm_sizes{4, 8, 16, 32, 64, 128, 256};
+/// The default accumulation's name (the first registered).
+inline std::string default_accumulation() {
+    std::string name;
+    registered_accumulations::any([&]<class A>() { return name = std::string(A::name), true; });
+    return name;
+}
 
-template <std::size_t Size>
-bool one_of(int n, const std::array<int, Size>& allowed) {
-    return std::find(allowed.begin(), allowed.end(), n) != allowed.end();
+/// The names of the families whose specs take an accumulation: "osm, dc, dom or occ".
+inline std::string accumulating_families() {
+    std::vector<std::string_view> names;
+    registered_families::any([&]<class F>() {
+        if (F::takes_accumulation) names.push_back(F::name);
+        return false;
+    });
+    std::string joined;
+    for (std::size_t i = 0; i < names.size(); ++i) joined += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + std::string(names[i]);
+    return joined;
 }
 } // namespace detail
+
+/// The grammar of method specs: every registered family's, and the accumulations that may follow.
+inline std::string method_grammar() {
+    std::string grammar;
+    registered_families::any([&]<class F>() {
+        grammar += (grammar.empty() ? "" : " | ") + std::string(F::grammar);
+        return false;
+    });
+    const std::string fallback = detail::default_accumulation();
+    registered_accumulations::any([&]<class A>() {
+        if (A::name != fallback) grammar += "; append :" + std::string(A::name) + " (" + std::string(A::summary) + ") to " + detail::accumulating_families();
+        return false;
+    });
+    return grammar;
+}
 
 /// Parses a method spec; throws spec_error with the grammar on anything else.
 inline method_spec parse_method_spec(std::string_view text) {
-    const auto bad = [&](const std::string& why) {
-        return spec_error("bad method spec '" + std::string(text) + "': " + why + "; valid: " + std::string(method_grammar));
-    };
-    auto parts = detail::split(text, ':');
     method_spec spec;
     spec.text = std::string(text);
-    if (parts.size() > 1 && parts.back() == "8bit") {
-        spec.eight_bit = true;
-        parts.pop_back();
-    }
-    // A count is a name's part, written as one would say it: no sign and no leading zero (dom:03 is a typo).
-    auto number = [&](std::string_view s) {
-        if (s.size() > 1 && s[0] == '0') throw bad("'" + std::string(s) + "' has a leading zero");
-        try {
-            return detail::parse_number<int>(s, "count");
-        } catch (const argument_error&) {
-            throw bad("'" + std::string(s) + "' is not a whole number");
-        }
+    spec.accumulation = detail::default_accumulation();
+    for (auto part : detail::split(text, ':')) spec.fields.emplace_back(part);
+    spec.family = spec.fields.front();
+    spec.fields.erase(spec.fields.begin());
+    const auto bad = [&](const std::string& why) {
+        return spec_error("bad method spec '" + spec.text + "': " + why + "; valid: " + method_grammar());
     };
-    const auto& name = parts[0];
-    if (name == "osm" && (parts.size() == 2 || parts.size() == 3)) {
-        spec.family = method_family::osm;
-        spec.layers = number(parts[1]);
-        if (!detail::one_of(spec.layers, detail::osm_sizes)) throw bad("osm needs N = 1, 2, 4, ..., 512");
-        if (parts.size() == 3) {
-            if (parts[2] == "gamma") spec.gamma = true;
-            else if (parts[2] != "uniform") throw bad("osm spacing must be uniform or gamma");
-        }
-    } else if ((name == "dom" || name == "dc") && parts.size() == 2) {
-        spec.family = name == "dom" ? method_family::dom : method_family::dc;
-        spec.layers = number(parts[1]);
-        if (!detail::one_of(spec.layers, detail::small_sizes)) throw bad(std::string(name) + " needs K = 1..8");
-    } else if ((name == "occ" || name == "docc") && parts.size() == 3) {
-        spec.family = name == "occ" ? method_family::occ : method_family::docc;
-        spec.layers = number(parts[1]);
-        spec.slabs = number(parts[2]);
-        if (!detail::one_of(spec.layers, detail::slice_sizes) || !detail::one_of(spec.slabs, detail::slab_sizes))
-            throw bad(std::string(name) + " needs S = 32, 64, 128 or 256 slices and B = 1, 2, 4 or 8 slabs");
-    } else if (name == "rosm" && parts.size() == 2) {
-        spec.family = method_family::rosm;
-        spec.layers = number(parts[1]);
-        if (!detail::one_of(spec.layers, detail::rosm_sizes)) throw bad("rosm needs N = 4, 8, ..., 256");
-    } else if (name == "adsm" && (parts.size() == 1 || parts.size() == 2 || parts.size() == 4 || parts.size() == 5)) {
-        spec.family = method_family::adsm;
-        if (parts.size() == 2) {
-            if (parts[1] != "auto") throw bad("adsm takes auto or SPACING:RADIUS:ALPHA[:MAX]");
-            spec.measured_density = true;
-        } else if (parts.size() >= 4) {
-            auto real = [&](std::string_view s, const char* what) {
-                try {
-                    return detail::parse_number<float>(s, what);
-                } catch (const argument_error&) {
-                    throw bad("the fibre " + std::string(what) + " '" + std::string(s) + "' is not a number");
-                }
-            };
-            spec.density.spacing = real(parts[1], "spacing");
-            spec.density.radius = real(parts[2], "radius");
-            spec.density.alpha = real(parts[3], "alpha");
-            if (parts.size() == 5) {
-                const int cap = number(parts[4]);
-                if (cap < 1) throw bad("the fibre cap must be at least one fibre");
-                spec.density.max_fibres = float(cap);
-            }
-            try {
-                spec.density.check();
-            } catch (const argument_error& e) {
-                throw bad(e.what());
-            }
-        }
-    } else if (name == "dsm" && (parts.size() == 1 || parts.size() == 2)) {
-        spec.family = method_family::dsm;
-        if (parts.size() == 2) {
-            float eps = 0.0f;
-            try {
-                eps = detail::parse_number<float>(parts[1], "tolerance");
-            } catch (const argument_error&) {
-                throw bad("the tolerance is not a number");
-            }
-            if (!(eps > 0.0f && eps < 1.0f)) throw bad("the tolerance must be in (0, 1)");
-            spec.tolerance = eps;
-        }
-    } else {
-        throw bad("unknown method or wrong number of fields");
-    }
-    if (spec.eight_bit && (spec.family == method_family::dsm || spec.family == method_family::docc || spec.family == method_family::rosm ||
-                           spec.family == method_family::adsm))
-        throw bad(":8bit applies to osm, dom, dc and occ");
+    bool named_accumulation = false;
+    if (!spec.fields.empty())
+        registered_accumulations::any([&]<class A>() {
+            if (A::name == spec.accumulation || spec.fields.back() != A::name) return false;
+            spec.accumulation = std::string(A::name);
+            spec.fields.pop_back();
+            return named_accumulation = true;
+        });
+    const bool known = registered_families::any([&]<class F>() {
+        if (spec.family != F::name) return false;
+        if (named_accumulation && !F::takes_accumulation) throw bad(":" + spec.accumulation + " applies to " + detail::accumulating_families());
+        F::check(spec_fields(spec.text, spec.fields, method_grammar()));
+        return true;
+    });
+    if (!known) throw bad("unknown method '" + spec.family + "'");
     return spec;
 }
 
-namespace detail {
-
-/// The method of a spec with the spec's parameters: policies that take parameters (a fibre density)
-/// are made from them, the others as they default.
-template <class Method>
-Method method_of(const method_spec& spec) {
-    using R = typename Method::reconstruction_type;
-    if constexpr (std::is_constructible_v<R, fibre_density_parameters>) return Method(typename Method::placement_type(), R(spec.density));
-    else return Method();
+/// Calls visit(method) with the method of a parsed spec, made with its parameters: a shadow_method,
+/// or exact_reference for the exact map. False where the spec names no registered method.
+template <class Visit>
+bool visit_method(const method_spec& spec, Visit&& visit) {
+    return registered_families::any([&]<class F>() {
+        if (spec.family != F::name) return false;
+        const spec_fields fields(spec.text, spec.fields, F::grammar);
+        return registered_accumulations::any([&]<class A>() { return spec.accumulation == A::name && F::template visit<A>(fields, visit); });
+    });
 }
 
-} // namespace detail
+/// Calls visit(example) for every registered family's spec_example, in the registry's order (for
+/// tests: example.spec, and typename decltype(example)::method_type).
+template <class Visit>
+void for_each_example(Visit&& visit) {
+    registered_families::any([&]<class F>() {
+        std::apply([&](const auto&... example) { (visit(example), ...); }, F::examples);
+        return false;
+    });
+}
+
+/// The registered families' example specs in `list` (spec_lists; in_tests: all of them), in the
+/// registry's order.
+inline std::vector<std::string> example_specs(spec_lists list = in_tests) {
+    std::vector<std::string> specs;
+    for_each_example([&](const auto& e) {
+        if (list == in_tests || (e.lists & list)) specs.emplace_back(e.spec);
+    });
+    return specs;
+}
+
+/// Whether a parsed spec names the exact reference, which only the CPU builds.
+inline bool names_exact_reference(const method_spec& spec) { return spec.family == exact_reference_family::name; }
+
+/// example_specs(list) joined by commas: a default of the command line's --methods.
+inline std::string example_spec_list(spec_lists list) {
+    std::string joined;
+    for (const auto& s : example_specs(list)) joined += (joined.empty() ? "" : ",") + s;
+    return joined;
+}
 
 } // namespace hairshadow
 // ---- end hairshadow/methods/spec.hpp

@@ -17,25 +17,14 @@ using namespace hairshadow;
 
 namespace {
 
-/// A method spec and its type.
-template <class Method>
-struct named {
-    using type = Method;
-    const char* spec;
-};
-
-/// Calls visit(spec, Method{}) for every published method and hybrid, float and 8-bit: each kind of
-/// placement, accumulation and reconstruction the registry composes.
+/// Calls visit(spec, method) for every registered family's examples but the exact map's (float and
+/// 8-bit: each kind of placement, accumulation and reconstruction the registry composes).
 template <class Visit>
 void for_every_method(Visit&& visit) {
-    const auto each = [&](auto... m) { (visit(parse_method_spec(m.spec), typename decltype(m)::type()), ...); };
-    each(named<opacity_shadow_maps<16>>{"osm:16"}, named<opacity_shadow_maps<8, gamma_spacing>>{"osm:8:gamma"},
-         named<opacity_shadow_maps<4, uniform_spacing, emulated_8bit>>{"osm:4:8bit"}, named<deep_opacity_maps<3>>{"dom:3"},
-         named<deep_opacity_maps<4, emulated_8bit>>{"dom:4:8bit"}, named<density_clustering<4>>{"dc:4"},
-         named<density_clustering<8, emulated_8bit>>{"dc:8:8bit"}, named<occupancy_maps<128, 4>>{"occ:128:4"},
-         named<occupancy_maps<32, 1, emulated_8bit>>{"occ:32:1:8bit"}, named<occupancy_maps<256, 8>>{"occ:256:8"},
-         named<deep_occupancy_maps<128, 4>>{"docc:128:4"}, named<range_opacity_maps<16>>{"rosm:16"},
-         named<approximate_deep_shadow_maps>{"adsm"}, named<measured_density_shadow_maps>{"adsm:auto"});
+    for_each_example([&](const auto& example) {
+        using Method = typename std::decay_t<decltype(example)>::method_type;
+        if constexpr (!std::is_same_v<Method, exact_reference>) visit(parse_method_spec(example.spec), Method());
+    });
 }
 
 /// Builds every method on the CPU and on the compute path from one shared light pass, and compares.
@@ -52,10 +41,10 @@ long check_every_method(const hair_model& model, const light_space& light, const
     CHECK(extent.nearest == bins.extent().nearest); // the whole map's extent, from the segments as on the CPU
     CHECK(extent.furthest == bins.extent().furthest);
     long texels = -1;
-    for_every_method([&]<class Method>(const method_spec& spec, Method) {
-        Method cpu = hairshadow::detail::method_of<Method>(spec);
+    for_every_method([&]<class Method>(const method_spec& spec, const Method& method) {
+        Method cpu = method;
         cpu.build(model, light, options);
-        auto on_gl = gl::detail::maps_of_spec<Method>(spec);
+        auto on_gl = gl::detail::maps_of_method(method);
         on_gl.build(pass);
         const auto c = test::compare_maps(cpu, on_gl, range, occupied, light.resolution());
         CAPTURE(spec.text, c.occupied, c.occupied_cpu, c.occupancy_off, c.state_off, c.data_off, c.worst);
@@ -154,10 +143,10 @@ TEST_CASE("the GLSL look-up of compute-built maps gives the CPU query", "[gl][co
     const gl::hair_mesh mesh(model);
     gl::light_pass pass(gl::build_path::compute);
     pass.run(mesh, light);
-    for_every_method([&]<class Method>(const method_spec& spec, Method) {
-        auto on_gl = gl::detail::maps_of_spec<Method>(spec);
+    for_every_method([&]<class Method>(const method_spec& spec, const Method& method) {
+        auto on_gl = gl::detail::maps_of_method(method);
         on_gl.build(pass);
-        Method cpu = hairshadow::detail::method_of<Method>(spec);
+        Method cpu = method;
         cpu.build(model, light);
         const auto on_gpu = test::gl_lookup(on_gl.lookup_source(), [&](GLuint p) { on_gl.bind_lookup(p); }, queries);
         std::vector<float> on_cpu(queries.size());

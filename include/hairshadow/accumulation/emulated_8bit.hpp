@@ -18,6 +18,7 @@ struct emulated_8bit {
     using value_type = std::uint8_t;
     using sum_type = std::int32_t; ///< saturated at 255 after every add, exactly as the blend does
     static constexpr std::string_view name = "8bit";
+    static constexpr std::string_view summary = "emulated 8-bit accumulation";
     static constexpr std::string_view glsl_name = "accumulation/emulated_8bit";
     /// exp(-kappa) = 2^-8: kappa = 8 ln 2, about 5.545 (the paper rounds it to 5.56).
     static constexpr float kappa = 8.0f * std::numbers::ln2_v<float>;

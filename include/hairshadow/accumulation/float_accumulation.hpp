@@ -20,6 +20,7 @@ struct float_accumulation {
     using value_type = float;  ///< what a map texel stores
     using sum_type = float;    ///< what is summed while building
     static constexpr std::string_view name = "float";
+    static constexpr std::string_view summary = "float sums";
     static constexpr std::string_view glsl_name = "accumulation/float";
 
     /// Adds one fragment's optical depth.

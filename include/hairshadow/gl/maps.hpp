@@ -7,7 +7,6 @@
 #include <hairshadow/gl/fibre_density_maps.hpp>
 #include <hairshadow/gl/interpolated_maps.hpp>
 #include <hairshadow/gl/occupancy_maps.hpp>
-#include <hairshadow/methods/spec.hpp>
 
 #include <type_traits>
 
@@ -36,10 +35,10 @@ template <class Method>
 using maps = typename detail::maps_of<Method>::type;
 
 namespace detail {
-/// The GL maps of a spec, made with the spec's parameters where they take them (a fibre density).
+/// The GL maps of `method`, made with its parameters where they take them (a fibre density).
 template <class Method>
-maps<Method> maps_of_spec(const method_spec& spec) {
-    if constexpr (std::is_constructible_v<maps<Method>, const Method&>) return maps<Method>(hairshadow::detail::method_of<Method>(spec));
+maps<Method> maps_of_method(const Method& method) {
+    if constexpr (std::is_constructible_v<maps<Method>, const Method&>) return maps<Method>(method);
     else return maps<Method>();
 }
 } // namespace detail

@@ -53,7 +53,7 @@ namespace detail {
 template <class Method>
 class gl_method_map final : public any_gl_shadow_map {
 public:
-    explicit gl_method_map(method_spec spec) : any_gl_shadow_map(std::move(spec)), maps_(maps_of_spec<Method>(this->spec())) {}
+    gl_method_map(method_spec spec, const Method& method) : any_gl_shadow_map(std::move(spec)), maps_(maps_of_method(method)) {}
     void set_build_path(build_path path) override { maps_.set_build_path(path); }
     build_path path() const override { return maps_.path(); }
     void build(const hair_mesh& mesh, const light_space& light, const raster_options& options) override {
@@ -78,7 +78,7 @@ public:
     std::unique_ptr<any_shadow_map> to_cpu() override {
         auto map = make_shadow_map(spec());
         Method* method = map->template method_if<Method>();
-        if (!method) throw std::logic_error("the CPU registry made another method for '" + spec().text + "'"); // both visit_method
+        if (!method) throw std::logic_error("the CPU registry made another method for '" + spec().text + "'"); // both use visit_method
         *method = maps_.to_cpu();
         return map;
     }
@@ -88,11 +88,6 @@ private:
     std::optional<point_queries> queries_;
 };
 
-template <class Method>
-std::unique_ptr<any_gl_shadow_map> make_gl_map(const method_spec& spec) {
-    return std::make_unique<gl_method_map<Method>>(spec);
-}
-
 } // namespace detail
 
 /// Makes the (not yet built) GL maps of a spec; throws spec_error for a spec without a GL twin (the
@@ -101,10 +96,13 @@ std::unique_ptr<any_gl_shadow_map> make_gl_map(const method_spec& spec) {
 std::unique_ptr<any_gl_shadow_map> make_gl_shadow_map(const method_spec& spec); // defined in the one implementing file
 #else
 HAIRSHADOW_REGISTRY_LINKAGE std::unique_ptr<any_gl_shadow_map> make_gl_shadow_map(const method_spec& spec) {
-    if (spec.family == method_family::dsm) throw spec_error("the exact reference (dsm) has no GL back end; use --backend cpu");
     std::unique_ptr<any_gl_shadow_map> map;
-    hairshadow::detail::visit_method(spec, [&]<class Method>() { map = detail::make_gl_map<Method>(spec); });
-    if (!map) throw spec_error("unsupported method spec '" + spec.text + "'; valid: " + std::string(method_grammar));
+    visit_method(spec, [&]<class Method>(const Method& method) {
+        if constexpr (std::is_same_v<Method, exact_reference>)
+            throw spec_error("the exact reference (" + spec.text + ") has no GL back end; use --backend cpu");
+        else map = std::make_unique<detail::gl_method_map<Method>>(spec, method);
+    });
+    if (!map) throw spec_error("unsupported method spec '" + spec.text + "'; valid: " + method_grammar());
     return map;
 }
 #endif

@@ -105,7 +105,7 @@ namespace detail {
 template <class Method>
 class method_map final : public any_shadow_map {
 public:
-    explicit method_map(method_spec spec, Method method = Method()) : any_shadow_map(std::move(spec)), method_(std::move(method)) {}
+    method_map(method_spec spec, Method method) : any_shadow_map(std::move(spec)), method_(std::move(method)) {}
     void build(const hair_model& model, const light_space& light, const raster_options& options) override { method_.build(model, light, options); }
     void build(const fragment_buffer& fragments, const light_space& light, const execution& exec) override { method_.build(fragments, light, exec); }
     float optical_depth(int x, int y, float depth) const override { return method_.optical_depth(x, y, depth); }
@@ -136,7 +136,7 @@ private:
 
 class reference_map final : public any_shadow_map {
 public:
-    explicit reference_map(method_spec spec) : any_shadow_map(std::move(spec)) {}
+    reference_map(method_spec spec, exact_reference reference) : any_shadow_map(std::move(spec)), tolerance_(reference.tolerance) {}
     void build(const hair_model& model, const light_space& light, const raster_options& options) override {
         if (!raster_ || !(raster_->options() == options)) raster_.emplace(options);
         build((*raster_)(model, light), light, options.exec);
@@ -144,7 +144,7 @@ public:
     void build(const fragment_buffer& fragments, const light_space& light, const execution& exec) override {
         compressed_.reset();
         exact_.emplace(fragments, light, exec);
-        if (spec().tolerance) compressed_.emplace(*exact_, *spec().tolerance, exec);
+        if (tolerance_) compressed_.emplace(*exact_, *tolerance_, exec);
     }
     float optical_depth(int x, int y, float depth) const override {
         if (!exact_) return 0.0f; // not built: no shadow, like an unbuilt shadow_method
@@ -183,73 +183,26 @@ public:
     }
 
 private:
+    std::optional<float> tolerance_;   ///< Lokovic-Veach compression's, if compressed
     std::optional<rasterizer> raster_; ///< kept between builds from a model
     std::optional<deep_shadow_map> exact_;
     std::optional<compressed_deep_shadow_map> compressed_;
 };
 
-/// Calls visit(std::integral_constant<int, n>) for the n in Allowed equal to `value`; false if none is.
-template <auto Allowed, std::size_t I = 0, class Visit>
-bool with_size(int value, Visit&& visit) {
-    if constexpr (I == Allowed.size()) {
-        return false;
-    } else {
-        if (value == Allowed[I]) return visit(std::integral_constant<int, Allowed[I]>{}), true;
-        return with_size<Allowed, I + 1>(value, visit);
-    }
-}
-
-template <class Accumulation, class Visit>
-bool visit_with(const method_spec& s, Visit& visit) {
-    switch (s.family) {
-    case method_family::osm:
-        return with_size<osm_sizes>(s.layers, [&](auto n) {
-            if (s.gamma) visit.template operator()<opacity_shadow_maps<n(), gamma_spacing, Accumulation>>();
-            else visit.template operator()<opacity_shadow_maps<n(), uniform_spacing, Accumulation>>();
-        });
-    case method_family::dom:
-        return with_size<small_sizes>(s.layers, [&](auto k) { visit.template operator()<deep_opacity_maps<k(), Accumulation>>(); });
-    case method_family::dc:
-        return with_size<small_sizes>(s.layers, [&](auto k) { visit.template operator()<density_clustering<k(), Accumulation>>(); });
-    case method_family::occ:
-        return with_size<slice_sizes>(s.layers, [&](auto n) {
-            with_size<slab_sizes>(s.slabs, [&](auto b) { visit.template operator()<occupancy_maps<n(), b(), Accumulation>>(); });
-        }) && one_of(s.slabs, slab_sizes);
-    default: return false;
-    }
-}
-
-/// Calls visit.template operator()<Method>() with the shadow_method of a spec (not the exact map's);
-/// false if the spec names none.
-template <class Visit>
-bool visit_method(const method_spec& spec, Visit&& visit) {
-    switch (spec.family) {
-    case method_family::dsm: return false;
-    case method_family::docc:
-        return with_size<slice_sizes>(spec.layers, [&](auto n) {
-            with_size<slab_sizes>(spec.slabs, [&](auto b) { visit.template operator()<deep_occupancy_maps<n(), b()>>(); });
-        }) && one_of(spec.slabs, slab_sizes);
-    case method_family::rosm:
-        return with_size<rosm_sizes>(spec.layers, [&](auto n) { visit.template operator()<range_opacity_maps<n()>>(); });
-    case method_family::adsm:
-        if (spec.measured_density) visit.template operator()<measured_density_shadow_maps>();
-        else visit.template operator()<approximate_deep_shadow_maps>();
-        return true;
-    default: return spec.eight_bit ? visit_with<emulated_8bit>(spec, visit) : visit_with<float_accumulation>(spec, visit);
-    }
-}
-
 } // namespace detail
 
-/// Makes the (not yet built) shadow map of a spec; throws spec_error for an unsupported one.
+/// Makes the (not yet built) shadow map of a spec (parse_method_spec's); throws spec_error for one no
+/// registered family names.
 #if defined(HAIRSHADOW_SEPARATE_REGISTRY) && !defined(HAIRSHADOW_REGISTRY_IMPLEMENTATION)
 std::unique_ptr<any_shadow_map> make_shadow_map(const method_spec& spec); // defined in the one implementing file
 #else
 HAIRSHADOW_REGISTRY_LINKAGE std::unique_ptr<any_shadow_map> make_shadow_map(const method_spec& spec) {
-    if (spec.family == method_family::dsm) return std::make_unique<detail::reference_map>(spec);
     std::unique_ptr<any_shadow_map> map;
-    detail::visit_method(spec, [&]<class Method>() { map = std::make_unique<detail::method_map<Method>>(spec, detail::method_of<Method>(spec)); });
-    if (!map) throw spec_error("unsupported method spec '" + spec.text + "'; valid: " + std::string(method_grammar));
+    visit_method(spec, [&]<class Method>(Method method) {
+        if constexpr (std::is_same_v<Method, exact_reference>) map = std::make_unique<detail::reference_map>(spec, method);
+        else map = std::make_unique<detail::method_map<Method>>(spec, std::move(method));
+    });
+    if (!map) throw spec_error("unsupported method spec '" + spec.text + "'; valid: " + method_grammar());
     return map;
 }
 #endif

@@ -1,0 +1,71 @@
+// The method registrations (methods/registered.hpp): every family's examples parse and make, through
+// the run-time registry, the method the family says; the grammar, the command line's lists and the
+// fuzz dictionary come from the families; a spec's accumulation is a parameter like the others.
+#include "test_support.hpp"
+
+#include <hairshadow/methods/registry.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <set>
+#include <sstream>
+#include <type_traits>
+
+using namespace hairshadow;
+
+TEST_CASE("every family's examples parse and make the method the family says", "[methods][spec][registry]") {
+    std::set<std::string> families;
+    std::size_t examples = 0;
+    for_each_example([&](const auto& example) {
+        using Method = typename std::decay_t<decltype(example)>::method_type;
+        CAPTURE(example.spec);
+        const auto spec = parse_method_spec(example.spec);
+        CHECK(spec.text == example.spec);
+        families.insert(spec.family);
+        const auto map = make_shadow_map(spec);
+        if constexpr (std::is_same_v<Method, exact_reference>) CHECK(names_exact_reference(spec));
+        else CHECK(map->template method_if<Method>() != nullptr);
+        ++examples;
+    });
+    std::set<std::string> registered;
+    registered_families::any([&]<class F>() { return registered.insert(std::string(F::name)), false; });
+    CHECK(families == registered); // every family gives at least one example
+    CHECK(examples >= 2 * registered.size());
+}
+
+TEST_CASE("the grammar, the command line's lists and the fuzz dictionary come from the registered families", "[methods][spec][registry]") {
+    const std::string grammar = method_grammar();
+    const std::string dictionary = test::read_text(std::string(HAIRSHADOW_SOURCE_DIR) + "/tests/fuzz/method_spec.dict");
+    registered_families::any([&]<class F>() {
+        CAPTURE(F::name);
+        CHECK_THAT(grammar, Catch::Contains(std::string(F::grammar)));
+        CHECK_THAT(dictionary, Catch::Contains("\"" + std::string(F::name) + "\""));
+        for (const auto keyword : F::keywords) CHECK_THAT(dictionary, Catch::Contains("\"" + std::string(keyword) + "\""));
+        return false;
+    });
+    registered_accumulations::any([&]<class A>() { // but the default, which a spec never names
+        if (A::name != detail::default_accumulation()) CHECK_THAT(dictionary, Catch::Contains("\"" + std::string(A::name) + "\""));
+        return false;
+    });
+    CHECK_THAT(grammar, Catch::Contains("append :8bit (emulated 8-bit accumulation) to osm, dc, dom or occ"));
+    // The command line's default lists: the papers' methods in every one, in the registry's order.
+    CHECK(example_spec_list(in_figure) == "osm:16,osm:256,dc:4,dom:3,occ:128:4,adsm");
+    CHECK(example_spec_list(in_animate) == "osm:16,dc:4,dom:3,occ:128:4");
+    for (const auto& spec : example_specs(in_compare)) CHECK_NOTHROW(parse_method_spec(spec));
+    const auto compare = test::run_cli("compare --help");
+    CHECK_THAT(compare.out + compare.err, Catch::Contains(example_spec_list(in_compare)));
+}
+
+TEST_CASE("a spec's accumulation is a parameter: named last, only where the family takes one", "[methods][spec][registry]") {
+    CHECK(parse_method_spec("dom:3").accumulation == "float");
+    CHECK(parse_method_spec("dom:3:8bit").accumulation == "8bit");
+    CHECK(parse_method_spec("osm:16:gamma:8bit").fields == std::vector<std::string>{"16", "gamma"});
+    CHECK(make_shadow_map("dc:4:8bit")->method_if<density_clustering<4, emulated_8bit>>() != nullptr);
+    CHECK(make_shadow_map("dc:4")->method_if<density_clustering<4, emulated_8bit>>() == nullptr);
+    for (const char* bad : {"adsm:8bit", "dsm:8bit", "docc:128:4:8bit", "dom:3:float", "dom:3:8bit:8bit", "dom:8bit:3", "frob:3", "", ":3"}) {
+        CAPTURE(bad);
+        CHECK_THROWS_AS(parse_method_spec(bad), spec_error);
+    }
+    CHECK_THROWS_WITH(parse_method_spec("adsm:8bit"), Catch::Contains(":8bit applies to osm, dc, dom or occ"));
+    CHECK_THROWS_WITH(parse_method_spec("frob:3"), Catch::Contains("unknown method 'frob'"));
+}
