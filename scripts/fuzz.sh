@@ -17,7 +17,9 @@ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clan
     -DHAIRSHADOW_INSTALL=OFF > "$build.configure.log" 2>&1 || { cat "$build.configure.log"; exit 1; }
 # Only the fuzz targets (and the CPU registry that method_spec links): the whole project would also
 # compile the GL registry, which no target links, last and alone.
-cmake --build "$build" -j"${JOBS:-2}" --target "${targets[@]/#/hairshadow_fuzz_}" > "$build.build.log" 2>&1 || { tail -50 "$build.build.log"; exit 1; }
+cmake --build "$build" -j"${JOBS:-2}" --target "${targets[@]/#/hairshadow_fuzz_}" hairshadow_method_spec_dictionary > "$build.build.log" 2>&1 || { tail -50 "$build.build.log"; exit 1; }
+# The method specs' dictionary comes from the registered families.
+"$build/tests/fuzz/hairshadow_method_spec_dictionary" > "$build/method_spec.dict"
 
 export ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
@@ -25,6 +27,7 @@ run_target() {
     local t="$1" corpus="$build/corpus/$1" artifacts="$build/artifacts/$1/" dict=()
     mkdir -p "$corpus" "$artifacts"
     [ -f "tests/fuzz/$t.dict" ] && dict=(-dict="tests/fuzz/$t.dict")
+    [ -f "$build/$t.dict" ] && dict=(-dict="$build/$t.dict")
     local seeds=("tests/fuzz/corpus/$t")
     [ -d "tests/data/fuzz/$t" ] && seeds+=("tests/data/fuzz/$t")
     "$build/tests/fuzz/hairshadow_fuzz_$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \

@@ -5798,6 +5798,7 @@ private:
 #include <optional>
 #include <type_traits>
 #include <span>
+#include <string>
 #include <string_view>
 
 namespace hairshadow {
@@ -5832,6 +5833,15 @@ public:
     static constexpr bool contiguous = true;
     static constexpr std::string_view name = "per_pixel_depth";
     static constexpr std::string_view glsl_name = "placement/per_pixel_depth";
+    /// The GLSL twin's configuration and uniforms (gl/policy_glsl.hpp).
+    static std::string glsl_defines() {
+        return std::string(Sizes == layer_sizes::uniform ? "#define HS_UNIFORM_SIZES\n" : "") +
+               (Beyond == beyond_last_layer::ignore ? "#define HS_BEYOND_IGNORE\n" : "") + (Beyond == beyond_last_layer::extend ? "#define HS_BEYOND_EXTEND\n" : "");
+    }
+    template <class Set>
+    void glsl_uniforms(Set&& set) const {
+        set("hs_requested_extent", requested_extent_.value_or(0.0f)); // 0: half the map's depth range, as prepare() takes it
+    }
 
     /// The depth map (z0), plus the stretch factor when layers extend to the last fragment.
     struct z0_only {
@@ -7396,6 +7406,7 @@ struct range_opacity_maps_family {
 #include <iterator>
 #include <limits>
 #include <span>
+#include <string>
 #include <string_view>
 
 namespace hairshadow {
@@ -7431,6 +7442,8 @@ public:
     static constexpr bool contiguous = true; ///< the slices tile [D_0, D_N) without gaps
     static constexpr std::string_view name = Spacing::name;
     static constexpr std::string_view glsl_name = "placement/planar_slices";
+    /// The GLSL twin's configuration (gl/policy_glsl.hpp); D_0 and D_N come from the map's extent.
+    static std::string glsl_defines() { return Spacing::name == gamma_spacing::name ? "#define HS_GAMMA_SPACING\n" : ""; }
     struct texel_state {
         friend bool operator==(const texel_state&, const texel_state&) = default;
     };
@@ -7630,6 +7643,7 @@ using registered_accumulations = accumulation_list<float_accumulation, emulated_
 } // namespace hairshadow
 // ---- end hairshadow/methods/registered.hpp
 
+#include <algorithm>
 #include <string>
 #include <tuple>
 #include <string_view>
@@ -7731,6 +7745,29 @@ inline std::vector<std::string> example_specs(spec_lists list = in_tests) {
         if (list == in_tests || (e.lists & list)) specs.emplace_back(e.spec);
     });
     return specs;
+}
+
+/// The words of method specs, for a fuzzer's dictionary: every registered family's name and keywords,
+/// the accumulations' names but the default's, the field separator, and every field of the families'
+/// examples; each once, in the registry's order.
+inline std::vector<std::string> method_spec_tokens() {
+    std::vector<std::string> tokens{":"};
+    const auto add = [&](std::string_view t) {
+        if (!t.empty() && std::find(tokens.begin(), tokens.end(), t) == tokens.end()) tokens.emplace_back(t);
+    };
+    registered_families::any([&]<class F>() {
+        add(F::name);
+        for (const auto keyword : F::keywords) add(keyword);
+        return false;
+    });
+    const std::string fallback = detail::default_accumulation();
+    registered_accumulations::any([&]<class A>() {
+        if (A::name != fallback) add(A::name);
+        return false;
+    });
+    for (const auto& example : example_specs())
+        for (const auto field : detail::split(example, ':')) add(field);
+    return tokens;
 }
 
 /// Whether a parsed spec names the exact reference, which only the CPU builds.

@@ -7,6 +7,7 @@
 
 #include <hairshadow/gl/light_pass.hpp>
 #include <hairshadow/gl/lookup_binding.hpp>
+#include <hairshadow/gl/policy_glsl.hpp>
 #include <hairshadow/placement/clustered.hpp>
 
 #include <algorithm>
@@ -31,12 +32,12 @@ public:
                                 " draw buffers (GL_MAX_DRAW_BUFFERS is " + std::to_string(draw_buffers) + ")");
         const std::string defines = "#define HS_ALPHA_MAX " + std::to_string(HAIRSHADOW_ALPHA_MAX) + "\n#define HS_LAYERS " +
                                     std::to_string(K) + "\n#define HS_STATE_TARGETS " + std::to_string(targets) + "\n";
-        const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::raster_vertex}, "raster/vertex");
-        const auto fullscreen = compile_shader(GL_VERTEX_SHADER, {version, shaders::passes_fullscreen_vertex}, "passes/fullscreen_vertex");
+        const auto vs = compile_stage(GL_VERTEX_SHADER, {}, {shaders::raster_vertex}, "raster/vertex");
+        const auto fullscreen = compile_stage(GL_VERTEX_SHADER, {}, {shaders::passes_fullscreen_vertex}, "passes/fullscreen_vertex");
         // The fragment passes read the rasterised fragment (raster/coverage); the resolve pass does not.
         const auto compile = [&](std::string_view pass, std::string_view source, bool fragments) {
-            return compile_shader(GL_FRAGMENT_SHADER,
-                                  {version, defines, fragments ? shaders::raster_coverage : "", shaders::placement_common,
+            return compile_stage(GL_FRAGMENT_SHADER, {},
+                                  {defines, fragments ? shaders::raster_coverage : "", shaders::placement_common,
                                    shaders::placement_clustered, shaders::passes_cluster_common, source},
                                   std::string(pass));
         };
@@ -124,7 +125,6 @@ public:
     }
 
 private:
-    static constexpr std::string_view version = "#version 430 core\n";
 
     void allocate(int res) {
         if (res == resolution_) return;
@@ -154,6 +154,12 @@ private:
     vertex_array empty_vao_ = make_vertex_array();
     int resolution_ = 0;
     std::vector<float> values_;
+};
+
+/// Density clustering's texels take their state from these passes (gl/policy_glsl.hpp).
+template <int K>
+struct state_pass_of<clustered<K>> {
+    using type = cluster_state_pass<K>;
 };
 
 } // namespace hairshadow::gl

@@ -70,12 +70,12 @@ namespace detail {
 
 inline constexpr int compute_tile = 16; // texels per side of a compute tile (HS_TILE)
 
-/// Source pieces every compute program starts with: version, defines, the shared snippet.
+/// Source pieces every compute program starts with (after compile_stage's version line): defines,
+/// the shared snippet.
 inline std::vector<std::string_view> compute_pieces(const std::string& defines) {
-    static constexpr std::string_view version = "#version 430 core\n";
     static const std::string common_defines = "#define HS_SUBPIXEL_BITS " + std::to_string(HAIRSHADOW_SUBPIXEL_BITS) + "\n#define HS_ALPHA_MAX " +
                                               std::to_string(HAIRSHADOW_ALPHA_MAX) + "\n";
-    return {version, common_defines, defines, shaders::compute_common};
+    return {common_defines, defines, shaders::compute_common};
 }
 
 inline void set_uniform(GLuint prog, const char* name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }
@@ -89,7 +89,7 @@ public:
         const auto program_of = [](std::string_view body, const std::string& defines, const std::string& name) {
             auto pieces = compute_pieces(defines);
             pieces.push_back(body);
-            const auto s = compile_shader(GL_COMPUTE_SHADER, pieces, name);
+            const auto s = compile_stage(GL_COMPUTE_SHADER, {}, pieces, name);
             return link_program({&s}, name);
         };
         prepare_ = program_of(shaders::compute_prepare, "", "compute/prepare");

@@ -16,9 +16,8 @@ namespace hairshadow::gl {
 
 /// Every fragment of `mesh` in `light`'s map, as GL rasterises it with `options`' alpha.
 inline fragment_buffer capture_fragments(const hair_mesh& mesh, const light_space& light, const raster_options& options) {
-    const auto vs = compile_shader(GL_VERTEX_SHADER, {"#version 430 core\n", shaders::raster_vertex}, "raster/vertex");
-    const auto fs = compile_shader(GL_FRAGMENT_SHADER,
-                                   {"#version 430 core\n", "#define HS_ALPHA_MAX " + std::to_string(HAIRSHADOW_ALPHA_MAX) + "\n",
+    const auto vs = compile_stage(GL_VERTEX_SHADER, {}, {shaders::raster_vertex}, "raster/vertex");
+    const auto fs = compile_stage(GL_FRAGMENT_SHADER, {}, {"#define HS_ALPHA_MAX " + std::to_string(HAIRSHADOW_ALPHA_MAX) + "\n",
                                     shaders::raster_coverage, shaders::passes_capture},
                                    "passes/capture");
     const auto prog = link_program({&vs, &fs}, "fragment capture");

@@ -13,6 +13,7 @@
 #include <hairshadow/gl/hair_mesh.hpp>
 #include <hairshadow/gl/light_pass.hpp>
 #include <hairshadow/gl/lookup_binding.hpp>
+#include <hairshadow/gl/policy_glsl.hpp>
 #include <hairshadow/gl/shaders.generated.hpp>
 #include <hairshadow/gl/state_guard.hpp>
 #include <hairshadow/methods/published.hpp>
@@ -25,77 +26,15 @@
 namespace hairshadow::gl {
 
 namespace detail {
-/// The per-texel state of placements whose state is the depth range's: nothing more to draw.
-struct range_state {
-    static constexpr int texture_units = 0;
-    static std::string defines() { return ""; }
-    void run(const hair_mesh&, const light_space&, const raster_options&, const range_textures&, GLuint) {}
-    void bind(lookup_binder&) const {}
-    void read_back() {}
-    /// The CPU texel state, from a depth-range texel (nearest in [0], furthest in [3]).
-    template <class P>
-    typename P::texel_state texel_state(const P& placement, const float* range, std::size_t) const {
-        typename P::texel_state s{};
-        const fragment pair[2] = {{range[0], 0.0f}, {range[3], 0.0f}};
-        placement.prepare_texel(std::span<const fragment>(pair, 2), s); // the state's own pre-pass, on the two extremes
-        return s;
-    }
-};
-
-template <class P>
-struct placement_glsl; // what a placement needs on GL
-
-/// Whether a placement's per-texel state comes from the range map alone (else it has state passes of
-/// its own: density clustering's k-means).
-template <class P>
-inline constexpr bool range_placement = std::is_same_v<typename placement_glsl<P>::state_pass, range_state>;
-
 /// The program of a compute build pass: the shared compute snippets, the method's snippets, the pass.
 inline program link_compute_pass(const std::string& defines, const std::vector<std::string_view>& snippets, std::string_view pass,
                                  const std::string& name) {
     auto pieces = compute_pieces(defines);
     pieces.insert(pieces.end(), snippets.begin(), snippets.end());
     pieces.push_back(pass);
-    const auto s = compile_shader(GL_COMPUTE_SHADER, pieces, name);
+    const auto s = compile_stage(GL_COMPUTE_SHADER, {}, pieces, name);
     return link_program({&s}, name);
 }
-
-template <int N, class Spacing>
-struct placement_glsl<planar_slices<N, Spacing>> {
-    using state_pass = range_state;
-    static std::string defines() { return std::is_same_v<Spacing, gamma_spacing> ? "#define HS_GAMMA_SPACING\n" : ""; }
-    static constexpr std::string_view snippet = shaders::placement_planar_slices, state = shaders::texel_state_planar_slices;
-    static void set_uniforms(const lookup_binder&, const planar_slices<N, Spacing>&) {} // D_0 and D_N come from the map's extent
-};
-
-template <int K, layer_sizes Sizes, beyond_last_layer Beyond>
-struct placement_glsl<per_pixel_depth<K, Sizes, Beyond>> {
-    using P = per_pixel_depth<K, Sizes, Beyond>;
-    using state_pass = range_state;
-    static std::string defines() {
-        return std::string(Sizes == layer_sizes::uniform ? "#define HS_UNIFORM_SIZES\n" : "") +
-               (Beyond == beyond_last_layer::ignore ? "#define HS_BEYOND_IGNORE\n" : "") +
-               (Beyond == beyond_last_layer::extend ? "#define HS_BEYOND_EXTEND\n" : "");
-    }
-    static constexpr std::string_view snippet = shaders::placement_per_pixel_depth, state = shaders::texel_state_per_pixel_depth;
-    static void set_uniforms(const lookup_binder& b, const P& p) { b.set("hs_requested_extent", p.requested_extent().value_or(0.0f)); }
-};
-
-template <int S>
-struct placement_glsl<depth_range<S>> {
-    using state_pass = range_state;
-    static std::string defines() { return ""; }
-    static constexpr std::string_view snippet = shaders::placement_depth_range, state = shaders::texel_state_depth_range;
-    static void set_uniforms(const lookup_binder&, const depth_range<S>&) {}
-};
-
-template <int K>
-struct placement_glsl<clustered<K>> {
-    using state_pass = cluster_state_pass<K>;
-    static std::string defines() { return state_pass::defines(); }
-    static constexpr std::string_view snippet = shaders::placement_clustered, state = shaders::texel_state_clustered;
-    static void set_uniforms(const lookup_binder&, const clustered<K>&) {}
-};
 
 /// What every GL method's maps share: the light pass they were built from (their own, or one shared
 /// with other methods), its range textures, and the checks of the look-up's binding.
@@ -190,9 +129,9 @@ class interpolated_maps_gl : public detail::maps_base<typename Method::placement
     using P = typename Method::placement_type;
     using A = typename Method::accumulation_type;
     using base = detail::maps_base<P>;
-    using state_pass = typename detail::placement_glsl<P>::state_pass;
+    using state_pass = typename placement_glsl<P>::state_pass;
+    using accumulation = accumulation_glsl<A>;
     static_assert(std::is_same_v<typename Method::reconstruction_type, interpolation>, "interpolated_maps_gl needs the interpolation reconstruction");
-    static constexpr bool eight_bit = std::is_same_v<A, emulated_8bit>;
 
 public:
     static constexpr int layers = P::layer_count;
@@ -210,12 +149,11 @@ public:
         glGetIntegerv(GL_MAX_DRAW_BUFFERS, &draw_buffers);
         targets_per_pass_ = std::min(std::min(draw_buffers, 8), array_layers);
         if (targets_per_pass_ < 1) throw feature_error("interpolated shadow maps need at least one draw buffer");
-        const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::raster_vertex}, "raster/vertex");
-        const auto layers_fs = compile_shader(GL_FRAGMENT_SHADER,
-                                              {version, defines(targets_per_pass_), shaders::raster_coverage, accumulation_snippet(),
-                                               shaders::placement_common, detail::placement_glsl<P>::snippet, detail::placement_glsl<P>::state,
-                                               shaders::passes_layers},
-                                              "passes/layers");
+        const auto vs = compile_stage(GL_VERTEX_SHADER, {}, {shaders::raster_vertex}, "raster/vertex");
+        const auto layers_fs = compile_stage(GL_FRAGMENT_SHADER, defines(targets_per_pass_),
+                                             around_placement<P>({shaders::raster_coverage, accumulation::source(), shaders::placement_common},
+                                                                 {shaders::passes_layers}),
+                                             "passes/layers");
         layers_program_ = link_program({&vs, &layers_fs}, "layers pass");
     }
 
@@ -224,9 +162,8 @@ public:
     /// first_unit, prefix). Any number of look-ups with different prefixes share one shader.
     static std::string lookup_source(std::string_view prefix = default_lookup_prefix) {
         std::string s = defines(1);
-        for (auto piece : {accumulation_snippet(), shaders::placement_common, detail::placement_glsl<P>::snippet,
-                           detail::placement_glsl<P>::state, shaders::lookup_layers, shaders::reconstruction_interpolation, shaders::lookup_light,
-                           shaders::lookup_interpolation})
+        for (auto piece : around_placement<P>({accumulation::source(), shaders::placement_common},
+                                              {shaders::lookup_layers, shaders::reconstruction_interpolation, shaders::lookup_light, shaders::lookup_interpolation}))
             s += piece;
         return prefix_glsl(s, prefix);
     }
@@ -261,7 +198,7 @@ public:
         set_light_uniforms(layers_program_.get(), this->light_, pass.options());
         lookup_binder binder(layers_program_.get(), 0, default_lookup_prefix);
         binder.texture("hs_range_map", GL_TEXTURE_2D, range);
-        detail::placement_glsl<P>::set_uniforms(binder, this->placement_spec());
+        placement_glsl<P>::set_uniforms(binder, this->placement_spec());
         state_.bind(binder);
         for (int base_layer = 0; base_layer < array_layers; base_layer += targets_per_pass_) {
             std::vector<GLenum> buffers;
@@ -287,7 +224,7 @@ public:
     std::size_t memory_bytes() const noexcept {
         const std::size_t texels = std::size_t(allocated_) * std::size_t(allocated_);
         return 16 * std::size_t(allocated_) * std::size_t(allocated_ + 1) +
-               texels * ((eight_bit ? 4 : 16) * std::size_t(array_layers) + 16 * std::size_t(2 * state_targets));
+               texels * (accumulation::texel_bytes * std::size_t(array_layers) + 16 * std::size_t(2 * state_targets));
     }
 
     /// The maps read back as the CPU method, for CPU queries of maps built on GL.
@@ -309,7 +246,7 @@ public:
             state_guard guard("hairshadow: interpolated maps read-back");
             guard.set_pass_state();
             glBindTexture(GL_TEXTURE_2D_ARRAY, layers_.get());
-            glGetTexImage(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA, eight_bit ? GL_UNSIGNED_BYTE : GL_FLOAT, stored.data());
+            glGetTexImage(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA, accumulation::pixel_type, stored.data());
             check("interpolated maps read-back");
             state_.read_back();
         }
@@ -335,18 +272,16 @@ public:
     }
 
 private:
-    static constexpr std::string_view version = "#version 430 core\n";
-    static constexpr std::string_view accumulation_snippet() { return eight_bit ? shaders::accumulation_emulated_8bit : shaders::accumulation_float; }
     static std::string defines(int targets) {
         return "#define HS_ALPHA_MAX " + std::to_string(HAIRSHADOW_ALPHA_MAX) + "\n#define HS_LAYERS " + std::to_string(layers) +
                "\n#define HS_LAYER_TARGETS " + std::to_string(targets) + "\n" + (P::cumulative ? "#define HS_CUMULATIVE\n" : "") +
-               detail::placement_glsl<P>::defines();
+               accumulation::defines() + placement_glsl<P>::defines();
     }
     void allocate(int res) {
         if (res == allocated_) return;
         layers_ = make_texture();
         glBindTexture(GL_TEXTURE_2D_ARRAY, layers_.get());
-        glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, eight_bit ? GL_RGBA8 : GL_RGBA32F, res, res, array_layers);
+        glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, accumulation::texture_format, res, res, array_layers);
         allocated_ = res;
     }
 
@@ -355,20 +290,19 @@ private:
     void build_compute(const light_pass& pass) {
         if (!compute_program_) compute_program_ = link_compute_program();
         this->begin_compute_pass(pass, compute_program_.get());
-        glBindImageTexture(0, layers_.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, eight_bit ? GL_RGBA8 : GL_RGBA32F);
-        if constexpr (!detail::range_placement<P>)
+        glBindImageTexture(0, layers_.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, accumulation::texture_format);
+        if constexpr (!range_placement<P>)
             glBindImageTexture(1, state_.state_texture(this->light_.resolution()), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         pass.compute()->dispatch_tiles();
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
     }
     static program link_compute_program() {
-        const std::string format = std::string("#define HS_LAYERS_FORMAT ") + (eight_bit ? "rgba8" : "rgba32f") + "\n" + (eight_bit ? "#define HS_EIGHT_BIT\n" : "");
-        if constexpr (detail::range_placement<P>) {
+        const std::string format = accumulation::image_defines("HS_LAYERS_FORMAT");
+        if constexpr (range_placement<P>) {
             const int group = std::min(8, 4 * array_layers); // layers summed per walk: 16 KiB of sums
             return detail::link_compute_pass(defines(1) + format + "#define HS_LAYER_GROUP " + std::to_string(group) + "\n#define HS_SUM_SLOTS " +
                                                  std::to_string(group) + "\n",
-                                             {accumulation_snippet(), shaders::compute_tile_sums, shaders::placement_common,
-                                              detail::placement_glsl<P>::snippet, detail::placement_glsl<P>::state},
+                                             around_placement<P>({accumulation::source(), shaders::compute_tile_sums, shaders::placement_common}, {}),
                                              shaders::compute_layers, "compute/layers");
         } else {
             // Strips of the tile small enough that a strip's k-means sums, state and range fit 30 KiB.
@@ -377,7 +311,7 @@ private:
             return detail::link_compute_pass(defines(1) + format + "#define HS_FIXED_SUMS\n#define HS_SUM_SLOTS " + std::to_string(2 * layers) +
                                                  "\n#define HS_STRIP_ROWS " + std::to_string(rows) + "\n#define HS_SUM_TEXELS " +
                                                  std::to_string(detail::compute_tile * rows) + "\n",
-                                             {accumulation_snippet(), shaders::compute_tile_sums, shaders::placement_common, detail::placement_glsl<P>::snippet},
+                                             {accumulation::source(), shaders::compute_tile_sums, shaders::placement_common, placement_glsl<P>::sources().front()},
                                              shaders::compute_clusters, "compute/clusters");
         }
     }

@@ -49,10 +49,9 @@ inline constexpr int extent_tile = 64; // the texels a work group of passes/dept
 /// A program that draws the hair mesh's lines with a fragment pass that needs only each fragment's
 /// depth and optical depth (raster/coverage): the depth-range pass, the fibre count.
 inline program link_line_pass(std::string_view pass_snippet, const std::string& name) {
-    static constexpr std::string_view version = "#version 430 core\n";
-    const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::raster_vertex}, "raster/vertex");
-    const auto fs = compile_shader(GL_FRAGMENT_SHADER,
-                                   {version, "#define HS_ALPHA_MAX " + std::to_string(HAIRSHADOW_ALPHA_MAX) + "\n", shaders::raster_coverage, pass_snippet},
+    const auto vs = compile_stage(GL_VERTEX_SHADER, {}, {shaders::raster_vertex}, "raster/vertex");
+    const auto fs = compile_stage(GL_FRAGMENT_SHADER, {},
+                                   {"#define HS_ALPHA_MAX " + std::to_string(HAIRSHADOW_ALPHA_MAX) + "\n", shaders::raster_coverage, pass_snippet},
                                    name);
     return link_program({&vs, &fs}, name);
 }
@@ -71,10 +70,9 @@ public:
             compute_ = std::make_unique<detail::compute_segments>();
             return;
         }
-        static constexpr std::string_view version = "#version 430 core\n";
         range_program_ = detail::link_line_pass(shaders::passes_depth_range, "depth-range pass");
-        const auto tiles = compile_shader(GL_COMPUTE_SHADER, {version, "#define HS_EXTENT_TILES\n", shaders::passes_depth_extent}, "passes/depth_extent tiles");
-        const auto whole = compile_shader(GL_COMPUTE_SHADER, {version, shaders::passes_depth_extent}, "passes/depth_extent");
+        const auto tiles = compile_stage(GL_COMPUTE_SHADER, {}, {"#define HS_EXTENT_TILES\n", shaders::passes_depth_extent}, "passes/depth_extent tiles");
+        const auto whole = compile_stage(GL_COMPUTE_SHADER, {}, {shaders::passes_depth_extent}, "passes/depth_extent");
         tiles_program_ = link_program({&tiles}, "depth-extent pass (tiles)");
         extent_program_ = link_program({&whole}, "depth-extent pass");
     }

@@ -93,12 +93,14 @@ inline vertex_array make_vertex_array() {
     return vertex_array(n);
 }
 
-/// Compiles one stage from pieces (the version line, defines, snippets); throws gl_error with the log.
+/// Compiles one stage from pieces as given (the version line first: compile_stage adds it); throws
+/// gl_error with the log.
 inline shader compile_shader(GLenum stage, const std::vector<std::string_view>& pieces, const std::string& name) {
     shader s(glCreateShader(stage));
     std::vector<const GLchar*> sources;
     std::vector<GLint> lengths;
-    for (auto p : pieces) sources.push_back(p.data()), lengths.push_back(GLint(p.size()));
+    for (auto p : pieces)
+        if (!p.empty()) sources.push_back(p.data()), lengths.push_back(GLint(p.size())); // an empty view may hold no pointer at all
     glShaderSource(s.get(), GLsizei(sources.size()), sources.data(), lengths.data());
     glCompileShader(s.get());
     GLint ok = 0;
@@ -111,6 +113,16 @@ inline shader compile_shader(GLenum stage, const std::vector<std::string_view>& 
         throw gl_error("cannot compile " + name + ":\n" + log);
     }
     return s;
+}
+
+/// The version line every program of the library starts with: GLSL 4.30 core (GL 4.3).
+inline constexpr std::string_view glsl_version = "#version 430 core\n";
+
+/// Compiles one stage of the library's: the version line, then `defines`, then `pieces` (snippets);
+/// throws gl_error with the log. Every program the library builds starts here.
+inline shader compile_stage(GLenum stage, std::string_view defines, std::vector<std::string_view> pieces, const std::string& name) {
+    pieces.insert(pieces.begin(), {glsl_version, defines});
+    return compile_shader(stage, pieces, name);
 }
 
 /// Links stages into a program; throws gl_error with the log.

@@ -25,14 +25,14 @@ class occupancy_maps_gl : public detail::maps_base<typename Method::placement_ty
     using base = detail::maps_base<P>;
     static constexpr int S = P::layer_count;
     static constexpr int B = Method::reconstruction_type::slab_count;
-    static constexpr bool eight_bit = std::is_same_v<A, emulated_8bit>;
+    using accumulation = accumulation_glsl<A>;
 
 public:
     static constexpr int bit_targets = (S + 127) / 128;
     static constexpr int slab_targets = (B + 3) / 4;
     /// Whether build_path::compute builds these maps (else the raster passes run after a compute light
     /// pass): its images fit 4 units, and a tile's bits and sums 30 KiB of shared memory.
-    static constexpr bool computes_on_gpu = detail::range_placement<P> && bit_targets + slab_targets <= 4 && S * 32 + B * 2048 + 2048 <= 30 * 1024;
+    static constexpr bool computes_on_gpu = range_placement<P> && bit_targets + slab_targets <= 4 && S * 32 + B * 2048 + 2048 <= 30 * 1024;
     /// Texture units the look-up reads (bind_lookup binds them from its first_unit): the range map,
     /// the occupancy words and the slabs.
     static constexpr int texture_units = 1 + bit_targets + slab_targets;
@@ -47,12 +47,11 @@ public:
             throw feature_error("occupancy maps with " + std::to_string(S) + " slices and " + std::to_string(B) + " slabs need " +
                                 std::to_string(std::max(bit_targets, slab_targets)) + " draw buffers; the context has " +
                                 std::to_string(draw_buffers));
-        const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::raster_vertex}, "raster/vertex");
+        const auto vs = compile_stage(GL_VERTEX_SHADER, {}, {shaders::raster_vertex}, "raster/vertex");
         const std::string defs = defines();
         auto fragment = [&](std::string_view pass, const char* name) {
-            return compile_shader(GL_FRAGMENT_SHADER, {version, defs, shaders::raster_coverage, accumulation_snippet(), shaders::placement_common,
-                                                       detail::placement_glsl<P>::snippet, detail::placement_glsl<P>::state, pass},
-                                  name);
+            return compile_stage(GL_FRAGMENT_SHADER, defs,
+                                 around_placement<P>({shaders::raster_coverage, accumulation::source(), shaders::placement_common}, {pass}), name);
         };
         const auto bits_fs = fragment(shaders::passes_occupancy_bits, "passes/occupancy_bits");
         const auto slabs_fs = fragment(shaders::passes_occupancy_slabs, "passes/occupancy_slabs");
@@ -65,8 +64,9 @@ public:
     /// first_unit, prefix). Any number of look-ups with different prefixes share one shader.
     static std::string lookup_source(std::string_view prefix = default_lookup_prefix) {
         std::string s = defines();
-        for (auto piece : {accumulation_snippet(), shaders::placement_common, detail::placement_glsl<P>::snippet, detail::placement_glsl<P>::state,
-                           shaders::reconstruction_occupancy_bitcount, shaders::lookup_light, shaders::lookup_occupancy_texels, shaders::lookup_occupancy})
+        for (auto piece : around_placement<P>({accumulation::source(), shaders::placement_common},
+                                              {shaders::reconstruction_occupancy_bitcount, shaders::lookup_light, shaders::lookup_occupancy_texels,
+                                               shaders::lookup_occupancy}))
             s += piece;
         return prefix_glsl(s, prefix);
     }
@@ -133,7 +133,7 @@ public:
             }
             for (int t = 0; t < slab_targets; ++t) {
                 glBindTexture(GL_TEXTURE_2D, slabs_[std::size_t(t)].get());
-                glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, eight_bit ? GL_UNSIGNED_BYTE : GL_FLOAT, slabs.data() + 4 * n * std::size_t(t));
+                glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, accumulation::pixel_type, slabs.data() + 4 * n * std::size_t(t));
             }
             check("occupancy maps read-back");
         }
@@ -163,7 +163,7 @@ public:
     /// (RGBA32UI) and slabs (RGBA32F or RGBA8), at the last build's resolution.
     std::size_t memory_bytes() const noexcept {
         const std::size_t texels = std::size_t(allocated_) * std::size_t(allocated_);
-        return 16 * std::size_t(allocated_) * std::size_t(allocated_ + 1) + texels * (16 * std::size_t(bit_targets) + (eight_bit ? 4 : 16) * std::size_t(slab_targets));
+        return 16 * std::size_t(allocated_) * std::size_t(allocated_ + 1) + texels * (16 * std::size_t(bit_targets) + accumulation::texel_bytes * std::size_t(slab_targets));
     }
 
     /// The maps read back as the CPU method, for CPU queries of maps built on GL.
@@ -175,12 +175,10 @@ public:
     }
 
 private:
-    static constexpr std::string_view version = "#version 430 core\n";
-    static constexpr std::string_view accumulation_snippet() { return eight_bit ? shaders::accumulation_emulated_8bit : shaders::accumulation_float; }
     static std::string defines() {
         return "#define HS_ALPHA_MAX " + std::to_string(HAIRSHADOW_ALPHA_MAX) + "\n#define HS_LAYERS " + std::to_string(S) +
                "\n#define HS_SLABS " + std::to_string(B) + "\n#define HS_BIT_TARGETS " + std::to_string(bit_targets) +
-               "\n#define HS_SLAB_TARGETS " + std::to_string(slab_targets) + "\n" + detail::placement_glsl<P>::defines();
+               "\n#define HS_SLAB_TARGETS " + std::to_string(slab_targets) + "\n" + accumulation::defines() + placement_glsl<P>::defines();
     }
 
     void allocate(int res) {
@@ -189,25 +187,22 @@ private:
         bits_.clear();
         slabs_.clear();
         for (int t = 0; t < bit_targets; ++t) bits_.push_back(make(GL_RGBA32UI));
-        for (int t = 0; t < slab_targets; ++t) slabs_.push_back(make(eight_bit ? GL_RGBA8 : GL_RGBA32F));
+        for (int t = 0; t < slab_targets; ++t) slabs_.push_back(make(accumulation::texture_format));
         allocated_ = res;
     }
 
     /// The compute build (shaders/compute/occupancy): one work group per tile of the light pass's lists.
     void build_compute(const light_pass& pass) {
         if (!compute_program_) {
-            const std::string d = defines() + "#define HS_SUM_SLOTS " + std::to_string(B) + "\n#define HS_SLABS_FORMAT " +
-                                  (eight_bit ? "rgba8" : "rgba32f") + "\n" + (eight_bit ? "#define HS_EIGHT_BIT\n" : "");
-            compute_program_ = detail::link_compute_pass(d,
-                                                         {accumulation_snippet(), shaders::compute_tile_sums, shaders::placement_common,
-                                                          detail::placement_glsl<P>::snippet, detail::placement_glsl<P>::state},
+            const std::string d = defines() + "#define HS_SUM_SLOTS " + std::to_string(B) + "\n" + accumulation::image_defines("HS_SLABS_FORMAT");
+            compute_program_ = detail::link_compute_pass(d, around_placement<P>({accumulation::source(), shaders::compute_tile_sums, shaders::placement_common}, {}),
                                                          shaders::compute_occupancy, "compute/occupancy");
         }
         this->begin_compute_pass(pass, compute_program_.get());
         for (int t = 0; t < bit_targets; ++t)
             glBindImageTexture(GLuint(t), bits_[std::size_t(t)].get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32UI);
         for (int t = 0; t < slab_targets; ++t)
-            glBindImageTexture(GLuint(bit_targets + t), slabs_[std::size_t(t)].get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, eight_bit ? GL_RGBA8 : GL_RGBA32F);
+            glBindImageTexture(GLuint(bit_targets + t), slabs_[std::size_t(t)].get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, accumulation::texture_format);
         pass.compute()->dispatch_tiles();
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
     }
@@ -225,7 +220,7 @@ private:
         set_light_uniforms(p.get(), this->light_, pass.options());
         lookup_binder binder(p.get(), 0, default_lookup_prefix);
         binder.texture("hs_range_map", GL_TEXTURE_2D, this->range_->range.get());
-        detail::placement_glsl<P>::set_uniforms(binder, this->placement_spec());
+        placement_glsl<P>::set_uniforms(binder, this->placement_spec());
         pass.mesh().draw();
     }
 

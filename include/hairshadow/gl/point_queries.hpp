@@ -26,7 +26,7 @@ layout(location = 0) in vec3 hs_point;
 layout(std430, binding = 1) buffer hs_results_buffer { float hs_results[]; };
 void main() { hs_results[gl_VertexID] = hs_transmittance(hs_point); gl_Position = vec4(0.0); }
 )";
-        const auto vs = compile_shader(GL_VERTEX_SHADER, {"#version 430 core\n", lookup_source, main_text}, "point queries");
+        const auto vs = compile_stage(GL_VERTEX_SHADER, {}, {lookup_source, main_text}, "point queries");
         program_ = link_program({&vs}, "point queries");
     }
 

@@ -51,8 +51,8 @@ public:
             if (t[0] < sc.mesh.vertices.size() && t[1] < sc.mesh.vertices.size() && t[2] < sc.mesh.vertices.size()) triangles.insert(triangles.end(), t.begin(), t.end());
         upload(mesh_, mesh, triangles);
         mesh_count_ = GLsizei(triangles.size());
-        const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::raster_vertex}, "raster/vertex");
-        const auto fs = compile_shader(GL_FRAGMENT_SHADER, {version, shaders::render_mesh_depth}, "render/mesh_depth");
+        const auto vs = compile_stage(GL_VERTEX_SHADER, {}, {shaders::raster_vertex}, "raster/vertex");
+        const auto fs = compile_stage(GL_FRAGMENT_SHADER, {}, {shaders::render_mesh_depth}, "render/mesh_depth");
         depth_program_ = link_program({&vs, &fs}, "mesh depth pass");
     }
 
@@ -182,8 +182,8 @@ public:
     void present(const camera& cam, GLuint target, int samples = 4) {
         camera::check_image_size(cam.width, cam.height);
         if (!present_program_.get()) {
-            const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::passes_fullscreen_vertex}, "passes/fullscreen_vertex");
-            const auto fs = compile_shader(GL_FRAGMENT_SHADER, {version, shaders::render_present}, "render/present");
+            const auto vs = compile_stage(GL_VERTEX_SHADER, {}, {shaders::passes_fullscreen_vertex}, "passes/fullscreen_vertex");
+            const auto fs = compile_stage(GL_FRAGMENT_SHADER, {}, {shaders::render_present}, "render/present");
             present_program_ = link_program({&vs, &fs}, "present");
         }
         const auto [linear, resolved] = linear_target(cam.width, cam.height);
@@ -206,7 +206,6 @@ public:
     void clear_lights() { lights_.clear(); }
 
 private:
-    static constexpr std::string_view version = "#version 430 core\n";
     /// The mesh's depth map sits on the last of the 16 units GL 4.3 guarantees, clear of any look-up's.
     static constexpr int mesh_depth_unit = 15;
 
@@ -266,11 +265,11 @@ private:
     light_entry make_entry(const scene_light& light, const light_space& space, const std::string& lookup, std::function<void(GLuint)> bind,
                            float bias) const {
         light_entry e{light, space, lookup, std::move(bind), bias, draw_mesh_depth(space), {}, {}, {}};
-        const auto mesh_vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::render_mesh_vertex}, "render/mesh_vertex");
-        const auto mesh_fs = compile_shader(GL_FRAGMENT_SHADER, {version, lookup, shaders::render_light, shaders::render_mesh_fragment}, "render/mesh_fragment");
-        const auto hair_vs = compile_shader(GL_VERTEX_SHADER, {version, lookup, shaders::render_light, shaders::render_hair_shading, shaders::render_hair_vertex},
+        const auto mesh_vs = compile_stage(GL_VERTEX_SHADER, {}, {shaders::render_mesh_vertex}, "render/mesh_vertex");
+        const auto mesh_fs = compile_stage(GL_FRAGMENT_SHADER, {}, {lookup, shaders::render_light, shaders::render_mesh_fragment}, "render/mesh_fragment");
+        const auto hair_vs = compile_stage(GL_VERTEX_SHADER, {}, {lookup, shaders::render_light, shaders::render_hair_shading, shaders::render_hair_vertex},
                                             "render/hair_vertex");
-        const auto hair_fs = compile_shader(GL_FRAGMENT_SHADER, {version, shaders::render_hair_fragment}, "render/hair_fragment");
+        const auto hair_fs = compile_stage(GL_FRAGMENT_SHADER, {}, {shaders::render_hair_fragment}, "render/hair_fragment");
         e.mesh_program = link_program({&mesh_vs, &mesh_fs}, "mesh shading");
         e.hair_program = link_program({&hair_vs, &hair_fs}, "hair shading");
         return e;
@@ -335,8 +334,8 @@ private:
     /// gl::transparent_hair's passes into `target`.
     void render_transparent_into(const camera& cam, GLuint target) const {
         if (!inv_w_program_) {
-            const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::render_mesh_vertex}, "render/mesh_vertex");
-            const auto fs = compile_shader(GL_FRAGMENT_SHADER, {version, shaders::render_mesh_inv_w}, "render/mesh_inv_w");
+            const auto vs = compile_stage(GL_VERTEX_SHADER, {}, {shaders::render_mesh_vertex}, "render/mesh_vertex");
+            const auto fs = compile_stage(GL_FRAGMENT_SHADER, {}, {shaders::render_mesh_inv_w}, "render/mesh_inv_w");
             inv_w_program_ = link_program({&vs, &fs}, "mesh 1/w");
         }
         if (!transparent_) transparent_ = std::make_unique<transparent_hair>();
@@ -380,7 +379,7 @@ private:
             throw argument_error("too many hair points for one GL draw");
         for (const auto& l : lights_) // compiled before any state changes
             if (!l.colour_program) {
-                const auto vs = compile_shader(GL_VERTEX_SHADER, {version, l.lookup, shaders::render_light, shaders::render_hair_shading, shaders::render_hair_colour},
+                const auto vs = compile_stage(GL_VERTEX_SHADER, {}, {l.lookup, shaders::render_light, shaders::render_hair_shading, shaders::render_hair_colour},
                                                "render/hair_colour");
                 l.colour_program = link_program({&vs}, "hair colours");
             }

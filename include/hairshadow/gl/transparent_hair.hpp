@@ -91,7 +91,6 @@ public:
     }
 
 private:
-    static constexpr std::string_view version = "#version 430 core\n";
     /// The occupancy maps of the camera's fragments: Sintorn & Assarsson's 128 slices in 4 slabs.
     static constexpr int slices = 128, slabs = 4;
 
@@ -109,15 +108,12 @@ private:
     /// A program drawing the camera's fragments, its fragment stage composed of `pieces` after the
     /// occupancy maps' snippets and transparency/camera_fragment.
     static program line_program(std::initializer_list<std::string_view> pieces, const std::string& name) {
-        const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::transparency_line_vertex}, "transparency/line_vertex");
-        const auto gs = compile_shader(GL_GEOMETRY_SHADER, {version, shaders::transparency_line_geometry}, "transparency/line_geometry");
-        std::vector<std::string_view> fragment{version};
-        const std::string defs = defines();
-        for (auto piece : {std::string_view(defs), shaders::accumulation_float, shaders::placement_common, shaders::placement_depth_range,
-                           shaders::texel_state_depth_range, shaders::transparency_camera_fragment})
-            fragment.push_back(piece);
+        const auto vs = compile_stage(GL_VERTEX_SHADER, {}, {shaders::transparency_line_vertex}, "transparency/line_vertex");
+        const auto gs = compile_stage(GL_GEOMETRY_SHADER, {}, {shaders::transparency_line_geometry}, "transparency/line_geometry");
+        std::vector<std::string_view> fragment{shaders::accumulation_float, shaders::placement_common, shaders::placement_depth_range,
+                                               shaders::texel_state_depth_range, shaders::transparency_camera_fragment};
         fragment.insert(fragment.end(), pieces);
-        const auto fs = compile_shader(GL_FRAGMENT_SHADER, fragment, name);
+        const auto fs = compile_stage(GL_FRAGMENT_SHADER, defines(), fragment, name);
         return link_program({&vs, &gs, &fs}, name);
     }
 
@@ -308,8 +304,8 @@ private:
                              : mode == transparency::weighted ? "#define HS_WEIGHTED_AVERAGE\n"
                                                               : "#define HS_EXACT\n";
         const auto& p = cached(std::string("resolve ") + define, [define] {
-            const auto vs = compile_shader(GL_VERTEX_SHADER, {version, shaders::passes_fullscreen_vertex}, "passes/fullscreen_vertex");
-            const auto fs = compile_shader(GL_FRAGMENT_SHADER, {version, define, shaders::transparency_resolve}, "transparency/resolve");
+            const auto vs = compile_stage(GL_VERTEX_SHADER, {}, {shaders::passes_fullscreen_vertex}, "passes/fullscreen_vertex");
+            const auto fs = compile_stage(GL_FRAGMENT_SHADER, {}, {define, shaders::transparency_resolve}, "transparency/resolve");
             return link_program({&vs, &fs}, "transparency: resolve");
         });
         glBindFramebuffer(GL_FRAMEBUFFER, target);

@@ -6,6 +6,7 @@
 #include <hairshadow/methods/method_family.hpp>
 #include <hairshadow/methods/registered.hpp>
 
+#include <algorithm>
 #include <string>
 #include <tuple>
 #include <string_view>
@@ -107,6 +108,29 @@ inline std::vector<std::string> example_specs(spec_lists list = in_tests) {
         if (list == in_tests || (e.lists & list)) specs.emplace_back(e.spec);
     });
     return specs;
+}
+
+/// The words of method specs, for a fuzzer's dictionary: every registered family's name and keywords,
+/// the accumulations' names but the default's, the field separator, and every field of the families'
+/// examples; each once, in the registry's order.
+inline std::vector<std::string> method_spec_tokens() {
+    std::vector<std::string> tokens{":"};
+    const auto add = [&](std::string_view t) {
+        if (!t.empty() && std::find(tokens.begin(), tokens.end(), t) == tokens.end()) tokens.emplace_back(t);
+    };
+    registered_families::any([&]<class F>() {
+        add(F::name);
+        for (const auto keyword : F::keywords) add(keyword);
+        return false;
+    });
+    const std::string fallback = detail::default_accumulation();
+    registered_accumulations::any([&]<class A>() {
+        if (A::name != fallback) add(A::name);
+        return false;
+    });
+    for (const auto& example : example_specs())
+        for (const auto field : detail::split(example, ':')) add(field);
+    return tokens;
 }
 
 /// Whether a parsed spec names the exact reference, which only the CPU builds.

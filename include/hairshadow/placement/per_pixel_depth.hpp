@@ -15,6 +15,7 @@
 #include <optional>
 #include <type_traits>
 #include <span>
+#include <string>
 #include <string_view>
 
 namespace hairshadow {
@@ -49,6 +50,15 @@ public:
     static constexpr bool contiguous = true;
     static constexpr std::string_view name = "per_pixel_depth";
     static constexpr std::string_view glsl_name = "placement/per_pixel_depth";
+    /// The GLSL twin's configuration and uniforms (gl/policy_glsl.hpp).
+    static std::string glsl_defines() {
+        return std::string(Sizes == layer_sizes::uniform ? "#define HS_UNIFORM_SIZES\n" : "") +
+               (Beyond == beyond_last_layer::ignore ? "#define HS_BEYOND_IGNORE\n" : "") + (Beyond == beyond_last_layer::extend ? "#define HS_BEYOND_EXTEND\n" : "");
+    }
+    template <class Set>
+    void glsl_uniforms(Set&& set) const {
+        set("hs_requested_extent", requested_extent_.value_or(0.0f)); // 0: half the map's depth range, as prepare() takes it
+    }
 
     /// The depth map (z0), plus the stretch factor when layers extend to the last fragment.
     struct z0_only {

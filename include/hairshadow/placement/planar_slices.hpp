@@ -16,6 +16,7 @@
 #include <iterator>
 #include <limits>
 #include <span>
+#include <string>
 #include <string_view>
 
 namespace hairshadow {
@@ -51,6 +52,8 @@ public:
     static constexpr bool contiguous = true; ///< the slices tile [D_0, D_N) without gaps
     static constexpr std::string_view name = Spacing::name;
     static constexpr std::string_view glsl_name = "placement/planar_slices";
+    /// The GLSL twin's configuration (gl/policy_glsl.hpp); D_0 and D_N come from the map's extent.
+    static std::string glsl_defines() { return Spacing::name == gamma_spacing::name ? "#define HS_GAMMA_SPACING\n" : ""; }
     struct texel_state {
         friend bool operator==(const texel_state&, const texel_state&) = default;
     };
