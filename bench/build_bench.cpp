@@ -3,7 +3,7 @@
 // against the tiled build straight from the model with its run-time line walk ("tiled", AVX-512 where
 // the CPU has it) and with the portable scalar walk ("tiled_scalar"); and the tiled build's cold
 // first call ("tiled_cold": a new map object each time, allocation and first touch included); and
-// the tiled build as it was before methods/streamed_tile.hpp ("tiled_grouped": every tile's fragments
+// the tiled build as it was before methods/detail/streamed_tile.hpp ("tiled_grouped": every tile's fragments
 // grouped by texel, then built texel by texel), for the compositions that now stream, checked equal
 // to the streamed maps before it is timed.
 // Curly 1.5M (procedural:curly:strands=10000:segments=150) and Sintel, 512x512 and 2048x2048.

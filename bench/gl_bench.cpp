@@ -6,7 +6,7 @@
 #include <glad/gl.h>
 
 #include <hairshadow/gl.hpp>
-#include <hairshadow/gl/osmesa_context.hpp>
+#include <hairshadow/gl/context/osmesa_context.hpp>
 #include <hairshadow/hairshadow.hpp>
 
 #include <benchmark/benchmark.h>

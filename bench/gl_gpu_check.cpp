@@ -9,8 +9,8 @@
 #include <glad/gl.h>
 
 #include <hairshadow/gl.hpp>
-#include <hairshadow/gl/egl_context.hpp>
-#include <hairshadow/gl/osmesa_context.hpp>
+#include <hairshadow/gl/context/egl_context.hpp>
+#include <hairshadow/gl/context/osmesa_context.hpp>
 #include <hairshadow/io/load.hpp>
 #include <hairshadow/methods/spec.hpp>
 

@@ -4,8 +4,8 @@
 #include <glad/gl.h>
 
 #include <hairshadow/gl.hpp>
-#include <hairshadow/gl/osmesa_context.hpp>
-#include <hairshadow/gl/scene_renderer.hpp>
+#include <hairshadow/gl/context/osmesa_context.hpp>
+#include <hairshadow/gl/render/scene_renderer.hpp>
 #include <hairshadow/hairshadow.hpp>
 #include <hairshadow/io/obj_format.hpp>
 

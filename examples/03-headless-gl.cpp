@@ -8,8 +8,8 @@
 #include <glad/gl.h>
 
 #include <hairshadow/gl.hpp>
-#include <hairshadow/gl/egl_context.hpp>
-#include <hairshadow/gl/scene_renderer.hpp>
+#include <hairshadow/gl/context/egl_context.hpp>
+#include <hairshadow/gl/render/scene_renderer.hpp>
 #include <hairshadow/hairshadow.hpp>
 #include <hairshadow/io/png.hpp>
 

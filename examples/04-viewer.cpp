@@ -14,8 +14,8 @@
 
 #include <GLFW/glfw3.h>
 
-#include <hairshadow/gl/registry.hpp>
-#include <hairshadow/gl/scene_renderer.hpp>
+#include <hairshadow/gl/maps/registry.hpp>
+#include <hairshadow/gl/render/scene_renderer.hpp>
 #include <hairshadow/hairshadow.hpp>
 #include <hairshadow/io/load.hpp>
 #include <hairshadow/io/obj_format.hpp>
@@ -25,6 +25,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <cstring>
 #include <string>
 
@@ -98,15 +99,19 @@ void on_move(GLFWwindow* window, double x, double y) {
     s.last_x = x, s.last_y = y;
 }
 
-int run(int argc, char** argv) {
+/// The command line: the model, an optional mesh, a screenshot after a number of frames.
+struct viewer_args {
     std::string model = "procedural:wavy:strands=3000", mesh_path, screenshot;
     long frames = -1;
-    state s;
+};
+
+/// Reads the command line into `args` and `s`; an exit status where it cannot (2: usage).
+std::optional<int> parse_args(int argc, char** argv, viewer_args& args, state& s) {
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
-        if (a == "--mesh" && i + 1 < argc) mesh_path = argv[++i];
-        else if (a == "--frames" && i + 1 < argc) frames = std::stol(argv[++i]);
-        else if (a == "--screenshot" && i + 1 < argc) screenshot = argv[++i];
+        if (a == "--mesh" && i + 1 < argc) args.mesh_path = argv[++i];
+        else if (a == "--frames" && i + 1 < argc) args.frames = std::stol(argv[++i]);
+        else if (a == "--screenshot" && i + 1 < argc) args.screenshot = argv[++i];
         else if (a == "--transparency" && i + 1 < argc) {
             try {
                 s.hair = parse_transparency(argv[++i]);
@@ -115,12 +120,44 @@ int run(int argc, char** argv) {
             }
         }
         else if (a == "--sway") s.sway = true;
-        else if (!a.starts_with("--")) model = a;
+        else if (!a.starts_with("--")) args.model = a;
         else return std::fprintf(stderr, "usage: 04-viewer [MODEL] [--mesh OBJ] [--transparency none|occupancy|weighted|exact] [--sway] [--frames N] [--screenshot FILE.png]\n"), 2;
     }
+    return std::nullopt;
+}
+
+/// The framebuffer as a PNG, top row first.
+void save_screenshot(const std::string& path, int width, int height) {
+    std::vector<std::uint8_t> rgba(std::size_t(4 * width * height)), rgb;
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    for (int y = height - 1; y >= 0; --y)
+        for (int x = 0; x < width; ++x)
+            for (int c = 0; c < 3; ++c) rgb.push_back(rgba[std::size_t(4 * (y * width + x) + c)]);
+    write_png(path, width, height, 3, rgb);
+}
+
+/// The window's title: the method, its build time, the motion, the hair's transparency, the frame rate.
+std::string window_title(const state& s, double build_ms, double fps, int peeled_layers) {
+    const std::string hair = s.hair == transparency::none ? "opaque hair"
+                             : s.hair == transparency::occupancy ? "occupancy-ordered hair"
+                             : s.hair == transparency::weighted ? "weighted-average hair"
+                                                                : "exact hair (" + std::to_string(peeled_layers) + " layers peeled)";
+    char title[256];
+    std::snprintf(title, sizeof title, "hairshadow viewer - %s (1-7 method, [ ] layers) - %s in %.1f ms - %s (M) - %s, opacity %.2f (T, - =) - %.1f fps",
+                  spec_of(s).c_str(), s.sway ? "rebuilt every frame" : "built", build_ms, s.sway ? "swaying" : "still", hair.c_str(),
+                  s.hair_opacity, fps);
+    return title;
+}
+
+int run(int argc, char** argv) {
+    state s;
+    viewer_args args;
+    if (const auto status = parse_args(argc, argv, args, s)) return *status;
+    const std::string& model = args.model;
+    const long frames = args.frames;
     scene sc;
     sc.hair = load_model(model);
-    if (!mesh_path.empty()) sc.mesh = read_obj(mesh_path).mesh;
+    if (!args.mesh_path.empty()) sc.mesh = read_obj(args.mesh_path).mesh;
     else if (is_procedural_spec(model)) sc.mesh = make_sphere({0, 0, 0}, parse_procedural_spec(model).head_radius, 48);
 
     if (!glfwInit()) return std::fprintf(stderr, "error: GLFW cannot initialise (no display?)\n"), 1;
@@ -189,28 +226,13 @@ int run(int argc, char** argv) {
             const auto cam = camera::framing(box, s.azimuth, s.elevation, std::max(fb_width, 1), std::max(fb_height, 1), 1.15f);
             renderer.set_transparency(s.hair, s.hair_opacity);
             renderer.present(cam, 0);
-            if (frame + 1 == frames && !screenshot.empty()) {
-                std::vector<std::uint8_t> rgba(std::size_t(4 * fb_width * fb_height)), rgb;
-                glReadPixels(0, 0, fb_width, fb_height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-                for (int y = fb_height - 1; y >= 0; --y)
-                    for (int x = 0; x < fb_width; ++x)
-                        for (int c = 0; c < 3; ++c) rgb.push_back(rgba[std::size_t(4 * (y * fb_width + x) + c)]);
-                write_png(screenshot, fb_width, fb_height, 3, rgb);
-            }
+            if (frame + 1 == frames && !args.screenshot.empty()) save_screenshot(args.screenshot, fb_width, fb_height);
             glfwSwapBuffers(window);
             glfwPollEvents();
             const auto now = std::chrono::steady_clock::now();
             fps = 0.9 * fps + 0.1 / std::max(1e-6, std::chrono::duration<double>(now - last).count());
             last = now;
-            const std::string hair = s.hair == transparency::none ? "opaque hair"
-                                     : s.hair == transparency::occupancy ? "occupancy-ordered hair"
-                                     : s.hair == transparency::weighted ? "weighted-average hair"
-                                                                        : "exact hair (" + std::to_string(renderer.peeled_layers()) + " layers peeled)";
-            char title[256];
-            std::snprintf(title, sizeof title, "hairshadow viewer - %s (1-7 method, [ ] layers) - %s in %.1f ms - %s (M) - %s, opacity %.2f (T, - =) - %.1f fps",
-                          spec_of(s).c_str(), s.sway ? "rebuilt every frame" : "built", build_ms, s.sway ? "swaying" : "still", hair.c_str(),
-                          s.hair_opacity, fps);
-            glfwSetWindowTitle(window, title);
+            glfwSetWindowTitle(window, window_title(s, build_ms, fps, renderer.peeled_layers()).c_str());
         }
         const char* modes[] = {"none", "occupancy", "weighted", "exact"};
         std::printf("%s: %ld frames, last build %.1f ms, transparency %s%s\n", spec_of(s).c_str(), frames, build_ms, modes[int(s.hair)],

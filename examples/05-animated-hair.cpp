@@ -15,7 +15,7 @@
 #include <glad/gl.h>
 
 #include <hairshadow/gl.hpp>
-#include <hairshadow/gl/egl_context.hpp>
+#include <hairshadow/gl/context/egl_context.hpp>
 #endif
 
 #include <algorithm>

@@ -11,7 +11,7 @@
 #include <glad/gl.h>
 
 #include <hairshadow/gl.hpp>
-#include <hairshadow/gl/egl_context.hpp>
+#include <hairshadow/gl/context/egl_context.hpp>
 #include <hairshadow/hairshadow.hpp>
 
 #include <glm/mat4x4.hpp>
@@ -73,7 +73,7 @@ public:
     void texel_state_from(float nearest, float furthest, texel_state& s) const noexcept { s = {nearest, furthest}; }
     static constexpr bool fragment_order_free = true;
 
-    // The GL side (gl/policy_glsl.hpp): the GLSL text, and the boundary fractions written for it.
+    // The GL side (gl/maps/policy_glsl.hpp): the GLSL text, and the boundary fractions written for it.
     static std::string glsl_source() {
         std::ifstream in(shader_path);
         if (!in) throw hairshadow::io_error(shader_path, "cannot read the placement's GLSL");

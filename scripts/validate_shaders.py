@@ -91,7 +91,7 @@ for placement, defines in (("planar_slices", "#define HS_LAYERS 64\n#define HS_G
         COMPOSITIONS[f"lookup_layers_{tag}_{accumulation}"] = ("vert", defines, base + ["lookup/layers", "reconstruction/interpolation", "lookup/light",
                                                                                              "lookup/interpolation"], LOOKUP_MAIN)
 
-# Approximate deep shadow maps (gl/fibre_density_maps.hpp): the measured density's pass, and both look-ups.
+# Approximate deep shadow maps (gl/maps/fibre_density_maps.hpp): the measured density's pass, and both look-ups.
 COMPOSITIONS["fibre_count"] = ("frag", "", ["raster/coverage", "passes/fibre_count"], "")
 for defines, tag in (("", "fixed"), ("#define HS_MEASURED_DENSITY\n", "measured")):
     COMPOSITIONS[f"lookup_fibre_density_{tag}"] = ("vert", defines, ["placement/common", "lookup/light", "reconstruction/fibre_density"],
@@ -106,7 +106,7 @@ for clusters in (4, 6):
         COMPOSITIONS[f"cluster_{name}_{clusters}"] = ("frag", defines, ["raster/coverage"] + clustering + [f"passes/cluster_{name}"], "")
     COMPOSITIONS[f"cluster_resolve_{clusters}"] = ("frag", defines, clustering + ["passes/cluster_resolve"], "")
 
-# The compute build (gl/compute_raster.hpp and each maps' build_compute): the segment passes, then each
+# The compute build (gl/passes/compute_raster.hpp and each maps' build_compute): the segment passes, then each
 # method's tile pass over its placement's snippets, float and 8-bit, as compute_pieces composes them.
 COMPUTE = "#define HS_SUBPIXEL_BITS 8\n"
 COMPOSITIONS["compute_prepare"] = ("comp", COMPUTE, ["compute/common", "compute/prepare"], "")
@@ -137,7 +137,7 @@ for accumulation, eight in (("float", ""), ("emulated_8bit", "#define HS_EIGHT_B
             ["compute/common", "accumulation/" + accumulation, "compute/tile_sums", "placement/common", "placement/depth_range",
              "texel_state/depth_range", "compute/occupancy"], "")
 
-# The shaded renderer (gl/scene_renderer.hpp), over one method's look-up.
+# The shaded renderer (gl/render/scene_renderer.hpp), over one method's look-up.
 DOM_LOOKUP = ["accumulation/float", "placement/common", "placement/per_pixel_depth", "texel_state/per_pixel_depth", "lookup/layers",
               "reconstruction/interpolation", "lookup/light", "lookup/interpolation"]
 DOM_DEFINES = "#define HS_LAYERS 3\n#define HS_CUMULATIVE\n"
@@ -150,7 +150,7 @@ COMPOSITIONS["render_mesh_fragment"] = ("frag", DOM_DEFINES, DOM_LOOKUP + ["rend
 COMPOSITIONS["render_mesh_depth"] = ("frag", "", ["render/mesh_depth"], "")
 COMPOSITIONS["render_present"] = ("frag", "", ["render/present"], "")
 
-# Transparent hair (gl/transparent_hair.hpp): the camera's fragments through the occupancy passes,
+# Transparent hair (gl/render/transparent_hair.hpp): the camera's fragments through the occupancy passes,
 # and each mode's blend and resolve.
 CAMERA_OCCUPANCY = "#define HS_LAYERS 128\n#define HS_SLABS 4\n#define HS_BIT_TARGETS 1\n#define HS_SLAB_TARGETS 1\n"
 CAMERA_SNIPPETS = ["accumulation/float", "placement/common", "placement/depth_range", "texel_state/depth_range", "transparency/camera_fragment"]

@@ -1,6 +1,6 @@
 // The allocator of the tiled build's large arrays: huge pages where a block fills them, small pages
 // for a block's partly used last one, and no block beyond what a size can say.
-#include <hairshadow/core/huge_pages.hpp>
+#include <hairshadow/core/detail/huge_pages.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -1,11 +1,11 @@
 // A renderer rebuilds its maps every frame: once warm, posing the moving hair and rebuilding a method's
 // maps from it allocate nothing. Every allocation of this executable is counted, whatever its route:
 // the C allocation functions are replaced (glibc's own are called underneath), so operator new (which
-// calls malloc), std::aligned_alloc (the maps' huge-page blocks, core/huge_pages.hpp) and the C
+// calls malloc), std::aligned_alloc (the maps' huge-page blocks, core/detail/huge_pages.hpp) and the C
 // library's callers all pass through the counter. Its own executable, since replacing the allocator
 // is a whole-program choice, and never under a sanitizer, which replaces it itself.
 #include <hairshadow/hairshadow.hpp>
-#include <hairshadow/core/huge_pages.hpp>
+#include <hairshadow/core/detail/huge_pages.hpp>
 #include <hairshadow/procedural/motion.hpp>
 
 #include <catch2/catch.hpp>

@@ -2,6 +2,7 @@
 // on the CPU or on GL. Peak memory is the process's resident high-water mark (Linux VmHWM), reset
 // before each method, so it counts the model and everything the build holds.
 #include "bench_command.hpp"
+#include "command_line.hpp"
 
 #include <hairshadow/methods/registry.hpp>
 
@@ -153,6 +154,42 @@ int run_bench(const hair_model& model, const light_space& light, const bench_opt
                     o.specs.size(), o.repeat, a, b, a - b, b > 0 ? a / b : 0.0);
     }
     return 0;
+}
+
+namespace {
+struct bench_args {
+    std::string methods = example_spec_list(in_bench); // the registered families' bench examples
+    int repeat = 10;
+    int tile = raster_options{}.tile_size;
+};
+
+int run_bench_command(const map_options& o, const bench_args& a) {
+    bench_options b;
+    for (auto part : detail::split(a.methods, ',')) b.specs.push_back(parse_method_for(std::string(part), o));
+    auto s = prepare_scene(o, false);
+    b.model_name = o.model;
+    b.light_name = o.light;
+    b.repeat = a.repeat;
+    b.raster = s.raster;
+    b.raster.tile_size = a.tile;
+    return run_bench(s.model, s.light, b, s.gl.get());
+}
+} // namespace
+
+command add_bench_command(CLI::App& app, map_options& o) {
+    auto a = std::make_shared<bench_args>();
+    auto* cmd = app.add_subcommand("bench", "time full rebuilds (rasterise and build) of each method's maps on a model: a Markdown table");
+    add_model(cmd, o);
+    add_map_options(cmd, o, false);
+    add_backend_options(cmd, o);
+    cmd->add_option("--methods", a->methods, "comma-separated method specs")->capture_default_str();
+    cmd->add_option("--repeat", a->repeat, "rebuilds timed after the cold one, 1 to 10000")->check(CLI::Range(1, 10000));
+    cmd->add_option("--threads", o.threads, "worker threads; 0 = all cores");
+    cmd->add_option("--tile", a->tile,
+                    "side of the CPU build's tiles, 8 to 1024 texels: larger tiles split fewer segments but hold more fragments at once "
+                    "(raster_options::tile_size)")
+        ->check(CLI::Range(8, 1024));
+    return {cmd, [&o, a] { return run_bench_command(o, *a); }};
 }
 
 } // namespace cli

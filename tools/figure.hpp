@@ -1,5 +1,5 @@
 #pragma once
-// `hairshadow figure`: the comparison figure of the papers' Figures 1, 3 and 5 (see figure.cpp).
+// `hairshadow figure`: the comparison figure of the papers' Figures 1, 3 and 5 (see figure_command.cpp).
 #include <hairshadow/core/parallel.hpp>
 #include <hairshadow/methods/spec.hpp>
 

@@ -3,10 +3,10 @@
 #include <EGL/eglext.h>
 #include <glad/gl.h>
 
-#include <hairshadow/gl/egl_context.hpp>
-#include <hairshadow/gl/osmesa_context.hpp>
-#include <hairshadow/gl/registry.hpp>
-#include <hairshadow/gl/scene_renderer.hpp>
+#include <hairshadow/gl/context/egl_context.hpp>
+#include <hairshadow/gl/context/osmesa_context.hpp>
+#include <hairshadow/gl/maps/registry.hpp>
+#include <hairshadow/gl/render/scene_renderer.hpp>
 
 #include "gl_backend.hpp"
 

@@ -3,4 +3,4 @@
 #include <glad/gl.h>
 
 #define HAIRSHADOW_GL_REGISTRY_IMPLEMENTATION
-#include <hairshadow/gl/registry.hpp>
+#include <hairshadow/gl/maps/registry.hpp>

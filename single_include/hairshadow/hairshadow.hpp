@@ -630,7 +630,7 @@ private:
 /// kernel writes its result to a place fixed by the item's index, so results never depend on the
 /// thread count.
 
-// ---- begin hairshadow/core/thread_pool.hpp
+// ---- begin hairshadow/core/detail/thread_pool.hpp
 /// @file
 /// The persistent worker threads behind parallel_for. Starting threads for every parallel loop can
 /// cost more than a whole tile pass of a small map; these workers start once, at the first loop that
@@ -726,7 +726,7 @@ private:
 };
 
 } // namespace hairshadow::detail
-// ---- end hairshadow/core/thread_pool.hpp
+// ---- end hairshadow/core/detail/thread_pool.hpp
 
 #include <algorithm>
 #include <atomic>
@@ -869,7 +869,7 @@ struct triangle_mesh {
 /// @file
 /// USC-HairSalon `.data`: i32 strand count; per strand an i32 point count and that many float3 points.
 
-// ---- begin hairshadow/io/binary_file.hpp
+// ---- begin hairshadow/io/detail/binary_file.hpp
 /// @file
 /// Bounded binary reading and writing for the model formats: every read checks the bytes left, so a
 /// count that the file cannot hold is reported before anything is allocated for it.
@@ -996,7 +996,7 @@ Model validated(Model model, const std::string& file) {
 }
 
 } // namespace hairshadow::detail
-// ---- end hairshadow/io/binary_file.hpp
+// ---- end hairshadow/io/detail/binary_file.hpp
 
 #include <limits>
 #include <span>
@@ -2223,7 +2223,7 @@ HAIRSHADOW_ALWAYS_INLINE inline void walk_line(const fixed_point& a, const fixed
 /// Rasterises a hair model's segments into one buffer of light-space fragments (texel, depth, alpha),
 /// in parallel tiles, with per-texel output identical for any thread count. The exact reference and
 /// users who want the fragments themselves need it; the methods build tile by tile without it
-/// (methods/tiled_build.hpp).
+/// (methods/detail/tiled_build.hpp).
 
 // ---- begin hairshadow/raster/raster_options.hpp
 /// @file
@@ -2275,13 +2275,13 @@ struct raster_options {
 
 } // namespace hairshadow
 // ---- end hairshadow/raster/raster_options.hpp
-// ---- begin hairshadow/raster/segment_bins.hpp
+// ---- begin hairshadow/raster/detail/segment_bins.hpp
 /// @file
 /// The first two steps of every CPU build: each segment of a model projected and snapped once, then
 /// binned into the square tiles of the light's map that it may touch. Every tile's list is in segment
 /// order, whatever the thread count, so a texel's fragments always come in segment order.
 
-// ---- begin hairshadow/core/huge_pages.hpp
+// ---- begin hairshadow/core/detail/huge_pages.hpp
 /// @file
 /// An allocator for the large arrays of a build (the maps, the prepared segments, the tile stores)
 /// that asks Linux for transparent huge pages. A first build touches every page of its maps for the
@@ -2377,27 +2377,21 @@ struct overwritten_huge_page_allocator : huge_page_allocator<T> {
 };
 
 } // namespace hairshadow::detail
-// ---- end hairshadow/core/huge_pages.hpp
-// ---- begin hairshadow/placement/layer_position.hpp
+// ---- end hairshadow/core/detail/huge_pages.hpp
+// ---- begin hairshadow/raster/depth_extent.hpp
 /// @file
-/// Where a depth falls among a texel's layers, and the depth extent of a fragment buffer.
+/// A depth extent: the nearest and furthest fragment depth, of a whole buffer (a global pre-pass)
+/// or of one texel's fragments. "Extent" always means these two depths; "depth range" is the
+/// placement that spreads its layers over the scene's extent (placement/depth_range.hpp).
 
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <span>
 
 namespace hairshadow {
 
-/// A query depth's place among `layer_count` layers: index -1 is in front of the first layer,
-/// index layer_count behind the last; otherwise `fraction` in [0, 1] says how far into layer `index`.
-struct layer_position {
-    int index;
-    float fraction;
-};
-
-/// Nearest and furthest fragment depth of a whole buffer (a global pre-pass); {0, 0} when empty.
+/// Nearest and furthest fragment depth; {0, 0} for an empty buffer.
 struct depth_extent {
     float nearest = 0.0f;
     float furthest = 0.0f;
@@ -2414,29 +2408,10 @@ inline depth_extent extent_of(const fragment_buffer& fragments) noexcept {
 }
 
 namespace detail {
-/// Moves an estimated layer index to the k in [0, last] with boundary(k) <= depth < boundary(k + 1).
-/// Closed forms for the layer of a depth can miss by one where rounding meets a boundary; settling
-/// against the boundary depths themselves makes fragments and queries agree exactly.
-template <class Boundary>
-int settle_layer(float estimate, int last, float depth, Boundary boundary) noexcept {
-    int k = estimate > 0.0f ? int(std::min(estimate, float(last))) : 0; // NaN and negatives give 0
-    while (k > 0 && depth < boundary(k)) --k;
-    while (k < last && depth >= boundary(k + 1)) ++k;
-    return k;
-}
-
-/// placement.assign(state, depth) for the fragments of one texel: the placement's own assigner(state)
-/// where it has one (work done once per texel instead of once per fragment), else assign itself.
-template <class Placement>
-auto texel_assigner(const Placement& placement, const typename Placement::texel_state& state) noexcept {
-    if constexpr (requires { placement.assigner(state); }) return placement.assigner(state);
-    else return [&placement, &state](float depth) noexcept { return placement.assign(state, depth); };
-}
-
-/// Widens a texel's depth range by one more fragment's depth (started at the first fragment's).
-inline void add_to_depth_range(depth_extent& range, float depth) noexcept {
-    range.nearest = std::min(range.nearest, depth);
-    range.furthest = std::max(range.furthest, depth);
+/// Widens an extent by one more fragment's depth (started at the first fragment's).
+inline void widen_extent(depth_extent& extent, float depth) noexcept {
+    extent.nearest = std::min(extent.nearest, depth);
+    extent.furthest = std::max(extent.furthest, depth);
 }
 
 /// A fragment's depth, where a texel holds fragments, or their depths alone (a texel whose fragments
@@ -2447,26 +2422,18 @@ float depth_of(const Fragment& f) noexcept {
 }
 inline float depth_of(float depth) noexcept { return depth; }
 
-/// The nearest and furthest depth of a texel's fragments, reduced in their order from the first:
-/// the order matters only for the sign of a zero, and add_to_depth_range keeps the same order.
+/// The extent of a texel's fragments, reduced in their order from the first: the order matters
+/// only for the sign of a zero, and widen_extent keeps the same order.
 template <class Fragment>
-depth_extent depth_range_of(std::span<const Fragment> fragments) noexcept {
-    depth_extent range{depth_of(fragments[0]), depth_of(fragments[0])};
-    for (const auto& f : fragments) add_to_depth_range(range, depth_of(f));
-    return range;
+depth_extent texel_extent_of(std::span<const Fragment> fragments) noexcept {
+    depth_extent extent{depth_of(fragments[0]), depth_of(fragments[0])};
+    for (const auto& f : fragments) widen_extent(extent, depth_of(f));
+    return extent;
 }
-
-/// Layer k's position for a depth between its boundaries lo and hi.
-inline layer_position position_in(int k, float depth, float lo, float hi) noexcept {
-    return {k, hi > lo ? std::clamp((depth - lo) / (hi - lo), 0.0f, 1.0f) : 0.0f};
-}
-
-/// The smallest float above `hi`, so that a half-open range [lo, end) holds a fragment at hi.
-inline float just_above(float hi) noexcept { return std::nextafter(hi, std::numeric_limits<float>::infinity()); }
 } // namespace detail
 
 } // namespace hairshadow
-// ---- end hairshadow/placement/layer_position.hpp
+// ---- end hairshadow/raster/depth_extent.hpp
 // ---- begin hairshadow/raster/instruction_set.hpp
 /// @file
 /// Which vector instructions the tiled build runs on this CPU (raster_options::instructions): the
@@ -2537,7 +2504,7 @@ inline instruction_set resolve(instruction_set requested) {
 
 } // namespace hairshadow
 // ---- end hairshadow/raster/instruction_set.hpp
-// ---- begin hairshadow/raster/prepared_segment.hpp
+// ---- begin hairshadow/raster/detail/prepared_segment.hpp
 /// @file
 /// Segments ready for the line rule (clipped to the light's depth range and a guard band, projected,
 /// snapped to sub-pixel fixed point), and the shading of their fragments: depth and alpha at a texel.
@@ -2563,6 +2530,26 @@ struct segment_geometry {
 };
 
 /// A segment ready for the line rule and its fragments' shading.
+/// Fragments a thin segment can give one tile of side `tile_size`: its length in texels along its
+/// major axis plus 2 (one texel centre a column, or row, and the ends), at most the tile's side plus 1.
+HAIRSHADOW_ALWAYS_INLINE inline std::uint64_t segment_fragment_bound(const segment_geometry& s, int tile_size) noexcept {
+    const std::int64_t major = std::max(std::abs(std::int64_t(s.bx) - s.ax), std::abs(std::int64_t(s.by) - s.ay));
+    return std::uint64_t(std::min<std::int64_t>((major >> HAIRSHADOW_SUBPIXEL_BITS) + 2, tile_size + 1));
+}
+
+/// The columns (rows, for a y-major segment) whose texel centres a thin segment may pass, from the
+/// one before its first end's texel to the one after its last's, and its segment_fragment_bound.
+struct fragment_lines {
+    std::uint64_t bound = 0;
+    bool x_major = false;
+    std::int64_t first = 0, last = 0;
+};
+HAIRSHADOW_ALWAYS_INLINE inline fragment_lines fragment_lines_of(const segment_geometry& s, int tile_size) noexcept {
+    const bool x_major = std::abs(std::int64_t(s.bx) - s.ax) >= std::abs(std::int64_t(s.by) - s.ay);
+    const std::int64_t lo = x_major ? std::min(s.ax, s.bx) : std::min(s.ay, s.by), hi = x_major ? std::max(s.ax, s.bx) : std::max(s.ay, s.by);
+    return {segment_fragment_bound(s, tile_size), x_major, (lo >> HAIRSHADOW_SUBPIXEL_BITS) - 1, (hi >> HAIRSHADOW_SUBPIXEL_BITS) + 1};
+}
+
 struct prepared_segment : segment_geometry {
     float inv_w_a, inv_w_b; ///< 1/w, for perspective-correct interpolation (1 for orthographic lights)
 };
@@ -2759,7 +2746,268 @@ void rasterize_wide_line(const prepared_segment& s, float width, const texel_rec
 }
 
 } // namespace hairshadow::detail
-// ---- end hairshadow/raster/prepared_segment.hpp
+// ---- end hairshadow/raster/detail/prepared_segment.hpp
+#if HAIRSHADOW_AVX512_WALK
+// ---- begin hairshadow/raster/detail/segment_project_avx512.hpp
+/// @file
+/// The projection and binning of segment_bins in AVX-512F, sixteen segments of a strand at a time:
+/// the strand's points loaded whole and split into ends by permutations, both ends projected
+/// (light_space::project, product by product as it rounds them), the near and far planes and the
+/// guard band checked, the ends snapped, the records written sixteen at a time, and the segment
+/// counted in its tile when it lies in one tile, or (on a rebuild) in two side by side. Segments that
+/// need clipping, or that reach more tiles, go through the scalar code, lane by lane, in order; so
+/// every segment, count and first tile is the scalar one (tests/test_tile_walk.cpp checks it). segment_bins
+/// includes this header before its class and calls strand_projection::project.
+
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <type_traits>
+
+namespace hairshadow::detail {
+
+namespace avx512 {
+
+/// c v, rounded (no fused multiply-add: see detail::rounded).
+HAIRSHADOW_AVX512_TARGET inline __m512 product(float c, __m512 v) noexcept { return rounded(_mm512_mul_ps(_mm512_set1_ps(c), v)); }
+
+/// Row i of m (p, 1) for sixteen points, as light_space::row rounds it.
+HAIRSHADOW_AVX512_TARGET inline __m512 project_row(const std::array<float, 4>& m, __m512 x, __m512 y, __m512 z) noexcept {
+    return _mm512_add_ps(_mm512_add_ps(product(m[0], x), product(m[1], y)), _mm512_add_ps(product(m[2], z), _mm512_set1_ps(m[3])));
+}
+
+/// -v, exactly as the scalar negation (the sign bit flipped; 0 - v would give +0 for +0).
+HAIRSHADOW_AVX512_TARGET inline __m512 negate(__m512 v) noexcept {
+    return _mm512_castsi512_ps(_mm512_xor_epi32(_mm512_castps_si512(v), _mm512_set1_epi32(std::int32_t(0x80000000u))));
+}
+
+/// (clip / w + 1) half_res, light_space::project's window coordinate; without the division where the
+/// light is `affine` (w is 1).
+HAIRSHADOW_AVX512_TARGET inline __m512 window_coordinate(__m512 clip, __m512 w, bool affine, __m512 half_res) noexcept {
+    return _mm512_mul_ps(_mm512_add_ps(affine ? clip : _mm512_div_ps(clip, w), _mm512_set1_ps(1.0f)), half_res);
+}
+
+/// snap() for eight window coordinates: x S + copysign(1/2, x), truncated, in doubles.
+HAIRSHADOW_AVX512_TARGET inline __m256i snap8(__m256 window) noexcept {
+    const __m512d x = _mm512_mul_pd(_mm512_cvtps_pd(window), _mm512_set1_pd(double(subpixel_scale)));
+    const __m512i sign = _mm512_set1_epi64(std::int64_t(0x8000000000000000ull)), half = _mm512_castpd_si512(_mm512_set1_pd(0.5));
+    const __m512d h = _mm512_castsi512_pd(_mm512_or_si512(_mm512_and_si512(_mm512_castpd_si512(x), sign), half));
+    return _mm512_cvttpd_epi32(_mm512_add_pd(x, h));
+}
+
+/// snap() for sixteen window coordinates.
+HAIRSHADOW_AVX512_TARGET inline __m512i snap16(__m512 window) noexcept {
+    const __m256 low = _mm512_castps512_ps256(window);
+    const __m256 high = _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(window), 1));
+    return _mm512_inserti64x4(_mm512_castsi256_si512(snap8(low)), snap8(high), 1);
+}
+
+/// |v| <= limit, lane by lane (false for NaN).
+HAIRSHADOW_AVX512_TARGET inline __mmask16 within(__m512 v, __m512 limit) noexcept { return _mm512_cmp_ps_mask(_mm512_abs_ps(v), limit, _CMP_LE_OQ); }
+
+/// Sixteen lanes' `component` (0: x, 1: y, 2: z) of points[l + shift], from four vectors holding the
+/// 64 floats from points[0].x on: two permutations and a blend in place of a gather, which costs
+/// more.
+HAIRSHADOW_AVX512_TARGET inline __m512 point_component(const __m512 (&v)[4], int component, int shift) noexcept {
+    __m512i index = _mm512_set_epi32(45, 42, 39, 36, 33, 30, 27, 24, 21, 18, 15, 12, 9, 6, 3, 0);
+    index = _mm512_add_epi32(index, _mm512_set1_epi32(3 * shift + component));
+    const __mmask16 second_half = _mm512_cmpge_epi32_mask(index, _mm512_set1_epi32(32));
+    return _mm512_mask_blend_ps(second_half, _mm512_permutex2var_ps(v[0], index, v[1]), _mm512_permutex2var_ps(v[2], index, v[3]));
+}
+
+/// Where a record's field comes from when sixteen segments' fields (six vectors, a lane each) are
+/// interleaved into sixteen 24-byte segment_geometry records, as six vectors of sixteen 32-bit words:
+/// output word j of vector v is field (16 v + j) % 6 of lane (16 v + j) / 6, always in the same
+/// half of the lanes (v < 3: lanes 0-7). pair_index picks it from the half's fields 0-3, held as
+/// [field 0 | field 1] and [field 2 | field 3] (eight lanes each); last_index from [field 4 | field 5].
+struct record_layout {
+    std::array<std::array<std::int32_t, 16>, 6> pair_index{}, last_index{};
+    std::array<std::uint16_t, 6> last_fields{};
+    constexpr record_layout() {
+        for (int v = 0; v < 6; ++v)
+            for (int j = 0; j < 16; ++j) {
+                const int k = 16 * v + j, field = k % 6, lane = k / 6 - 8 * (v / 3);
+                if (field < 4) pair_index[std::size_t(v)][std::size_t(j)] = (field / 2) * 16 + (field % 2) * 8 + lane;
+                else last_index[std::size_t(v)][std::size_t(j)] = (field - 4) * 8 + lane, last_fields[std::size_t(v)] |= std::uint16_t(1u << j);
+            }
+    }
+};
+inline constexpr record_layout record_layout_table{};
+
+/// The records of the first `lanes` segments stored at `out`: six fields, a lane each, interleaved by
+/// permutations (record_layout) and written whole, in place of a copy lane by lane.
+HAIRSHADOW_AVX512_TARGET inline void store_records(segment_geometry* out, int lanes, const __m512i (&field)[6]) noexcept {
+    static_assert(sizeof(segment_geometry) == 6 * sizeof(std::int32_t) && std::is_standard_layout_v<segment_geometry>);
+    auto* words = reinterpret_cast<std::int32_t*>(out);
+    const int total = 6 * lanes;
+    // [field 0 | field 1], [field 2 | field 3], [field 4 | field 5] of each half's eight lanes.
+    const __m512i pairs[2][3] = {{_mm512_shuffle_i64x2(field[0], field[1], 0x44), _mm512_shuffle_i64x2(field[2], field[3], 0x44),
+                                  _mm512_shuffle_i64x2(field[4], field[5], 0x44)},
+                                 {_mm512_shuffle_i64x2(field[0], field[1], 0xEE), _mm512_shuffle_i64x2(field[2], field[3], 0xEE),
+                                  _mm512_shuffle_i64x2(field[4], field[5], 0xEE)}};
+    for (int half = 0; half < 2; ++half) {
+        const __m512i f01 = pairs[half][0], f23 = pairs[half][1], f45 = pairs[half][2];
+        for (int v = 3 * half; v < 3 * half + 3 && 16 * v < total; ++v) {
+            const auto u = std::size_t(v);
+            __m512i words_v = _mm512_permutex2var_epi32(f01, _mm512_loadu_si512(record_layout_table.pair_index[u].data()), f23);
+            words_v = _mm512_mask_permutexvar_epi32(words_v, record_layout_table.last_fields[u], _mm512_loadu_si512(record_layout_table.last_index[u].data()), f45);
+            const int left = total - 16 * v;
+            _mm512_mask_storeu_epi32(words + 16 * v, left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1u), words_v);
+        }
+    }
+}
+
+/// The 1/w pairs of the first `lanes` segments stored at `out`, interleaved.
+HAIRSHADOW_AVX512_TARGET inline void store_inv_w(std::array<float, 2>* out, int lanes, __m512 inv_w_a, __m512 inv_w_b) noexcept {
+    auto* words = reinterpret_cast<float*>(out);
+    for (int v = 0; v < 2 && 16 * v < 2 * lanes; ++v) {
+        // Word j: field j % 2 of lane 8 v + j / 2.
+        const __m512i index = _mm512_add_epi32(_mm512_set_epi32(23, 7, 22, 6, 21, 5, 20, 4, 19, 3, 18, 2, 17, 1, 16, 0), _mm512_set1_epi32(8 * v));
+        const int left = 2 * lanes - 16 * v;
+        _mm512_mask_storeu_ps(words + 16 * v, left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1u), _mm512_permutex2var_ps(inv_w_a, index, inv_w_b));
+    }
+}
+
+/// count_tiles' bound for segments of one tile, a lane each: segment_fragment_bound, at most the
+/// lines of fragment_lines_of in the tile. Within the guard band every difference fits in 32 bits.
+HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __m512i one_tile_bounds(__m512i sax, __m512i say, __m512i sbx, __m512i sby, __m512i tx0,
+                                                                              __m512i ty0, int tile_shift, int tile_size) noexcept {
+    const __m512i one_i = _mm512_set1_epi32(1), zero_i = _mm512_setzero_si512();
+    const __m512i dx = _mm512_abs_epi32(_mm512_sub_epi32(sbx, sax)), dy = _mm512_abs_epi32(_mm512_sub_epi32(sby, say));
+    const __m512i most = _mm512_min_epi32(_mm512_add_epi32(_mm512_srai_epi32(_mm512_max_epi32(dx, dy), HAIRSHADOW_SUBPIXEL_BITS), _mm512_set1_epi32(2)),
+                                          _mm512_set1_epi32(tile_size + 1));
+    const __mmask16 x_major = _mm512_cmpge_epi32_mask(dx, dy);
+    const __m512i lo = _mm512_mask_blend_epi32(x_major, _mm512_min_epi32(say, sby), _mm512_min_epi32(sax, sbx));
+    const __m512i hi = _mm512_mask_blend_epi32(x_major, _mm512_max_epi32(say, sby), _mm512_max_epi32(sax, sbx));
+    const __m512i first_line = _mm512_sub_epi32(_mm512_srai_epi32(lo, HAIRSHADOW_SUBPIXEL_BITS), one_i);
+    const __m512i last_line = _mm512_add_epi32(_mm512_srai_epi32(hi, HAIRSHADOW_SUBPIXEL_BITS), one_i);
+    const __m512i tile_line = _mm512_slli_epi32(_mm512_mask_blend_epi32(x_major, ty0, tx0), tile_shift);
+    const __m512i tile_end = _mm512_add_epi32(tile_line, _mm512_set1_epi32(tile_size - 1));
+    const __m512i in_tile = _mm512_add_epi32(_mm512_sub_epi32(_mm512_min_epi32(last_line, tile_end), _mm512_max_epi32(first_line, tile_line)), one_i);
+    return _mm512_min_epi32(most, _mm512_max_epi32(in_tile, zero_i));
+}
+
+/// Counts the lanes of one tile (with their bounds, on a first build) and of two tiles side by side
+/// (right) or one above the other (below) in their tiles.
+HAIRSHADOW_ALWAYS_INLINE inline void count_lanes(std::uint64_t* counts, std::uint64_t* bounds, const std::int32_t* tile, const std::int32_t* bound,
+                                                 unsigned one_tile, unsigned right, unsigned below, std::size_t tiles_x) noexcept {
+    for (unsigned m = one_tile; m != 0; m &= m - 1) {
+        const int l = std::countr_zero(m);
+        ++counts[tile[l]];
+        if (bounds) bounds[tile[l]] += std::uint64_t(bound[l]);
+    }
+    for (unsigned m = right; m != 0; m &= m - 1) ++counts[tile[std::countr_zero(m)]], ++counts[tile[std::countr_zero(m)] + 1];
+    for (unsigned m = below; m != 0; m &= m - 1) ++counts[std::size_t(tile[std::countr_zero(m)])], ++counts[std::size_t(tile[std::countr_zero(m)]) + tiles_x];
+}
+
+/// project_and_bin's loop over one strand of n points, whose first segment is first_seg: sixteen
+/// segments at a time. A template on the bins only so that this header comes before the class it
+/// fills (segment_bins, whose friend it is), with no include loop.
+struct strand_projection {
+    template <class Bins>
+    HAIRSHADOW_AVX512_TARGET static void project(Bins& bins, const glm::vec3* points, std::size_t n, std::size_t first_seg,
+                                                                             std::uint64_t* counts, std::uint64_t* bounds, depth_extent& e,
+                                                                             std::int64_t reach) {
+        const light_space& ls = bins.light_;
+        const auto vp_x = ls.row_coefficients(ls.view_projection(), 0), vp_y = ls.row_coefficients(ls.view_projection(), 1);
+        const auto vp_w = ls.row_coefficients(ls.view_projection(), 3), view_z = ls.row_coefficients(ls.view(), 2);
+        const __m512 half_res = _mm512_set1_ps(0.5f * float(bins.res_)), one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
+        const __m512 near_plane = _mm512_set1_ps(ls.near_plane()), far_plane = _mm512_set1_ps(ls.far_plane());
+        const __m512 depth_span = _mm512_set1_ps(ls.far_plane() - ls.near_plane());
+        const __m512 guard = _mm512_set1_ps(guard_band), two = _mm512_set1_ps(2.0f);
+        const __m512i reach_v = _mm512_set1_epi32(std::int32_t(reach)), res_v = _mm512_set1_epi32(bins.res_), last_v = _mm512_set1_epi32(bins.res_ - 1);
+        const int tile_shift = std::countr_zero(unsigned(bins.opt_.tile_size));
+        const __m512i tiles_x = _mm512_set1_epi32(bins.tiles_x_), zero_i = _mm512_setzero_si512(), one_i = _mm512_set1_epi32(1);
+        // An orthographic light's w is 1 wherever the point is finite (and NaN elsewhere, which fails
+        // the w > 0 test): a division by it changes nothing, and is skipped. 1/w is kept only for a
+        // perspective light (store).
+        const bool affine = vp_w[0] == 0.0f && vp_w[1] == 0.0f && vp_w[2] == 0.0f && vp_w[3] == 1.0f;
+        const bool keep_inv_w = !bins.inv_w_.empty();
+        __m512 nearest = _mm512_set1_ps(e.nearest), furthest = _mm512_set1_ps(e.furthest);
+        alignas(64) std::int32_t tile[16], bound[16];
+        const __m512i and_right_v = _mm512_set1_epi32(std::int32_t(Bins::and_right)), and_below_v = _mm512_set1_epi32(std::int32_t(Bins::and_below));
+        const __m512i no_tile_v = _mm512_set1_epi32(std::int32_t(Bins::no_tile));
+        const std::size_t segments = n - 1;
+        for (std::size_t base = 0; base < segments; base += 16) {
+            const auto lanes = int(std::min<std::size_t>(16, segments - base));
+            const auto valid = __mmask16((1u << lanes) - 1u);
+            // Both ends of each segment, points base + l and base + l + 1: the strand's floats from
+            // points[base] on, loaded whole (masked past its last point: a masked load does not fault).
+            const float* from = &points[base].x;
+            const int floats = 3 * (lanes + 1);
+            __m512 raw[4];
+            for (int k = 0; k < 4; ++k) {
+                const int left = std::clamp(floats - 16 * k, 0, 16);
+                raw[k] = _mm512_maskz_loadu_ps(left == 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1u), from + 16 * k);
+            }
+            const __m512 x0 = point_component(raw, 0, 0), y0 = point_component(raw, 1, 0), z0 = point_component(raw, 2, 0);
+            const __m512 x1 = point_component(raw, 0, 1), y1 = point_component(raw, 1, 1), z1 = point_component(raw, 2, 1);
+            const __m512 d0 = negate(project_row(view_z, x0, y0, z0)), d1 = negate(project_row(view_z, x1, y1, z1));
+            // No clipping at the near and far planes (prepare_segment's tests, in its own arithmetic).
+            auto simple = __mmask16(valid & _mm512_cmp_ps_mask(_mm512_sub_ps(d0, near_plane), zero, _CMP_GE_OQ) &
+                               _mm512_cmp_ps_mask(_mm512_sub_ps(d1, near_plane), zero, _CMP_GE_OQ) &
+                               _mm512_cmp_ps_mask(_mm512_sub_ps(far_plane, d0), zero, _CMP_GE_OQ) &
+                               _mm512_cmp_ps_mask(_mm512_sub_ps(far_plane, d1), zero, _CMP_GE_OQ));
+            const __m512 w0 = project_row(vp_w, x0, y0, z0), w1 = project_row(vp_w, x1, y1, z1);
+            const __m512 wx0 = window_coordinate(project_row(vp_x, x0, y0, z0), w0, affine, half_res);
+            const __m512 wy0 = window_coordinate(project_row(vp_y, x0, y0, z0), w0, affine, half_res);
+            const __m512 wx1 = window_coordinate(project_row(vp_x, x1, y1, z1), w1, affine, half_res);
+            const __m512 wy1 = window_coordinate(project_row(vp_y, x1, y1, z1), w1, affine, half_res);
+            const __m512 dep0 = _mm512_div_ps(_mm512_sub_ps(d0, near_plane), depth_span), dep1 = _mm512_div_ps(_mm512_sub_ps(d1, near_plane), depth_span);
+            // Inside the guard band, finite, in front of the light: prepare_segment's last test.
+            simple = __mmask16(simple & within(wx0, guard) & within(wy0, guard) & within(wx1, guard) & within(wy1, guard) & within(dep0, two) &
+                               within(dep1, two) & _mm512_cmp_ps_mask(w0, zero, _CMP_GT_OQ) & _mm512_cmp_ps_mask(w1, zero, _CMP_GT_OQ));
+            const __m512i sax = snap16(wx0), say = snap16(wy0), sbx = snap16(wx1), sby = snap16(wy1);
+            const std::size_t first = first_seg + base;
+            // Every lane's record; the lanes left to the scalar code below are written again there.
+            store_records(bins.segments_.data() + first, lanes, {sax, say, sbx, sby, _mm512_castps_si512(dep0), _mm512_castps_si512(dep1)});
+            if (keep_inv_w) store_inv_w(bins.inv_w_.data() + first, lanes, _mm512_div_ps(one, w0), _mm512_div_ps(one, w1));
+            // One tile, or two side by side, inside the map: counted here; anything else goes through the
+            // scalar code.
+            const __mmask16 empty = _mm512_cmpeq_epi32_mask(sax, sbx) & _mm512_cmpeq_epi32_mask(say, sby);
+            const __m512i lo_x = _mm512_srai_epi32(_mm512_sub_epi32(_mm512_min_epi32(sax, sbx), reach_v), HAIRSHADOW_SUBPIXEL_BITS);
+            const __m512i hi_x = _mm512_srai_epi32(_mm512_add_epi32(_mm512_max_epi32(sax, sbx), reach_v), HAIRSHADOW_SUBPIXEL_BITS);
+            const __m512i lo_y = _mm512_srai_epi32(_mm512_sub_epi32(_mm512_min_epi32(say, sby), reach_v), HAIRSHADOW_SUBPIXEL_BITS);
+            const __m512i hi_y = _mm512_srai_epi32(_mm512_add_epi32(_mm512_max_epi32(say, sby), reach_v), HAIRSHADOW_SUBPIXEL_BITS);
+            const __mmask16 in_map = _mm512_cmpge_epi32_mask(hi_x, zero_i) & _mm512_cmpge_epi32_mask(hi_y, zero_i) &
+                                     _mm512_cmplt_epi32_mask(lo_x, res_v) & _mm512_cmplt_epi32_mask(lo_y, res_v);
+            const __m512i tx0 = _mm512_srai_epi32(_mm512_max_epi32(lo_x, zero_i), tile_shift), tx1 = _mm512_srai_epi32(_mm512_min_epi32(hi_x, last_v), tile_shift);
+            const __m512i ty0 = _mm512_srai_epi32(_mm512_max_epi32(lo_y, zero_i), tile_shift), ty1 = _mm512_srai_epi32(_mm512_min_epi32(hi_y, last_v), tile_shift);
+            const __mmask16 drawn = simple & __mmask16(~empty) & in_map;
+            const __mmask16 same_column = _mm512_cmpeq_epi32_mask(tx0, tx1), same_row = _mm512_cmpeq_epi32_mask(ty0, ty1);
+            const __mmask16 one_tile = drawn & same_column & same_row;
+            // A box of two tiles: visit_tiles visits both, and count_tiles flags the second (and_right,
+            // and_below). Left to count_tiles on a first build, which also bounds the tiles' fragments.
+            const __mmask16 right = bounds ? __mmask16(0) : drawn & same_row & _mm512_cmpeq_epi32_mask(tx1, _mm512_add_epi32(tx0, one_i));
+            const __mmask16 below = bounds ? __mmask16(0) : drawn & same_column & _mm512_cmpeq_epi32_mask(ty1, _mm512_add_epi32(ty0, one_i));
+            const __mmask16 dropped = simple & (empty | __mmask16(~in_map));
+            const __m512i first_tiles = _mm512_add_epi32(_mm512_mullo_epi32(ty0, tiles_x), tx0);
+            _mm512_store_si512(tile, first_tiles);
+            __m512i entry = _mm512_mask_or_epi32(first_tiles, right, first_tiles, and_right_v);
+            entry = _mm512_mask_or_epi32(entry, below, entry, and_below_v);
+            _mm512_mask_storeu_epi32(bins.first_tile_.data() + first, valid, _mm512_mask_mov_epi32(entry, dropped, no_tile_v));
+            if (bounds) _mm512_store_si512(bound, one_tile_bounds(sax, say, sbx, sby, tx0, ty0, tile_shift, bins.opt_.tile_size));
+            nearest = _mm512_mask_min_ps(nearest, drawn, nearest, _mm512_min_ps(dep0, dep1)); // segment_bins::meets_map
+            furthest = _mm512_mask_max_ps(furthest, drawn, furthest, _mm512_max_ps(dep0, dep1));
+            count_lanes(counts, bounds, tile, bound, one_tile, right, below, std::size_t(bins.tiles_x_));
+            // The rest, in order: clipped segments (prepared by the scalar code) and those of more tiles.
+            for (unsigned m = valid & ~unsigned(one_tile | right | below | dropped); m != 0; m &= m - 1) {
+                const auto i = base + std::size_t(std::countr_zero(m));
+                bins.first_tile_[first_seg + i] = bins.prepare_and_count(points[i], points[i + 1], (simple >> (i - base)) & 1u, first_seg + i, reach, counts, bounds, e);
+            }
+        }
+        e.nearest = std::min(e.nearest, _mm512_reduce_min_ps(nearest));
+        e.furthest = std::max(e.furthest, _mm512_reduce_max_ps(furthest));
+    }
+};
+
+} // namespace avx512
+
+} // namespace hairshadow::detail
+// ---- end hairshadow/raster/detail/segment_project_avx512.hpp
+#endif
 
 #include <algorithm>
 #include <array>
@@ -2919,6 +3167,16 @@ private:
     static constexpr std::size_t reread_ahead = 48;
 
     void project_and_bin(const hair_model& model, const light_space& light, int res) {
+        const bool per_point = size_for(model, light, res);
+        project_chunks(model, light, per_point);
+        const std::uint64_t total = tile_offsets();
+        if (total > std::numeric_limits<std::uint32_t>::max()) throw argument_error("more than 2^32 segment-tile pairs");
+        write_bins(total);
+        order_by_load();
+    }
+
+    /// Sizes every array for this model and resolution; whether segments have per-point thickness or opacity.
+    bool size_for(const hair_model& model, const light_space& light, int res) {
         res_ = res;
         tiles_x_ = (res + opt_.tile_size - 1) / opt_.tile_size;
         tile_magic_ = (std::uint64_t(1) << 32) / std::uint64_t(opt_.tile_size) + 1;
@@ -2946,6 +3204,13 @@ private:
         cursor_.assign(chunks * tiles, 0);
         bound_.assign(bounded_ ? chunks * tiles : 0, 0);
         chunk_extent_.assign(chunks, depth_extent{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()});
+        return per_point;
+    }
+
+    /// Projects each chunk's strands (in parallel, a chunk a task), counting each chunk's segments in
+    /// each tile, and the chunk's depth extent; then the whole extent.
+    void project_chunks(const hair_model& model, const light_space& light, bool per_point) {
+        const std::size_t tiles = tile_count(), chunks = chunk_strand_.size() - 1;
         const auto reach = this->reach();
         // The vector projection covers segments of one thickness and opacity, in tiles whose side is
         // a power of two.
@@ -2967,7 +3232,7 @@ private:
                 const glm::vec3* points = model.points.data() + p0;
 #if HAIRSHADOW_AVX512_WALK
                 if (vector) {
-                    project_strand_avx512(points, n, first_segment_[strand], counts, bounds, e, reach);
+                    avx512::strand_projection::project(*this, points, n, first_segment_[strand], counts, bounds, e, reach);
                     continue;
                 }
 #endif
@@ -2992,6 +3257,12 @@ private:
         extent_ = {std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
         for (const auto& e : chunk_extent_) extent_.nearest = std::min(extent_.nearest, e.nearest), extent_.furthest = std::max(extent_.furthest, e.furthest);
         if (!(extent_.nearest <= extent_.furthest)) extent_ = {}; // nothing reaches the map: {0, 0}, as extent_of an empty buffer
+    }
+
+    /// Each chunk's cursor in each tile, tile by tile then chunk by chunk (so every tile's segments
+    /// keep their order); the pairs in all.
+    std::uint64_t tile_offsets() {
+        const std::size_t tiles = tile_count(), chunks = chunk_strand_.size() - 1;
         tile_begin_.resize(tiles + 1);
         tile_bound_.assign(bounded_ ? tiles : 0, 0);
         std::uint64_t total = 0;
@@ -3007,7 +3278,13 @@ private:
             if (bounded_) largest_bound_ = std::max(largest_bound_, tile_bound_[tile]);
         }
         tile_begin_[tiles] = total;
-        if (total > std::numeric_limits<std::uint32_t>::max()) throw argument_error("more than 2^32 segment-tile pairs");
+        return total;
+    }
+
+    /// Writes each segment into the bins of the tiles it reaches, each chunk from its cursors.
+    void write_bins(std::uint64_t total) {
+        const std::size_t tiles = tile_count(), chunks = chunk_strand_.size() - 1;
+        const auto reach = this->reach();
         binned_.resize(total);
         parallel_for(chunks, opt_.exec, [&](std::size_t c) {
             std::uint64_t* cursor = cursor_.data() + c * tiles;
@@ -3053,6 +3330,11 @@ private:
             }
             end_run();
         });
+    }
+
+    /// The tiles, the most loaded first.
+    void order_by_load() {
+        const std::size_t tiles = tile_count();
         by_load_.resize(tiles);
         std::iota(by_load_.begin(), by_load_.end(), 0u);
         // The most loaded first, ties in tile order: stable_sort's order, without the buffer it
@@ -3063,25 +3345,6 @@ private:
         });
     }
 
-    /// Fragments a thin segment can give one tile: its length in texels along its major axis plus 2
-    /// (one texel centre a column, or row, and the ends), at most the tile's side plus 1.
-    HAIRSHADOW_ALWAYS_INLINE std::uint64_t segment_fragment_bound(const segment_geometry& s) const noexcept {
-        const std::int64_t major = std::max(std::abs(std::int64_t(s.bx) - s.ax), std::abs(std::int64_t(s.by) - s.ay));
-        return std::uint64_t(std::min<std::int64_t>((major >> HAIRSHADOW_SUBPIXEL_BITS) + 2, opt_.tile_size + 1));
-    }
-
-    /// The columns (rows, for a y-major segment) whose texel centres a thin segment may pass, from the
-    /// one before its first end's texel to the one after its last's, and its segment_fragment_bound.
-    struct fragment_lines {
-        std::uint64_t bound = 0;
-        bool x_major = false;
-        std::int64_t first = 0, last = 0;
-    };
-    HAIRSHADOW_ALWAYS_INLINE fragment_lines fragment_lines_of(const segment_geometry& s) const noexcept {
-        const bool x_major = std::abs(std::int64_t(s.bx) - s.ax) >= std::abs(std::int64_t(s.by) - s.ay);
-        const std::int64_t lo = x_major ? std::min(s.ax, s.bx) : std::min(s.ay, s.by), hi = x_major ? std::max(s.ax, s.bx) : std::max(s.ay, s.by);
-        return {segment_fragment_bound(s), x_major, (lo >> HAIRSHADOW_SUBPIXEL_BITS) - 1, (hi >> HAIRSHADOW_SUBPIXEL_BITS) + 1};
-    }
 
     /// Counts segment s in each tile it reaches and returns its entry in first_tile_ (its first tile
     /// and which others it reaches), or no_tile; widens e by its ends when its box meets the map.
@@ -3093,7 +3356,7 @@ private:
         e.furthest = std::max({e.furthest, s.depth_a, s.depth_b});
         std::size_t visited = 0;
         std::array<std::size_t, 4> tiles{}; // the first four it reaches
-        const fragment_lines lines = bounds ? fragment_lines_of(s) : fragment_lines{}; // a rebuild bounds nothing
+        const fragment_lines lines = bounds ? fragment_lines_of(s, opt_.tile_size) : fragment_lines{}; // a rebuild bounds nothing
         visit_tiles(s, reach, [&](std::size_t tile, int tx, int ty) HAIRSHADOW_ALWAYS_INLINE {
             ++counts[tile];
             if (bounds) { // at most one fragment in each of those lines that lies in the tile
@@ -3139,10 +3402,9 @@ private:
     }
 
 #if HAIRSHADOW_AVX512_WALK
-    /// project_and_bin's loop over one strand of n points, whose first segment is first_seg, in
-    /// AVX-512 (raster/segment_project_avx512.hpp).
-    void project_strand_avx512(const glm::vec3* points, std::size_t n, std::size_t first_seg, std::uint64_t* counts, std::uint64_t* bounds, depth_extent& e,
-                               std::int64_t reach);
+#if HAIRSHADOW_AVX512_WALK
+    friend struct avx512::strand_projection; ///< project_and_bin's loop over a strand, sixteen segments at a time
+#endif
 #endif
 
     /// Texels around a segment that it may touch, in sub-pixel units.
@@ -3225,253 +3487,7 @@ private:
 };
 
 } // namespace hairshadow::detail
-
-#if HAIRSHADOW_AVX512_WALK
-// ---- begin hairshadow/raster/segment_project_avx512.hpp
-/// @file
-/// The projection and binning of segment_bins in AVX-512F, sixteen segments of a strand at a time:
-/// the strand's points loaded whole and split into ends by permutations, both ends projected
-/// (light_space::project, product by product as it rounds them), the near and far planes and the
-/// guard band checked, the ends snapped, the records written sixteen at a time, and the segment
-/// counted in its tile when it lies in one tile, or (on a rebuild) in two side by side. Segments that
-/// need clipping, or that reach more tiles, go through the scalar code, lane by lane, in order; so
-/// every segment, count and first tile is the scalar one (tests/test_tiled_build.cpp checks it).
-
-
-
-#include <algorithm>
-#include <array>
-#include <bit>
-#include <cstdint>
-#include <type_traits>
-
-namespace hairshadow::detail {
-
-namespace avx512 {
-
-/// c v, rounded (no fused multiply-add: see detail::rounded).
-HAIRSHADOW_AVX512_TARGET inline __m512 product(float c, __m512 v) noexcept { return rounded(_mm512_mul_ps(_mm512_set1_ps(c), v)); }
-
-/// Row i of m (p, 1) for sixteen points, as light_space::row rounds it.
-HAIRSHADOW_AVX512_TARGET inline __m512 project_row(const std::array<float, 4>& m, __m512 x, __m512 y, __m512 z) noexcept {
-    return _mm512_add_ps(_mm512_add_ps(product(m[0], x), product(m[1], y)), _mm512_add_ps(product(m[2], z), _mm512_set1_ps(m[3])));
-}
-
-/// -v, exactly as the scalar negation (the sign bit flipped; 0 - v would give +0 for +0).
-HAIRSHADOW_AVX512_TARGET inline __m512 negate(__m512 v) noexcept {
-    return _mm512_castsi512_ps(_mm512_xor_epi32(_mm512_castps_si512(v), _mm512_set1_epi32(std::int32_t(0x80000000u))));
-}
-
-/// (clip / w + 1) half_res, light_space::project's window coordinate; without the division where the
-/// light is `affine` (w is 1).
-HAIRSHADOW_AVX512_TARGET inline __m512 window_coordinate(__m512 clip, __m512 w, bool affine, __m512 half_res) noexcept {
-    return _mm512_mul_ps(_mm512_add_ps(affine ? clip : _mm512_div_ps(clip, w), _mm512_set1_ps(1.0f)), half_res);
-}
-
-/// snap() for eight window coordinates: x S + copysign(1/2, x), truncated, in doubles.
-HAIRSHADOW_AVX512_TARGET inline __m256i snap8(__m256 window) noexcept {
-    const __m512d x = _mm512_mul_pd(_mm512_cvtps_pd(window), _mm512_set1_pd(double(subpixel_scale)));
-    const __m512i sign = _mm512_set1_epi64(std::int64_t(0x8000000000000000ull)), half = _mm512_castpd_si512(_mm512_set1_pd(0.5));
-    const __m512d h = _mm512_castsi512_pd(_mm512_or_si512(_mm512_and_si512(_mm512_castpd_si512(x), sign), half));
-    return _mm512_cvttpd_epi32(_mm512_add_pd(x, h));
-}
-
-/// snap() for sixteen window coordinates.
-HAIRSHADOW_AVX512_TARGET inline __m512i snap16(__m512 window) noexcept {
-    const __m256 low = _mm512_castps512_ps256(window);
-    const __m256 high = _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(window), 1));
-    return _mm512_inserti64x4(_mm512_castsi256_si512(snap8(low)), snap8(high), 1);
-}
-
-/// |v| <= limit, lane by lane (false for NaN).
-HAIRSHADOW_AVX512_TARGET inline __mmask16 within(__m512 v, __m512 limit) noexcept { return _mm512_cmp_ps_mask(_mm512_abs_ps(v), limit, _CMP_LE_OQ); }
-
-/// Sixteen lanes' `component` (0: x, 1: y, 2: z) of points[l + shift], from four vectors holding the
-/// 64 floats from points[0].x on: two permutations and a blend in place of a gather, which costs
-/// more.
-HAIRSHADOW_AVX512_TARGET inline __m512 point_component(const __m512 (&v)[4], int component, int shift) noexcept {
-    __m512i index = _mm512_set_epi32(45, 42, 39, 36, 33, 30, 27, 24, 21, 18, 15, 12, 9, 6, 3, 0);
-    index = _mm512_add_epi32(index, _mm512_set1_epi32(3 * shift + component));
-    const __mmask16 second_half = _mm512_cmpge_epi32_mask(index, _mm512_set1_epi32(32));
-    return _mm512_mask_blend_ps(second_half, _mm512_permutex2var_ps(v[0], index, v[1]), _mm512_permutex2var_ps(v[2], index, v[3]));
-}
-
-/// Where a record's field comes from when sixteen segments' fields (six vectors, a lane each) are
-/// interleaved into sixteen 24-byte segment_geometry records, as six vectors of sixteen 32-bit words:
-/// output word j of vector v is field (16 v + j) % 6 of lane (16 v + j) / 6, always in the same
-/// half of the lanes (v < 3: lanes 0-7). pair_index picks it from the half's fields 0-3, held as
-/// [field 0 | field 1] and [field 2 | field 3] (eight lanes each); last_index from [field 4 | field 5].
-struct record_layout {
-    std::array<std::array<std::int32_t, 16>, 6> pair_index{}, last_index{};
-    std::array<std::uint16_t, 6> last_fields{};
-    constexpr record_layout() {
-        for (int v = 0; v < 6; ++v)
-            for (int j = 0; j < 16; ++j) {
-                const int k = 16 * v + j, field = k % 6, lane = k / 6 - 8 * (v / 3);
-                if (field < 4) pair_index[std::size_t(v)][std::size_t(j)] = (field / 2) * 16 + (field % 2) * 8 + lane;
-                else last_index[std::size_t(v)][std::size_t(j)] = (field - 4) * 8 + lane, last_fields[std::size_t(v)] |= std::uint16_t(1u << j);
-            }
-    }
-};
-inline constexpr record_layout record_layout_table{};
-
-/// The records of the first `lanes` segments stored at `out`: six fields, a lane each, interleaved by
-/// permutations (record_layout) and written whole, in place of a copy lane by lane.
-HAIRSHADOW_AVX512_TARGET inline void store_records(segment_geometry* out, int lanes, const __m512i (&field)[6]) noexcept {
-    static_assert(sizeof(segment_geometry) == 6 * sizeof(std::int32_t) && std::is_standard_layout_v<segment_geometry>);
-    auto* words = reinterpret_cast<std::int32_t*>(out);
-    const int total = 6 * lanes;
-    // [field 0 | field 1], [field 2 | field 3], [field 4 | field 5] of each half's eight lanes.
-    const __m512i pairs[2][3] = {{_mm512_shuffle_i64x2(field[0], field[1], 0x44), _mm512_shuffle_i64x2(field[2], field[3], 0x44),
-                                  _mm512_shuffle_i64x2(field[4], field[5], 0x44)},
-                                 {_mm512_shuffle_i64x2(field[0], field[1], 0xEE), _mm512_shuffle_i64x2(field[2], field[3], 0xEE),
-                                  _mm512_shuffle_i64x2(field[4], field[5], 0xEE)}};
-    for (int half = 0; half < 2; ++half) {
-        const __m512i f01 = pairs[half][0], f23 = pairs[half][1], f45 = pairs[half][2];
-        for (int v = 3 * half; v < 3 * half + 3 && 16 * v < total; ++v) {
-            const auto u = std::size_t(v);
-            __m512i words_v = _mm512_permutex2var_epi32(f01, _mm512_loadu_si512(record_layout_table.pair_index[u].data()), f23);
-            words_v = _mm512_mask_permutexvar_epi32(words_v, record_layout_table.last_fields[u], _mm512_loadu_si512(record_layout_table.last_index[u].data()), f45);
-            const int left = total - 16 * v;
-            _mm512_mask_storeu_epi32(words + 16 * v, left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1u), words_v);
-        }
-    }
-}
-
-/// The 1/w pairs of the first `lanes` segments stored at `out`, interleaved.
-HAIRSHADOW_AVX512_TARGET inline void store_inv_w(std::array<float, 2>* out, int lanes, __m512 inv_w_a, __m512 inv_w_b) noexcept {
-    auto* words = reinterpret_cast<float*>(out);
-    for (int v = 0; v < 2 && 16 * v < 2 * lanes; ++v) {
-        // Word j: field j % 2 of lane 8 v + j / 2.
-        const __m512i index = _mm512_add_epi32(_mm512_set_epi32(23, 7, 22, 6, 21, 5, 20, 4, 19, 3, 18, 2, 17, 1, 16, 0), _mm512_set1_epi32(8 * v));
-        const int left = 2 * lanes - 16 * v;
-        _mm512_mask_storeu_ps(words + 16 * v, left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1u), _mm512_permutex2var_ps(inv_w_a, index, inv_w_b));
-    }
-}
-
-} // namespace avx512
-
-HAIRSHADOW_AVX512_TARGET inline void segment_bins::project_strand_avx512(const glm::vec3* points, std::size_t n, std::size_t first_seg,
-                                                                         std::uint64_t* counts, std::uint64_t* bounds, depth_extent& e,
-                                                                         std::int64_t reach) {
-    using namespace avx512;
-    const light_space& ls = light_;
-    const auto vp_x = ls.row_coefficients(ls.view_projection(), 0), vp_y = ls.row_coefficients(ls.view_projection(), 1);
-    const auto vp_w = ls.row_coefficients(ls.view_projection(), 3), view_z = ls.row_coefficients(ls.view(), 2);
-    const __m512 half_res = _mm512_set1_ps(0.5f * float(res_)), one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
-    const __m512 near_plane = _mm512_set1_ps(ls.near_plane()), far_plane = _mm512_set1_ps(ls.far_plane());
-    const __m512 depth_span = _mm512_set1_ps(ls.far_plane() - ls.near_plane());
-    const __m512 guard = _mm512_set1_ps(guard_band), two = _mm512_set1_ps(2.0f);
-    const __m512i reach_v = _mm512_set1_epi32(std::int32_t(reach)), res_v = _mm512_set1_epi32(res_), last_v = _mm512_set1_epi32(res_ - 1);
-    const int tile_shift = std::countr_zero(unsigned(opt_.tile_size));
-    const __m512i tiles_x = _mm512_set1_epi32(tiles_x_), zero_i = _mm512_setzero_si512(), one_i = _mm512_set1_epi32(1);
-    // An orthographic light's w is 1 wherever the point is finite (and NaN elsewhere, which fails
-    // the w > 0 test): a division by it changes nothing, and is skipped. 1/w is kept only for a
-    // perspective light (store).
-    const bool affine = vp_w[0] == 0.0f && vp_w[1] == 0.0f && vp_w[2] == 0.0f && vp_w[3] == 1.0f;
-    const bool keep_inv_w = !inv_w_.empty();
-    __m512 nearest = _mm512_set1_ps(e.nearest), furthest = _mm512_set1_ps(e.furthest);
-    alignas(64) std::int32_t tile[16], bound[16];
-    const __m512i most_bound = _mm512_set1_epi32(opt_.tile_size + 1), two_i = _mm512_set1_epi32(2);
-    const __m512i and_right_v = _mm512_set1_epi32(std::int32_t(and_right)), and_below_v = _mm512_set1_epi32(std::int32_t(and_below));
-    const __m512i no_tile_v = _mm512_set1_epi32(std::int32_t(no_tile));
-    const std::size_t segments = n - 1;
-    for (std::size_t base = 0; base < segments; base += 16) {
-        const auto lanes = int(std::min<std::size_t>(16, segments - base));
-        const auto valid = __mmask16((1u << lanes) - 1u);
-        // Both ends of each segment, points base + l and base + l + 1: the strand's floats from
-        // points[base] on, loaded whole (masked past its last point: a masked load does not fault).
-        const float* from = &points[base].x;
-        const int floats = 3 * (lanes + 1);
-        __m512 raw[4];
-        for (int k = 0; k < 4; ++k) {
-            const int left = std::clamp(floats - 16 * k, 0, 16);
-            raw[k] = _mm512_maskz_loadu_ps(left == 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1u), from + 16 * k);
-        }
-        const __m512 x0 = point_component(raw, 0, 0), y0 = point_component(raw, 1, 0), z0 = point_component(raw, 2, 0);
-        const __m512 x1 = point_component(raw, 0, 1), y1 = point_component(raw, 1, 1), z1 = point_component(raw, 2, 1);
-        const __m512 d0 = negate(project_row(view_z, x0, y0, z0)), d1 = negate(project_row(view_z, x1, y1, z1));
-        // No clipping at the near and far planes (prepare_segment's tests, in its own arithmetic).
-        auto simple = __mmask16(valid & _mm512_cmp_ps_mask(_mm512_sub_ps(d0, near_plane), zero, _CMP_GE_OQ) &
-                           _mm512_cmp_ps_mask(_mm512_sub_ps(d1, near_plane), zero, _CMP_GE_OQ) &
-                           _mm512_cmp_ps_mask(_mm512_sub_ps(far_plane, d0), zero, _CMP_GE_OQ) &
-                           _mm512_cmp_ps_mask(_mm512_sub_ps(far_plane, d1), zero, _CMP_GE_OQ));
-        const __m512 w0 = project_row(vp_w, x0, y0, z0), w1 = project_row(vp_w, x1, y1, z1);
-        const __m512 wx0 = window_coordinate(project_row(vp_x, x0, y0, z0), w0, affine, half_res);
-        const __m512 wy0 = window_coordinate(project_row(vp_y, x0, y0, z0), w0, affine, half_res);
-        const __m512 wx1 = window_coordinate(project_row(vp_x, x1, y1, z1), w1, affine, half_res);
-        const __m512 wy1 = window_coordinate(project_row(vp_y, x1, y1, z1), w1, affine, half_res);
-        const __m512 dep0 = _mm512_div_ps(_mm512_sub_ps(d0, near_plane), depth_span), dep1 = _mm512_div_ps(_mm512_sub_ps(d1, near_plane), depth_span);
-        // Inside the guard band, finite, in front of the light: prepare_segment's last test.
-        simple = __mmask16(simple & within(wx0, guard) & within(wy0, guard) & within(wx1, guard) & within(wy1, guard) & within(dep0, two) &
-                           within(dep1, two) & _mm512_cmp_ps_mask(w0, zero, _CMP_GT_OQ) & _mm512_cmp_ps_mask(w1, zero, _CMP_GT_OQ));
-        const __m512i sax = snap16(wx0), say = snap16(wy0), sbx = snap16(wx1), sby = snap16(wy1);
-        const std::size_t first = first_seg + base;
-        // Every lane's record; the lanes left to the scalar code below are written again there.
-        store_records(segments_.data() + first, lanes, {sax, say, sbx, sby, _mm512_castps_si512(dep0), _mm512_castps_si512(dep1)});
-        if (keep_inv_w) store_inv_w(inv_w_.data() + first, lanes, _mm512_div_ps(one, w0), _mm512_div_ps(one, w1));
-        // One tile, or two side by side, inside the map: counted here; anything else goes through the
-        // scalar code.
-        const __mmask16 empty = _mm512_cmpeq_epi32_mask(sax, sbx) & _mm512_cmpeq_epi32_mask(say, sby);
-        const __m512i lo_x = _mm512_srai_epi32(_mm512_sub_epi32(_mm512_min_epi32(sax, sbx), reach_v), HAIRSHADOW_SUBPIXEL_BITS);
-        const __m512i hi_x = _mm512_srai_epi32(_mm512_add_epi32(_mm512_max_epi32(sax, sbx), reach_v), HAIRSHADOW_SUBPIXEL_BITS);
-        const __m512i lo_y = _mm512_srai_epi32(_mm512_sub_epi32(_mm512_min_epi32(say, sby), reach_v), HAIRSHADOW_SUBPIXEL_BITS);
-        const __m512i hi_y = _mm512_srai_epi32(_mm512_add_epi32(_mm512_max_epi32(say, sby), reach_v), HAIRSHADOW_SUBPIXEL_BITS);
-        const __mmask16 in_map = _mm512_cmpge_epi32_mask(hi_x, zero_i) & _mm512_cmpge_epi32_mask(hi_y, zero_i) &
-                                 _mm512_cmplt_epi32_mask(lo_x, res_v) & _mm512_cmplt_epi32_mask(lo_y, res_v);
-        const __m512i tx0 = _mm512_srai_epi32(_mm512_max_epi32(lo_x, zero_i), tile_shift), tx1 = _mm512_srai_epi32(_mm512_min_epi32(hi_x, last_v), tile_shift);
-        const __m512i ty0 = _mm512_srai_epi32(_mm512_max_epi32(lo_y, zero_i), tile_shift), ty1 = _mm512_srai_epi32(_mm512_min_epi32(hi_y, last_v), tile_shift);
-        const __mmask16 drawn = simple & __mmask16(~empty) & in_map;
-        const __mmask16 same_column = _mm512_cmpeq_epi32_mask(tx0, tx1), same_row = _mm512_cmpeq_epi32_mask(ty0, ty1);
-        const __mmask16 one_tile = drawn & same_column & same_row;
-        // A box of two tiles: visit_tiles visits both, and count_tiles flags the second (and_right,
-        // and_below). Left to count_tiles on a first build, which also bounds the tiles' fragments.
-        const __mmask16 right = bounds ? __mmask16(0) : drawn & same_row & _mm512_cmpeq_epi32_mask(tx1, _mm512_add_epi32(tx0, one_i));
-        const __mmask16 below = bounds ? __mmask16(0) : drawn & same_column & _mm512_cmpeq_epi32_mask(ty1, _mm512_add_epi32(ty0, one_i));
-        const __mmask16 dropped = simple & (empty | __mmask16(~in_map));
-        const __m512i first_tiles = _mm512_add_epi32(_mm512_mullo_epi32(ty0, tiles_x), tx0);
-        _mm512_store_si512(tile, first_tiles);
-        __m512i entry = _mm512_mask_or_epi32(first_tiles, right, first_tiles, and_right_v);
-        entry = _mm512_mask_or_epi32(entry, below, entry, and_below_v);
-        _mm512_mask_storeu_epi32(first_tile_.data() + first, valid, _mm512_mask_mov_epi32(entry, dropped, no_tile_v));
-        if (bounds) {
-            // count_tiles' bound for a segment of one tile: segment_fragment_bound, at most the lines
-            // of fragment_lines_of in the tile. Within the guard band every difference fits in 32 bits.
-            const __m512i dx = _mm512_abs_epi32(_mm512_sub_epi32(sbx, sax)), dy = _mm512_abs_epi32(_mm512_sub_epi32(sby, say));
-            const __m512i most = _mm512_min_epi32(_mm512_add_epi32(_mm512_srai_epi32(_mm512_max_epi32(dx, dy), HAIRSHADOW_SUBPIXEL_BITS), two_i), most_bound);
-            const __mmask16 x_major = _mm512_cmpge_epi32_mask(dx, dy);
-            const __m512i lo = _mm512_mask_blend_epi32(x_major, _mm512_min_epi32(say, sby), _mm512_min_epi32(sax, sbx));
-            const __m512i hi = _mm512_mask_blend_epi32(x_major, _mm512_max_epi32(say, sby), _mm512_max_epi32(sax, sbx));
-            const __m512i first_line = _mm512_sub_epi32(_mm512_srai_epi32(lo, HAIRSHADOW_SUBPIXEL_BITS), one_i);
-            const __m512i last_line = _mm512_add_epi32(_mm512_srai_epi32(hi, HAIRSHADOW_SUBPIXEL_BITS), one_i);
-            const __m512i tile_line = _mm512_slli_epi32(_mm512_mask_blend_epi32(x_major, ty0, tx0), tile_shift);
-            const __m512i tile_end = _mm512_add_epi32(tile_line, _mm512_set1_epi32(opt_.tile_size - 1));
-            const __m512i in_tile = _mm512_add_epi32(_mm512_sub_epi32(_mm512_min_epi32(last_line, tile_end), _mm512_max_epi32(first_line, tile_line)), one_i);
-            _mm512_store_si512(bound, _mm512_min_epi32(most, _mm512_max_epi32(in_tile, zero_i)));
-        }
-        nearest = _mm512_mask_min_ps(nearest, drawn, nearest, _mm512_min_ps(dep0, dep1)); // segment_bins::meets_map
-        furthest = _mm512_mask_max_ps(furthest, drawn, furthest, _mm512_max_ps(dep0, dep1));
-        for (unsigned m = one_tile; m != 0; m &= m - 1) {
-            const int l = std::countr_zero(m);
-            ++counts[tile[l]];
-            if (bounds) bounds[tile[l]] += std::uint64_t(bound[l]);
-        }
-        for (unsigned m = right; m != 0; m &= m - 1) ++counts[tile[std::countr_zero(m)]], ++counts[tile[std::countr_zero(m)] + 1];
-        for (unsigned m = below; m != 0; m &= m - 1) ++counts[tile[std::countr_zero(m)]], ++counts[tile[std::countr_zero(m)] + tiles_x_];
-        // The rest, in order: clipped segments (prepared by the scalar code) and those of more tiles.
-        for (unsigned m = valid & ~unsigned(one_tile | right | below | dropped); m != 0; m &= m - 1) {
-            const auto i = base + std::size_t(std::countr_zero(m));
-            first_tile_[first_seg + i] = prepare_and_count(points[i], points[i + 1], (simple >> (i - base)) & 1u, first_seg + i, reach, counts, bounds, e);
-        }
-    }
-    e.nearest = std::min(e.nearest, _mm512_reduce_min_ps(nearest));
-    e.furthest = std::max(e.furthest, _mm512_reduce_max_ps(furthest));
-}
-
-} // namespace hairshadow::detail
-// ---- end hairshadow/raster/segment_project_avx512.hpp
-#endif
-// ---- end hairshadow/raster/segment_bins.hpp
+// ---- end hairshadow/raster/detail/segment_bins.hpp
 
 #include <cstdint>
 #include <vector>
@@ -3876,6 +3892,55 @@ struct accumulation_list {
 /// @file
 /// The three policy families of a shadow method, as concepts. docs/policies.md describes each member.
 
+// ---- begin hairshadow/placement/layer_position.hpp
+/// @file
+/// Where a depth falls among a texel's layers: the helpers every placement shares.
+
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace hairshadow {
+
+/// A query depth's place among `layer_count` layers: index -1 is in front of the first layer,
+/// index layer_count behind the last; otherwise `fraction` in [0, 1] says how far into layer `index`.
+struct layer_position {
+    int index;
+    float fraction;
+};
+
+namespace detail {
+/// Moves an estimated layer index to the k in [0, last] with boundary(k) <= depth < boundary(k + 1).
+/// Closed forms for the layer of a depth can miss by one where rounding meets a boundary; settling
+/// against the boundary depths themselves makes fragments and queries agree exactly.
+template <class Boundary>
+int settle_layer(float estimate, int last, float depth, Boundary boundary) noexcept {
+    int k = estimate > 0.0f ? int(std::min(estimate, float(last))) : 0; // NaN and negatives give 0
+    while (k > 0 && depth < boundary(k)) --k;
+    while (k < last && depth >= boundary(k + 1)) ++k;
+    return k;
+}
+
+/// placement.assign(state, depth) for the fragments of one texel: the placement's own assigner(state)
+/// where it has one (work done once per texel instead of once per fragment), else assign itself.
+template <class Placement>
+auto texel_assigner(const Placement& placement, const typename Placement::texel_state& state) noexcept {
+    if constexpr (requires { placement.assigner(state); }) return placement.assigner(state);
+    else return [&placement, &state](float depth) noexcept { return placement.assign(state, depth); };
+}
+
+/// Layer k's position for a depth between its boundaries lo and hi.
+inline layer_position position_in(int k, float depth, float lo, float hi) noexcept {
+    return {k, hi > lo ? std::clamp((depth - lo) / (hi - lo), 0.0f, 1.0f) : 0.0f};
+}
+
+/// The smallest float above `hi`, so that a half-open range [lo, end) holds a fragment at hi.
+inline float just_above(float hi) noexcept { return std::nextafter(hi, std::numeric_limits<float>::infinity()); }
+} // namespace detail
+
+} // namespace hairshadow
+// ---- end hairshadow/placement/layer_position.hpp
 
 #include <concepts>
 #include <span>
@@ -3932,7 +3997,22 @@ concept reconstruction_policy =
 
 } // namespace hairshadow
 // ---- end hairshadow/methods/concepts.hpp
-// ---- begin hairshadow/methods/streamed_tile.hpp
+// ---- begin hairshadow/methods/detail/build_plan.hpp
+/// @file
+/// The tiled build's plan: how a composition's tiles are built, chosen from its capabilities
+/// (policies/capabilities.hpp), the model and the CPU, in one place. Every path gives the same maps,
+/// bit for bit:
+/// 1. streamed (streams_tiles): dense tiles reduce their fragments where the walk left them
+///    (methods/detail/streamed_tile.hpp); sparse ones are grouped, which is cheaper there;
+/// 2. depths alone (builds_from_depths_avx512, every fragment of one optical depth, AVX-512): the
+///    tiles group their depths alone, half the bytes of the grouping's scatter and of the texels'
+///    passes (BENCHMARKS.md, "Density clustering groups depths alone where a map has one optical depth");
+/// 3. grouped: every tile's fragments gathered by texel, then the texel's pre-pass and build.
+/// Each path walks a tile in any order where the maps cannot tell (order_free_maps, and no depth of
+/// -0: walks_in_any_order), so that long segments walk side by side in lanes of nearly one length
+/// (BENCHMARKS.md, "Tiles walked in any order where the maps cannot tell").
+
+// ---- begin hairshadow/methods/detail/streamed_tile.hpp
 /// @file
 /// The tiled build without grouping fragments by texel, for methods whose per-texel work is a running
 /// reduction: a placement whose texel state follows from the texel's nearest and furthest fragment
@@ -3942,14 +4022,14 @@ concept reconstruction_policy =
 /// still meets its own fragments in the walk's order (segment order, or one that the maps cannot
 /// tell from it: order_free_maps), so the maps are the grouped build's, bit for bit;
 /// what it saves is the counting sort, whose scattered writes miss the cache on a dense tile. The
-/// layers are chosen a block of fragments at a time (placement/assign_each.hpp: sixteen a step with
+/// layers are chosen a block of fragments at a time (placement/detail/assign_each.hpp: sixteen a step with
 /// AVX-512), then added one by one, in walk order. Only the texels that took fragments are finished;
 /// with many layers, eight at a time (finish_several).
 
-// ---- begin hairshadow/placement/assign_each.hpp
+// ---- begin hairshadow/placement/detail/assign_each.hpp
 /// @file
 /// A placement's per-fragment steps, sixteen fragments at a time where the placement offers it:
-/// - assign_each: the layers of fragments from many texels (the streamed build, methods/streamed_tile.hpp),
+/// - assign_each: the layers of fragments from many texels (the streamed build, methods/detail/streamed_tile.hpp),
 ///   through a placement's assign_each_avx512;
 /// - prepare_texel and for_each_layer: one texel's pre-pass and layers (the grouped build), through
 ///   prepare_texel_avx512 and assign_texel_avx512 (or, for a texel's depths alone,
@@ -3958,18 +4038,58 @@ concept reconstruction_policy =
 /// comparisons in every lane, so that only the instruction count changes. Which runs follows
 /// raster_options::instructions (raster/instruction_set.hpp).
 
+// ---- begin hairshadow/policies/capabilities.hpp
+/// @file
+/// The fast paths of the tiled build, each a named capability that a policy (or a composition of
+/// policies) has by declaring a few optional members. A policy that has none of them is still a whole
+/// method: it builds by the grouped build (each texel's fragments gathered, then prepare_texel and
+/// build), on every CPU. Each capability only makes the same maps faster, bit for bit; the build plan
+/// (methods/detail/build_plan.hpp) picks the path from these and nothing else. docs/policies.md,
+/// "Capabilities", says what each member must do; tests/test_capabilities.cpp states, with
+/// STATIC_REQUIRE, which of the library's compositions has which.
+///
+/// | capability                 | what the composition declares                                   | the path it opens |
+/// |----------------------------|-----------------------------------------------------------------|-------------------|
+/// | streams_tiles              | texel_state_from; accumulator, accumulate, finish               | the streamed build: a tile's fragments reduced where the walk left them |
+/// | order_free_maps            | fragment_order_free in placement and reconstruction             | the AVX-512 walk in any order (one alpha, no depth of -0) |
+/// | assigns_each_avx512        | assign_each_avx512                                              | the streamed build's layers sixteen fragments at a time |
+/// | prepares_texel_avx512      | prepare_texel_avx512                                            | the grouped build's pre-pass sixteen at a time |
+/// | assigns_texel_avx512       | assign_texel_avx512                                             | the grouped build's layers sixteen at a time |
+/// | counts_texel_avx512        | count_texel_avx512                                              | a texel of one b counted, not summed |
+/// | builds_from_depths_avx512  | prepare_texel_depths_avx512; build_from_depths                  | a map of one b grouped as depths alone (half the bytes) |
+///
+/// The AVX-512 members exist only where the vector paths are compiled (raster/instruction_set.hpp:
+/// HAIRSHADOW_AVX512_WALK); elsewhere their capabilities are false and the scalar paths run.
 
-#include <algorithm>
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
-#include <type_traits>
 
 namespace hairshadow::detail {
 
-#if HAIRSHADOW_AVX512_WALK
-/// Whether `Placement` assigns sixteen fragments at a time.
+/// Whether a composition can be built without grouping (methods/detail/streamed_tile.hpp): its placement's
+/// texel state comes from the texel's nearest and furthest fragment, and its reconstruction builds
+/// in pieces, a fragment at a time.
+template <class Placement, class Accumulation, class Reconstruction>
+concept streams_tiles = requires(const Placement& p, typename Placement::texel_state& s,
+                                 typename Reconstruction::template accumulator<Placement, Accumulation>& a,
+                                 typename Reconstruction::template storage<Placement, Accumulation>& out) {
+    p.texel_state_from(0.0f, 0.0f, s);
+    Reconstruction::template accumulate<Placement, Accumulation>(a, 0, 0.0f);
+    Reconstruction::template finish<Placement, Accumulation>(a, out);
+};
+
+/// Whether a composition's maps are the same for any order of each texel's fragments where they all
+/// share one optical depth and no depth is -0 (both placement and reconstruction say so): then a
+/// tile may be walked in any order (fragment_order::any). The depth extent is a minimum and a
+/// maximum, the same for any order once +0 and -0 cannot meet; every sum adds the same b, so that
+/// the sum of n of them is one number; bits are ORed; density clustering's k-means sums are integers.
+template <class Placement, class Reconstruction>
+concept order_free_maps = Placement::fragment_order_free && Reconstruction::fragment_order_free;
+
+/// Whether `Placement` assigns sixteen fragments of many texels at a time.
 template <class Placement>
 concept assigns_each_avx512 = requires(const Placement& p, const typename Placement::texel_state* states, std::span<const std::uint32_t> texels,
                                        std::span<const float> depths, std::int32_t* layers) {
@@ -4006,6 +4126,36 @@ concept builds_from_depths_avx512 = requires(const Placement& p, typename Placem
     Reconstruction::template build_from_depths<Placement, Accumulation>(p, s, depths, 0.0f, out);
 };
 
+/// A composition's capabilities in one place: what tests state per method, and what a user reads to
+/// see why a method builds as it does.
+template <class Placement, class Accumulation, class Reconstruction>
+struct capabilities {
+    static constexpr bool streams = streams_tiles<Placement, Accumulation, Reconstruction>;
+    static constexpr bool order_free = order_free_maps<Placement, Reconstruction>;
+    static constexpr bool assigns_each = assigns_each_avx512<Placement>;
+    static constexpr bool prepares_texel = prepares_texel_avx512<Placement>;
+    static constexpr bool assigns_texel = assigns_texel_avx512<Placement>;
+    static constexpr bool counts_texel = counts_texel_avx512<Placement>;
+    static constexpr bool from_depths = builds_from_depths_avx512<Placement, Accumulation, Reconstruction>;
+};
+
+/// The capabilities of a shadow_method.
+template <class Method>
+using capabilities_of = capabilities<typename Method::placement_type, typename Method::accumulation_type, typename Method::reconstruction_type>;
+
+} // namespace hairshadow::detail
+// ---- end hairshadow/policies/capabilities.hpp
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <type_traits>
+
+namespace hairshadow::detail {
+
+#if HAIRSHADOW_AVX512_WALK
 namespace avx512 {
 /// The first `remaining` of sixteen lanes (all of them from 16 on).
 inline __mmask16 first_lanes(std::size_t remaining) noexcept {
@@ -4143,290 +4293,32 @@ HAIRSHADOW_ALWAYS_INLINE inline std::array<std::uint32_t, L> layer_counts(const 
 }
 
 } // namespace hairshadow::detail
-// ---- end hairshadow/placement/assign_each.hpp
-// ---- begin hairshadow/raster/tile_fragments.hpp
+// ---- end hairshadow/placement/detail/assign_each.hpp
+// ---- begin hairshadow/raster/detail/tile_fragments.hpp
 /// @file
 /// One tile's fragments: the working set of the tiled build. The tile's segments are walked once, by
 /// the line rule, into a per-thread store, in walk order; group() then groups the fragments by texel,
 /// each texel's in walk order: segment order, the order a fragment_buffer keeps, unless the build let
 /// the walk choose its own (fragment_order::any); group_depths() groups the depths alone, where every
 /// fragment has one optical depth (one_optical_depth). The walk runs
-/// in AVX-512 where the CPU has it (raster/tile_walk_avx512.hpp), else in scalar C++; both give the
+/// in AVX-512 where the CPU has it (raster/detail/tile_walk_avx512.hpp), else in scalar C++; both give the
 /// same fragments, bit for bit.
 
-
-#include <algorithm>
-#include <cstdint>
-#include <limits>
-#include <span>
-#include <vector>
-
-namespace hairshadow {
-
-namespace detail {
-
 #if HAIRSHADOW_AVX512_WALK
-namespace avx512 {
-struct batch;
-}
-#endif
-
-/// The order a tile's walk stores its fragments in.
-enum class fragment_order {
-    /// Segment after segment, in the tile's list: each texel meets its fragments in segment order, the
-    /// order of a fragment_buffer, on which sums of different optical depths depend.
-    segment,
-    /// Any order the walk finds fastest (it sorts the segments by their length in the tile and stores
-    /// sixteen at a step), the same for any thread count. Only for a build whose maps depend on each
-    /// texel's fragments as a set where they share one optical depth and none is -0 (as the vector
-    /// walk's tiles do: order_free_maps); the scalar walk keeps segment order.
-    any,
-};
-
-/// A tile's fragments with their optical depths, each texel's in segment order (unless walked in any
-/// order), so that sums over them match the fragment_buffer build bit for bit. One per thread; its memory is kept from tile to
-/// tile and from build to build.
-class tile_fragments {
-public:
-    /// Walks tile t's segments into the store, in walk order: segment after segment, or, where `order`
-    /// allows any order and the vector walk runs, in an order of the walk's own (fragment_order).
-    /// `instructions` must be resolved.
-    void gather(const segment_bins& bins, std::size_t t, instruction_set instructions, fragment_order order = fragment_order::segment) {
-        rect_ = bins.tile_rect(t);
-        width_ = rect_.x1 - rect_.x0;
-        n_ = 0;
-        const bool vector = instructions == instruction_set::avx512;
-#if HAIRSHADOW_AVX512_WALK
-        if (vector && simd_tile(bins)) {
-            const float optical = optical_depth_cached(bins.uniform_shader().shade(0.0f).alpha);
-            const bool gathered = bins.segment_count() < (std::size_t(1) << 28); // the records' word offsets fit the gathers
-            if (order == fragment_order::any && gathered) walk_any_order_avx512(bins, t, optical);
-            else walk_avx512(bins, t, optical);
-        } else {
-            walk_scalar(bins, t);
-        }
-#else
-        (void)vector, (void)order;
-        walk_scalar(bins, t);
-#endif
-    }
-    /// Room to sort a tile of `segments` segments and `side` texels a side for the walk in any order,
-    /// so that tiles up to that size allocate nothing, on whichever thread they land.
-    void reserve_segments(std::size_t segments, int side) {
-        if (sorted_.size() < segments) sorted_.resize(segments), steps_.resize(segments);
-        steps_of_.reserve(std::size_t(side) + 2);
-    }
-
-    /// Whether every fragment a walk of `bins` makes has one optical depth: thin lines of uniform
-    /// attributes and one alpha, the tiles the vector walk covers. That b is
-    /// optical_depth_of(bins.uniform_shader().shade(0.0f).alpha).
-    static bool one_optical_depth(const segment_bins& bins) noexcept {
-        return bins.options().wide_line_width == 0.0f && bins.uniform_attributes() && bins.uniform_shader().constant_alpha();
-    }
-
-    const texel_rect& rect() const noexcept { return rect_; }
-    /// Fragments of the tile's texel (x, y), in map coordinates, once grouped (group()).
-    std::span<const optical_fragment> texel(int x, int y) const noexcept {
-        const std::size_t k = std::size_t(y - rect_.y0) * std::size_t(width_) + std::size_t(x - rect_.x0);
-        return {grouped_.data() + offsets_[k], std::size_t(offsets_[k + 1] - offsets_[k])};
-    }
-    /// Depths of the tile's texel (x, y), in map coordinates, once grouped alone (group_depths()).
-    std::span<const float> texel_depths(int x, int y) const noexcept {
-        const std::size_t k = std::size_t(y - rect_.y0) * std::size_t(width_) + std::size_t(x - rect_.x0);
-        return {grouped_depths_.data() + offsets_[k], std::size_t(offsets_[k + 1] - offsets_[k])};
-    }
-    /// The last tile's fragments in walk order: segment after segment, as in the tile's list, unless
-    /// gather was let walk in any order. Each texel's fragments come in the order texel() gives them. walk_texels() are row-major indices
-    /// within the tile.
-    std::span<const std::uint32_t> walk_texels() const noexcept { return {where_.data(), n_}; }
-    std::span<const float> walk_depths() const noexcept { return {depth_.data(), n_}; }
-    std::span<const float> walk_optical_depths() const noexcept { return {optical_.data(), n_}; }
-    /// Fragments of the last tile.
-    std::size_t size() const noexcept { return n_; }
-    /// Fragments it walks without allocating.
-    std::size_t capacity() const noexcept { return where_.size(); }
-    /// Room to walk a tile of `fragments` fragments and group `grouped` of them (group()) and
-    /// `grouped_depths` of their depths (group_depths()) without growing, allocated afresh where the
-    /// store is smaller: nothing it held is copied.
-    void reserve_fresh(std::size_t fragments, std::size_t grouped, std::size_t grouped_depths = 0) {
-        if (where_.size() < fragments) {
-            where_ = decltype(where_)(), depth_ = decltype(depth_)(), optical_ = decltype(optical_)();
-            where_.resize(fragments), depth_.resize(fragments), optical_.resize(fragments);
-        }
-        if (grouped_.size() < grouped) grouped_ = decltype(grouped_)(), grouped_.resize(grouped);
-        if (grouped_depths_.size() < grouped_depths) grouped_depths_ = decltype(grouped_depths_)(), grouped_depths_.resize(grouped_depths);
-    }
-    /// Fragments it groups without allocating (group()).
-    std::size_t grouped_capacity() const noexcept { return grouped_.size(); }
-    /// Depths it groups without allocating (group_depths()).
-    std::size_t grouped_depths_capacity() const noexcept { return grouped_depths_.size(); }
-    /// Makes room to walk `fragments` fragments, group `grouped` of them and `grouped_depths` of their
-    /// depths, in tiles of `tile_texels` texels, so that tiles up to those sizes allocate nothing.
-    void reserve(std::size_t fragments, std::size_t grouped, std::size_t grouped_depths, std::size_t tile_texels) {
-        if (where_.size() < fragments) where_.resize(fragments), depth_.resize(fragments), optical_.resize(fragments);
-        if (grouped_.size() < grouped) grouped_.resize(grouped);
-        if (grouped_depths_.size() < grouped_depths) grouped_depths_.resize(grouped_depths);
-        if (grouped > 0 || grouped_depths > 0) offsets_.reserve(tile_texels + 2);
-    }
-    std::size_t memory_bytes() const noexcept {
-        return (where_.capacity() + offsets_.capacity()) * sizeof(std::uint32_t) +
-               (depth_.capacity() + optical_.capacity() + grouped_depths_.capacity()) * sizeof(float) +
-               grouped_.capacity() * sizeof(optical_fragment) + (sorted_.capacity() + steps_of_.capacity()) * sizeof(std::uint32_t) +
-               steps_.capacity() * sizeof(std::uint16_t);
-    }
-
-private:
-    /// Room for `extra` more candidates after the n_ kept so far.
-    void make_room(std::size_t extra) {
-        if (n_ + extra <= where_.size()) return;
-        const std::size_t size = std::max(2 * where_.size(), n_ + extra);
-        where_.resize(size);
-        depth_.resize(size);
-        optical_.resize(size);
-    }
-
-    /// The b of an alpha, remembered: segments of one model mostly share one alpha, and a log per
-    /// segment would cost more than its walk.
-    float optical_depth_cached(float alpha) noexcept {
-        if (alpha != last_alpha_) last_alpha_ = alpha, last_optical_ = optical_depth_of(alpha);
-        return last_optical_;
-    }
-
-    /// A candidate of the walk: stored at n_, kept (n_ advanced) when `kept`.
-    HAIRSHADOW_ALWAYS_INLINE void store(int x, int y, bool kept, float depth, float optical) noexcept {
-        where_[n_] = std::uint32_t((y - rect_.y0) * width_ + (x - rect_.x0));
-        depth_[n_] = depth;
-        optical_[n_] = optical;
-        n_ += kept;
-    }
-
-    /// One segment, in scalar C++: the same fragments as the fragment_buffer rasteriser.
-    HAIRSHADOW_ALWAYS_INLINE void walk_segment(const segment_shader& s, float wide) {
-        const prepared_segment& seg = s.segment();
-        if (wide > 0.0f) {
-            rasterize_wide_line(seg, wide, rect_, [&](int x, int y, float param, float weight) {
-                make_room(1);
-                const fragment f = s.shade(param, weight);
-                store(x, y, true, f.depth, optical_depth_of(f.alpha));
-            });
-            return;
-        }
-        // A thin line makes at most one candidate per texel along its major axis in the tile, plus one
-        // where it starts.
-        make_room(std::size_t(std::max(width_, rect_.y1 - rect_.y0)) + 1);
-        if (s.constant_alpha()) { // b once: the same value shade() gives every fragment
-            const float b = optical_depth_cached(s.shade(0.0f).alpha);
-            walk_line(seg.a(), seg.b(), rect_, [&](int x, int y, bool kept) HAIRSHADOW_ALWAYS_INLINE { store(x, y, kept, s.depth(s.parameter(x, y)), b); });
-        } else {
-            walk_line(seg.a(), seg.b(), rect_, [&](int x, int y, bool kept) HAIRSHADOW_ALWAYS_INLINE {
-                const fragment f = s.shade(s.parameter(x, y));
-                store(x, y, kept, f.depth, kept ? optical_depth_of(f.alpha) : 0.0f);
-            });
-        }
-    }
-
-    /// walk_segment for the vector walk's leftovers, compiled apart from it: inlined into the AVX-512
-    /// function, the compiler could fuse the scalar arithmetic into multiply-adds, and the fragments
-    /// would no longer be the scalar walk's.
-#if defined(__GNUC__)
-    __attribute__((noinline))
-#endif
-    void walk_segment_apart(const segment_bins& bins, std::uint32_t segment) { walk_segment(bins.shader(segment), 0.0f); }
-
-    void walk_scalar(const segment_bins& bins, std::size_t t) {
-        const float wide = bins.options().wide_line_width;
-        bins.for_each_segment(t, [&](const segment_shader& s) HAIRSHADOW_ALWAYS_INLINE { walk_segment(s, wide); });
-    }
-
-public:
-    /// Groups the last tile's fragments by texel, for texel(): a count, prefix sums and a stable
-    /// scatter, so that texel k's fragments end in [offsets_[k], offsets_[k + 1]) in walk order.
-    void group() {
-        std::uint32_t* cursor = count_texels();
-        // Only as large as the tiles grouped (the streamed build groups only sparse ones), grown by half.
-        if (grouped_.size() < n_) grouped_.resize(std::max(n_, grouped_.size() + grouped_.size() / 2));
-        optical_fragment* grouped = grouped_.data();
-        const std::uint32_t* where = where_.data();
-        const float* depth = depth_.data();
-        const float* optical = optical_.data();
-        for (std::size_t i = 0; i < n_; ++i) grouped[cursor[where[i]]++] = {depth[i], optical[i]};
-    }
-    /// group() for the depths alone, for texel_depths(): where every fragment has one optical depth
-    /// (one_optical_depth), half the bytes to scatter, the scatter being most of the grouping's time.
-    void group_depths() {
-        std::uint32_t* cursor = count_texels();
-        if (grouped_depths_.size() < n_) grouped_depths_.resize(std::max(n_, grouped_depths_.size() + grouped_depths_.size() / 2));
-        float* grouped = grouped_depths_.data();
-        const std::uint32_t* where = where_.data();
-        const float* depth = depth_.data();
-        for (std::size_t i = 0; i < n_; ++i) grouped[cursor[where[i]]++] = depth[i];
-    }
-
-private:
-    /// The grouping's first steps: texel k's count, then its fragments' offsets, in offsets_[k + 1]
-    /// (offsets_[k + 2] once the scatter has moved each texel's cursor to its end). Returns the cursors.
-    std::uint32_t* count_texels() {
-        const std::size_t texels = std::size_t(width_) * std::size_t(rect_.y1 - rect_.y0);
-        if (n_ > std::numeric_limits<std::uint32_t>::max()) throw argument_error("more than 2^32 fragments in one tile: use smaller tiles");
-        offsets_.assign(texels + 2, 0);
-        std::uint32_t* counts = offsets_.data() + 2;
-        const std::uint32_t* where = where_.data();
-        for (std::size_t i = 0; i < n_; ++i) ++counts[where[i]];
-        for (std::size_t k = 2; k < offsets_.size(); ++k) offsets_[k] += offsets_[k - 1];
-        return offsets_.data() + 1;
-    }
-
-#if HAIRSHADOW_AVX512_WALK
-    /// The vector walk covers thin lines of one alpha (uniform attributes, a footprint constant in
-    /// depth); other tiles walk in scalar.
-    static bool simd_tile(const segment_bins& bins) noexcept { return one_optical_depth(bins); }
-    /// The store's arrays, next slot and size, held in locals through the vector walk: its vector
-    /// stores may alias anything, and through the members the compiler reloaded all of them after each.
-    struct store_cursor {
-        std::uint32_t* where;
-        float *depth, *optical;
-        std::size_t n, end;
-    };
-    store_cursor cursor() noexcept { return {where_.data(), depth_.data(), optical_.data(), n_, where_.size()}; }
-    /// make_room for a cursor, which it renews where the store grows.
-    void make_room(store_cursor& c, std::size_t extra) {
-        if (c.n + extra <= c.end) return;
-        n_ = c.n;
-        make_room(extra);
-        c = cursor();
-    }
-    void walk_avx512(const segment_bins& bins, std::size_t t, float optical);
-    void walk_any_order_avx512(const segment_bins& bins, std::size_t t, float optical);
-    HAIRSHADOW_AVX512_TARGET void walk_rows_avx512(store_cursor& c, const avx512::batch& b, __mmask16 lanes, __m512 optical);
-    std::span<const std::uint32_t> by_steps(const segment_bins& bins, std::span<const std::uint32_t> list, std::int32_t ox, std::int32_t oy);
-    void walk_lane_avx512(store_cursor& c, const avx512::batch& b, int l, float optical);
-    void store_start(store_cursor& c, const avx512::batch& b, int l, float optical) noexcept;
-    HAIRSHADOW_AVX512_TARGET void store_kept(store_cursor& c, __mmask16 keep, __m512i texels, __m512 depths, __m512 optical, bool whole) noexcept;
-#endif
-
-    texel_rect rect_{};
-    int width_ = 0;
-    std::size_t n_ = 0;
-    template <class T>
-    using big_vector = std::vector<T, huge_page_allocator<T>>;
-    big_vector<std::uint32_t> where_;            ///< each candidate's texel in the tile
-    std::vector<std::uint32_t> offsets_;         ///< per texel counts, then offsets
-    big_vector<float> depth_, optical_;          ///< each candidate's depth and b
-    big_vector<optical_fragment> grouped_;
-    big_vector<float> grouped_depths_;
-    float last_alpha_ = -1.0f, last_optical_ = 0.0f;
-    std::vector<std::uint32_t> sorted_;   ///< the tile's segments by their steps (walk in any order)
-    std::vector<std::uint16_t> steps_;    ///< each segment's steps in the tile
-    std::vector<std::uint32_t> steps_of_; ///< per step count, the segments with it, then where they start
-};
-
-} // namespace detail
-} // namespace hairshadow
-
-#if HAIRSHADOW_AVX512_WALK
-// ---- begin hairshadow/raster/tile_walk_avx512.hpp
+// ---- begin hairshadow/raster/detail/tile_walk_avx512.hpp
 /// @file
-/// The tiled build's line walk in AVX-512F, chosen at run time (raster_options::instructions). Sixteen
+/// The tiled build's line walk in AVX-512F, chosen at run time (raster_options::instructions), with
+/// the kernels of raster/detail/tile_walk_lanes_avx512.hpp. Sixteen segments of a tile are set up at once,
+/// one per lane, and walked in lockstep where they are short, one at a time sixteen texels a step where
+/// they are long; the fragments are stored segment after segment (the scalar walk's store, bit for
+/// bit), or, where the build allows any order, as each step gives them. tile_fragments::gather calls
+/// it; the walk is a template on the tile only so that this header comes before the class it fills
+/// (tile_fragments, whose friend it is), with no include loop.
+
+// ---- begin hairshadow/raster/detail/tile_walk_lanes_avx512.hpp
+/// @file
+/// The kernels of the tiled build's line walk in AVX-512F (raster/detail/tile_walk_avx512.hpp walks a tile
+/// with them), chosen at run time (raster_options::instructions). Sixteen
 /// segments of a tile are gathered and set up at once, one per lane: major axis, the texel centres they cross in
 /// the tile, the exact quotient and remainder of the minor coordinate, the end's diamond and the start
 /// fragment (the diamond-exit rule of line_rule.hpp, without a branch). Segments of at most sixteen
@@ -4442,7 +4334,9 @@ private:
 /// as they come: no transpose, and few idle lanes however long the segments.
 
 
+#include <algorithm>
 #include <cstdint>
+#include <span>
 
 namespace hairshadow::detail::avx512 {
 
@@ -4833,218 +4727,486 @@ HAIRSHADOW_AVX512_TARGET inline __mmask16 place_starts(const batch& b, __mmask16
 }
 
 } // namespace hairshadow::detail::avx512
+// ---- end hairshadow/raster/detail/tile_walk_lanes_avx512.hpp
 
-namespace hairshadow::detail {
+#include <algorithm>
+#include <cstdint>
+#include <span>
 
-/// Walks tile t, whose every fragment has optical depth `optical` (simd_tile()). A batch of sixteen
-/// segments of at most sixteen texels in the tile (most of them, at 512x512 in tiles of 64) is walked
-/// in lockstep, one segment per lane, and a transpose turns the steps into each segment's fragments;
-/// other segments are walked one at a time, sixteen texels per step. Either way the fragments are
-/// stored segment after segment, in the tile's order: the scalar walk's store, bit for bit.
-HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_avx512(const segment_bins& bins, std::size_t t, float optical) {
-    using namespace avx512;
-    constexpr int bits = HAIRSHADOW_SUBPIXEL_BITS;
-    const int w = width_;
-    const std::int64_t ox = std::int64_t(rect_.x0) << bits, oy = std::int64_t(rect_.y0) << bits;
-    const auto list = bins.tile_segments(t);
-    const __m512i none = _mm512_set1_epi32(std::int32_t(no_texel)), sixteen = _mm512_set1_epi32(16);
-    const __m512 optical_depth = _mm512_set1_ps(optical);
-    // Sixteen records gathered at once, by 32-bit word offsets (six words a record).
-    const bool gathered = bins.segment_count() < (std::size_t(1) << 28);
-    batch b;
-    __m512i where[16], depth[16]; // a block of lockstep steps, then of segments
-    store_cursor c = cursor();
-    for (std::size_t base = 0; base < list.size(); base += 16) {
-        const int lanes = int(std::min<std::size_t>(16, list.size() - base));
-        prefetch_next_batch(bins, list, base); // fetched while this one is walked
-        if (gathered) gather_batch(b, bins, list.data() + base, lanes, std::int32_t(ox), std::int32_t(oy));
-        else fill_batch(b, bins, list.data() + base, lanes, ox, oy);
-        set_up(b, w, rect_.y1 - rect_.y0);
-        const __m512i counts = _mm512_load_si512(b.count);
-        auto side_by_side = __mmask16(b.simd & _mm512_cmple_epi32_mask(counts, sixteen));
-        const int steps = side_by_side ? _mm512_mask_reduce_max_epi32(side_by_side, counts) : 0;
-        // Every lockstep segment pays for the longest one's steps, and the batch for two transposes:
-        // unless most lanes are short (all sixteen for sixteen steps, twelve for eight), they walk
-        // alone. The rule was chosen by measurement (BENCHMARKS.md, "Full rebuilds", the entry on
-        // the lockstep walk); it chooses a path, never a fragment.
-        if (2 * __builtin_popcount(side_by_side) < steps + 16) side_by_side = 0;
-        __mmask16 start_in_row = 0;
-        if (side_by_side) {
-            walk_lockstep(b, steps, w, where, depth);
-            start_in_row = place_starts(b, side_by_side, w, where, depth);
-            transpose(where);
-            transpose(depth);
+namespace hairshadow::detail::avx512 {
+
+/// The walk of one tile into a tile_fragments' store.
+struct tile_walk {
+
+    /// Walks tile t, whose every fragment has optical depth `optical` (simd_tile()). A batch of sixteen
+    /// segments of at most sixteen texels in the tile (most of them, at 512x512 in tiles of 64) is walked
+    /// in lockstep, one segment per lane, and a transpose turns the steps into each segment's fragments;
+    /// other segments are walked one at a time, sixteen texels per step. Either way the fragments are
+    /// stored segment after segment, in the tile's order: the scalar walk's store, bit for bit.
+    template <class Tile>
+    HAIRSHADOW_AVX512_TARGET static void walk_avx512(Tile& store, const segment_bins& bins, std::size_t t, float optical) {
+        constexpr int bits = HAIRSHADOW_SUBPIXEL_BITS;
+        const int w = store.width_;
+        const std::int64_t ox = std::int64_t(store.rect_.x0) << bits, oy = std::int64_t(store.rect_.y0) << bits;
+        const auto list = bins.tile_segments(t);
+        const __m512i none = _mm512_set1_epi32(std::int32_t(no_texel)), sixteen = _mm512_set1_epi32(16);
+        const __m512 optical_depth = _mm512_set1_ps(optical);
+        // Sixteen records gathered at once, by 32-bit word offsets (six words a record).
+        const bool gathered = bins.segment_count() < (std::size_t(1) << 28);
+        batch b;
+        __m512i where[16], depth[16]; // a block of lockstep steps, then of segments
+        typename Tile::store_cursor c = store.cursor();
+        for (std::size_t base = 0; base < list.size(); base += 16) {
+            const int lanes = int(std::min<std::size_t>(16, list.size() - base));
+            prefetch_next_batch(bins, list, base); // fetched while this one is walked
+            if (gathered) gather_batch(b, bins, list.data() + base, lanes, std::int32_t(ox), std::int32_t(oy));
+            else fill_batch(b, bins, list.data() + base, lanes, ox, oy);
+            set_up(b, w, store.rect_.y1 - store.rect_.y0);
+            const __m512i counts = _mm512_load_si512(b.count);
+            auto side_by_side = __mmask16(b.simd & _mm512_cmple_epi32_mask(counts, sixteen));
+            const int steps = side_by_side ? _mm512_mask_reduce_max_epi32(side_by_side, counts) : 0;
+            // Every lockstep segment pays for the longest one's steps, and the batch for two transposes:
+            // unless most lanes are short (all sixteen for sixteen steps, twelve for eight), they walk
+            // alone. The rule was chosen by measurement (BENCHMARKS.md, "Full rebuilds", the entry on
+            // the lockstep walk); it chooses a path, never a fragment.
+            if (2 * __builtin_popcount(side_by_side) < steps + 16) side_by_side = 0;
+            __mmask16 start_in_row = 0;
+            if (side_by_side) {
+                walk_lockstep(b, steps, w, where, depth);
+                start_in_row = place_starts(b, side_by_side, w, where, depth);
+                transpose(where);
+                transpose(depth);
+            }
+            for (int l = 0; l < lanes; ++l) {
+                if (!((b.simd >> l) & 1u)) {
+                    store.n_ = c.n;
+                    store.walk_segment_apart(bins, list[base + std::size_t(l)]);
+                    c = store.cursor();
+                    continue;
+                }
+                if (!((side_by_side >> l) & 1u)) {
+                    walk_lane_avx512(store, c, b, l, optical);
+                    continue;
+                }
+                store.make_room(c, std::size_t(b.count[l]) + 1);
+                store_kept(c, _mm512_cmpneq_epi32_mask(where[l], none), where[l], _mm512_castsi512_ps(depth[l]), optical_depth, c.n + 16 <= c.end);
+                if ((unsigned(b.start & ~start_in_row) >> l) & 1u) store_start(store, c, b, l, optical);
+            }
         }
-        for (int l = 0; l < lanes; ++l) {
-            if (!((b.simd >> l) & 1u)) {
-                n_ = c.n;
-                walk_segment_apart(bins, list[base + std::size_t(l)]);
-                c = cursor();
-                continue;
-            }
-            if (!((side_by_side >> l) & 1u)) {
-                walk_lane_avx512(c, b, l, optical);
-                continue;
-            }
-            make_room(c, std::size_t(b.count[l]) + 1);
-            store_kept(c, _mm512_cmpneq_epi32_mask(where[l], none), where[l], _mm512_castsi512_ps(depth[l]), optical_depth, c.n + 16 <= c.end);
-            if ((unsigned(b.start & ~start_in_row) >> l) & 1u) store_start(c, b, l, optical);
+        store.n_ = c.n;
+    }
+
+    /// The `lanes` of b (set up) walked side by side, enough steps for the longest, each step's
+    /// fragments stored as they come; then their start fragments.
+    template <class Tile>
+    HAIRSHADOW_AVX512_TARGET static void walk_rows_avx512(Tile& store, typename Tile::store_cursor& c, const batch& b, __mmask16 lanes, __m512 optical) {
+        const __m512i counts = _mm512_load_si512(b.count), none = _mm512_set1_epi32(std::int32_t(no_texel));
+        store.make_room(c, std::size_t(_mm512_mask_reduce_add_epi32(lanes, counts)) + std::size_t(__builtin_popcount(lanes)));
+        const int steps = _mm512_mask_reduce_max_epi32(lanes, counts);
+        lockstep walk(b, store.width_);
+        for (int j = 0; j < steps; ++j) {
+            __m512 depth;
+            const __m512i texels = walk.step(j, depth);
+            store_kept(c, __mmask16(lanes & _mm512_cmpneq_epi32_mask(texels, none)), texels, depth, optical, c.n + 16 <= c.end);
         }
+        const __m512i start = _mm512_add_epi32(_mm512_mullo_epi32(_mm512_load_si512(b.start_y), _mm512_set1_epi32(store.width_)), _mm512_load_si512(b.start_x));
+        store_kept(c, __mmask16(lanes & b.start), start, _mm512_load_ps(b.start_depth), optical, c.n + 16 <= c.end);
     }
-    n_ = c.n;
-}
 
-/// The `lanes` of b (set up) walked side by side, enough steps for the longest, each step's
-/// fragments stored as they come; then their start fragments.
-HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_rows_avx512(store_cursor& c, const avx512::batch& b, __mmask16 lanes, __m512 optical) {
-    using namespace avx512;
-    const __m512i counts = _mm512_load_si512(b.count), none = _mm512_set1_epi32(std::int32_t(no_texel));
-    make_room(c, std::size_t(_mm512_mask_reduce_add_epi32(lanes, counts)) + std::size_t(__builtin_popcount(lanes)));
-    const int steps = _mm512_mask_reduce_max_epi32(lanes, counts);
-    lockstep walk(b, width_);
-    for (int j = 0; j < steps; ++j) {
-        __m512 depth;
-        const __m512i texels = walk.step(j, depth);
-        store_kept(c, __mmask16(lanes & _mm512_cmpneq_epi32_mask(texels, none)), texels, depth, optical, c.n + 16 <= c.end);
+    /// The tile's segments in `list` ordered by how many steps of the walk they take in it
+    /// (major_steps::count), fewest first and in list order among equals (a stable counting sort): a
+    /// batch of them then walks side by side with few idle lanes.
+    template <class Tile>
+    HAIRSHADOW_AVX512_TARGET static std::span<const std::uint32_t> by_steps(Tile& store, const segment_bins& bins, std::span<const std::uint32_t> list,
+                                                                                           std::int32_t ox, std::int32_t oy) {
+        const std::size_t n = list.size();
+        const int h = store.rect_.y1 - store.rect_.y0, most = std::max(store.width_, h);
+        if (store.sorted_.size() < n) store.reserve_segments(n + n / 2, most); // reserve_segments made room for the largest tile
+        store.steps_of_.assign(std::size_t(most) + 2, 0);
+        std::uint16_t* steps = store.steps_.data();
+        for (std::size_t base = 0; base < n; base += 16) {
+            const int lanes = int(std::min<std::size_t>(16, n - base));
+            prefetch_next_batch(bins, list, base); // the records are first read here, from all over the map's
+            const gathered_ends ends(bins, list.data() + base, lanes, ox, oy);
+            const major_steps walk(ends.ax, ends.ay, ends.bx, ends.by, store.width_, h); // count in [0, most], whatever the ends
+            _mm512_mask_cvtepi32_storeu_epi16(steps + base, __mmask16((1u << lanes) - 1u), walk.count);
+        }
+        std::uint32_t* first = store.steps_of_.data() + 1;
+        for (std::size_t i = 0; i < n; ++i) ++first[steps[i]];
+        for (std::size_t k = 1; k < store.steps_of_.size(); ++k) store.steps_of_[k] += store.steps_of_[k - 1];
+        first = store.steps_of_.data();
+        for (std::size_t i = 0; i < n; ++i) store.sorted_[first[steps[i]]++] = list[i];
+        return {store.sorted_.data(), n};
     }
-    const __m512i start = _mm512_add_epi32(_mm512_mullo_epi32(_mm512_load_si512(b.start_y), _mm512_set1_epi32(width_)), _mm512_load_si512(b.start_x));
-    store_kept(c, __mmask16(lanes & b.start), start, _mm512_load_ps(b.start_depth), optical, c.n + 16 <= c.end);
-}
 
-/// The tile's segments in `list` ordered by how many steps of the walk they take in it
-/// (major_steps::count), fewest first and in list order among equals (a stable counting sort): a
-/// batch of them then walks side by side with few idle lanes.
-HAIRSHADOW_AVX512_TARGET inline std::span<const std::uint32_t> tile_fragments::by_steps(const segment_bins& bins, std::span<const std::uint32_t> list,
-                                                                                       std::int32_t ox, std::int32_t oy) {
-    using namespace avx512;
-    const std::size_t n = list.size();
-    const int h = rect_.y1 - rect_.y0, most = std::max(width_, h);
-    if (sorted_.size() < n) reserve_segments(n + n / 2, most); // reserve_segments made room for the largest tile
-    steps_of_.assign(std::size_t(most) + 2, 0);
-    std::uint16_t* steps = steps_.data();
-    for (std::size_t base = 0; base < n; base += 16) {
-        const int lanes = int(std::min<std::size_t>(16, n - base));
-        prefetch_next_batch(bins, list, base); // the records are first read here, from all over the map's
-        const gathered_ends ends(bins, list.data() + base, lanes, ox, oy);
-        const major_steps walk(ends.ax, ends.ay, ends.bx, ends.by, width_, h); // count in [0, most], whatever the ends
-        _mm512_mask_cvtepi32_storeu_epi16(steps + base, __mmask16((1u << lanes) - 1u), walk.count);
+    /// Walks tile t, whose every fragment has optical depth `optical`, into the store in an order of its
+    /// own (fragment_order::any), the same fragments as walk_avx512: its segments sorted by their steps
+    /// in the tile (by_steps), walked sixteen at a time side by side, each step's fragments stored as
+    /// they come, with no transpose back to segment order. A tile of one batch is walked in segment order.
+    template <class Tile>
+    HAIRSHADOW_AVX512_TARGET static void walk_any_order_avx512(Tile& store, const segment_bins& bins, std::size_t t, float optical) {
+        constexpr int bits = HAIRSHADOW_SUBPIXEL_BITS;
+        const int w = store.width_, h = store.rect_.y1 - store.rect_.y0;
+        const auto ox = std::int32_t(std::int64_t(store.rect_.x0) << bits), oy = std::int32_t(std::int64_t(store.rect_.y0) << bits);
+        const auto tile_list = bins.tile_segments(t);
+        if (tile_list.size() <= 16) return walk_avx512(store, bins, t, optical);
+        const auto list = by_steps(store, bins, tile_list, ox, oy);
+        const __m512 optical_depth = _mm512_set1_ps(optical);
+        batch b;
+        typename Tile::store_cursor c = store.cursor();
+        for (std::size_t base = 0; base < list.size(); base += 16) {
+            const int lanes = int(std::min<std::size_t>(16, list.size() - base));
+            // by_steps read the records in list order; a dense tile's are past the second-level cache by
+            // the time they come again in this order.
+            prefetch_next_batch(bins, list, base);
+            gather_batch(b, bins, list.data() + base, lanes, ox, oy);
+            set_up(b, w, h);
+            if (b.simd) walk_rows_avx512(store, c, b, b.simd, optical_depth);
+            for (int l = 0; l < lanes; ++l)
+                if (!((b.simd >> l) & 1u)) {
+                    store.n_ = c.n;
+                    store.walk_segment_apart(bins, list[base + std::size_t(l)]);
+                    c = store.cursor();
+                }
+        }
+        store.n_ = c.n;
     }
-    std::uint32_t* first = steps_of_.data() + 1;
-    for (std::size_t i = 0; i < n; ++i) ++first[steps[i]];
-    for (std::size_t k = 1; k < steps_of_.size(); ++k) steps_of_[k] += steps_of_[k - 1];
-    first = steps_of_.data();
-    for (std::size_t i = 0; i < n; ++i) sorted_[first[steps[i]]++] = list[i];
-    return {sorted_.data(), n};
-}
 
-/// Walks tile t, whose every fragment has optical depth `optical`, into the store in an order of its
-/// own (fragment_order::any), the same fragments as walk_avx512: its segments sorted by their steps
-/// in the tile (by_steps), walked sixteen at a time side by side, each step's fragments stored as
-/// they come, with no transpose back to segment order. A tile of one batch is walked in segment order.
-HAIRSHADOW_AVX512_TARGET inline void tile_fragments::walk_any_order_avx512(const segment_bins& bins, std::size_t t, float optical) {
-    using namespace avx512;
-    constexpr int bits = HAIRSHADOW_SUBPIXEL_BITS;
-    const int w = width_, h = rect_.y1 - rect_.y0;
-    const auto ox = std::int32_t(std::int64_t(rect_.x0) << bits), oy = std::int32_t(std::int64_t(rect_.y0) << bits);
-    const auto tile_list = bins.tile_segments(t);
-    if (tile_list.size() <= 16) return walk_avx512(bins, t, optical);
-    const auto list = by_steps(bins, tile_list, ox, oy);
-    const __m512 optical_depth = _mm512_set1_ps(optical);
-    batch b;
-    store_cursor c = cursor();
-    for (std::size_t base = 0; base < list.size(); base += 16) {
-        const int lanes = int(std::min<std::size_t>(16, list.size() - base));
-        // by_steps read the records in list order; a dense tile's are past the second-level cache by
-        // the time they come again in this order.
-        prefetch_next_batch(bins, list, base);
-        gather_batch(b, bins, list.data() + base, lanes, ox, oy);
-        set_up(b, w, h);
-        if (b.simd) walk_rows_avx512(c, b, b.simd, optical_depth);
-        for (int l = 0; l < lanes; ++l)
-            if (!((b.simd >> l) & 1u)) {
-                n_ = c.n;
-                walk_segment_apart(bins, list[base + std::size_t(l)]);
-                c = cursor();
-            }
+    /// Stores the `keep` lanes of texels and depths at c.n, in lane order, and advances it. Whole vectors,
+    /// compressed in registers, where `whole` says 16 slots past c.n are there (a compress straight to
+    /// memory is slower on some CPUs: BENCHMARKS.md, "Full rebuilds", the entry on streamed tiles); near
+    /// the store's end, compressed to memory, so that the store grows exactly as the scalar walk's does.
+    template <class Cursor>
+    HAIRSHADOW_AVX512_TARGET static void store_kept(Cursor& c, __mmask16 keep, __m512i texels, __m512 depths, __m512 optical,
+                                                                    bool whole) noexcept {
+        if (whole) {
+            _mm512_storeu_si512(c.where + c.n, _mm512_maskz_compress_epi32(keep, texels));
+            _mm512_storeu_ps(c.depth + c.n, _mm512_maskz_compress_ps(keep, depths));
+            _mm512_storeu_ps(c.optical + c.n, optical);
+        } else {
+            _mm512_mask_compressstoreu_epi32(c.where + c.n, keep, texels);
+            _mm512_mask_compressstoreu_ps(c.depth + c.n, keep, depths);
+            _mm512_mask_compressstoreu_ps(c.optical + c.n, keep, optical);
+        }
+        c.n += std::size_t(__builtin_popcount(keep));
     }
-    n_ = c.n;
-}
 
-/// Stores the `keep` lanes of texels and depths at c.n, in lane order, and advances it. Whole vectors,
-/// compressed in registers, where `whole` says 16 slots past c.n are there (a compress straight to
-/// memory is slower on some CPUs: BENCHMARKS.md, "Full rebuilds", the entry on streamed tiles); near
-/// the store's end, compressed to memory, so that the store grows exactly as the scalar walk's does.
-HAIRSHADOW_AVX512_TARGET inline void tile_fragments::store_kept(store_cursor& c, __mmask16 keep, __m512i texels, __m512 depths, __m512 optical,
-                                                                bool whole) noexcept {
-    if (whole) {
-        _mm512_storeu_si512(c.where + c.n, _mm512_maskz_compress_epi32(keep, texels));
-        _mm512_storeu_ps(c.depth + c.n, _mm512_maskz_compress_ps(keep, depths));
-        _mm512_storeu_ps(c.optical + c.n, optical);
-    } else {
-        _mm512_mask_compressstoreu_epi32(c.where + c.n, keep, texels);
-        _mm512_mask_compressstoreu_ps(c.depth + c.n, keep, depths);
-        _mm512_mask_compressstoreu_ps(c.optical + c.n, keep, optical);
+    /// The start fragment of lane l, as walk_line emits it, after the walk; stored always and kept when
+    /// there is one, since whether there is one is anybody's guess.
+    template <class Tile>
+    HAIRSHADOW_AVX512_TARGET static void store_start(Tile& store, typename Tile::store_cursor& c, const batch& b, int l, float optical) noexcept {
+        c.where[c.n] = std::uint32_t(b.start_y[l] * store.width_ + b.start_x[l]);
+        c.depth[c.n] = b.start_depth[l];
+        c.optical[c.n] = optical;
+        c.n += (b.start >> l) & 1u;
     }
-    c.n += std::size_t(__builtin_popcount(keep));
-}
 
-/// The start fragment of lane l, as walk_line emits it, after the walk; stored always and kept when
-/// there is one, since whether there is one is anybody's guess.
-HAIRSHADOW_AVX512_TARGET inline void tile_fragments::store_start(store_cursor& c, const avx512::batch& b, int l, float optical) noexcept {
-    c.where[c.n] = std::uint32_t(b.start_y[l] * width_ + b.start_x[l]);
-    c.depth[c.n] = b.start_depth[l];
-    c.optical[c.n] = optical;
-    c.n += (b.start >> l) & 1u;
-}
-
-/// Lane l of b walked alone, sixteen texels per step: for segments of more than sixteen texels in the
-/// tile, and for every segment of a batch that does not walk in lockstep.
-HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline void tile_fragments::walk_lane_avx512(store_cursor& c, const avx512::batch& b, int l, float optical) {
-    using namespace avx512;
-    const int w = width_;
-    const __m512i iota = _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
-    const __m512i none = _mm512_set1_epi32(std::int32_t(no_texel));
-    const int count = b.count[l];
-    make_room(c, std::size_t(count) + 1);
-    const bool whole_vectors = c.n + std::size_t(count) + 16 <= c.end; // store_kept
-    const __mmask16 along_x = (b.x_major >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
-    const __mmask16 tie = (b.tie >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
-    const __m512i m_begin = _mm512_set1_epi32(b.m_begin[l]), counts = _mm512_set1_epi32(count);
-    const __m512i end_major = _mm512_set1_epi32(b.end_major[l]), end_minor = _mm512_set1_epi32(b.end_minor[l]);
-    const __m512i minor_extent = _mm512_set1_epi32(b.minor_extent[l]), width = _mm512_set1_epi32(w);
-    const __m512d num0 = _mm512_set1_pd(b.num0[l]), step = _mm512_set1_pd(b.step[l]), denom = _mm512_set1_pd(b.denom[l]);
-    const __m512d inv_denom = _mm512_set1_pd(b.inv_denom[l]);
-    const __m512 optical_depth = _mm512_set1_ps(optical);
-    const depth_along along = b.depths(l);
-    // minor = floor(num / denom) for the first sixteen texels, as quotient q and remainder r
-    // (exact_quotient); each next sixteen add sixteen steps' quotient and remainder, with a carry, as
-    // walk_lockstep does one step.
-    __m512d part[4];
-    exact_quotient(_mm512_add_pd(num0, _mm512_mul_pd(low_pd(iota), step)), denom, inv_denom, part[0], part[1]);
-    exact_quotient(_mm512_add_pd(num0, _mm512_mul_pd(high_pd(iota), step)), denom, inv_denom, part[2], part[3]);
-    carried_quotient minor_at{integers_of(part[0], part[2]), integers_of(part[1], part[3]), _mm512_setzero_si512(), _mm512_setzero_si512(),
-                              _mm512_set1_epi32(std::int32_t(b.denom[l]))};
-    if (count > 16) {
-        exact_quotient(_mm512_mul_pd(_mm512_set1_pd(16.0), step), denom, inv_denom, part[0], part[1]);
-        minor_at.q_step = _mm512_broadcast_i64x4(_mm512_cvttpd_epi32(part[0]));
-        minor_at.r_step = _mm512_broadcast_i64x4(_mm512_cvttpd_epi32(part[1]));
+    /// Lane l of b walked alone, sixteen texels per step: for segments of more than sixteen texels in the
+    /// tile, and for every segment of a batch that does not walk in lockstep.
+    template <class Tile>
+    HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE static void walk_lane_avx512(Tile& store, typename Tile::store_cursor& c, const batch& b, int l, float optical) {
+        const int w = store.width_;
+        const __m512i iota = _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
+        const __m512i none = _mm512_set1_epi32(std::int32_t(no_texel));
+        const int count = b.count[l];
+        store.make_room(c, std::size_t(count) + 1);
+        const bool whole_vectors = c.n + std::size_t(count) + 16 <= c.end; // store_kept
+        const __mmask16 along_x = (b.x_major >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
+        const __mmask16 tie = (b.tie >> l) & 1u ? __mmask16(0xFFFF) : __mmask16(0);
+        const __m512i m_begin = _mm512_set1_epi32(b.m_begin[l]), counts = _mm512_set1_epi32(count);
+        const __m512i end_major = _mm512_set1_epi32(b.end_major[l]), end_minor = _mm512_set1_epi32(b.end_minor[l]);
+        const __m512i minor_extent = _mm512_set1_epi32(b.minor_extent[l]), width = _mm512_set1_epi32(w);
+        const __m512d num0 = _mm512_set1_pd(b.num0[l]), step = _mm512_set1_pd(b.step[l]), denom = _mm512_set1_pd(b.denom[l]);
+        const __m512d inv_denom = _mm512_set1_pd(b.inv_denom[l]);
+        const __m512 optical_depth = _mm512_set1_ps(optical);
+        const depth_along along = b.depths(l);
+        // minor = floor(num / denom) for the first sixteen texels, as quotient q and remainder r
+        // (exact_quotient); each next sixteen add sixteen steps' quotient and remainder, with a carry, as
+        // walk_lockstep does one step.
+        __m512d part[4];
+        exact_quotient(_mm512_add_pd(num0, _mm512_mul_pd(low_pd(iota), step)), denom, inv_denom, part[0], part[1]);
+        exact_quotient(_mm512_add_pd(num0, _mm512_mul_pd(high_pd(iota), step)), denom, inv_denom, part[2], part[3]);
+        carried_quotient minor_at{integers_of(part[0], part[2]), integers_of(part[1], part[3]), _mm512_setzero_si512(), _mm512_setzero_si512(),
+                                  _mm512_set1_epi32(std::int32_t(b.denom[l]))};
+        if (count > 16) {
+            exact_quotient(_mm512_mul_pd(_mm512_set1_pd(16.0), step), denom, inv_denom, part[0], part[1]);
+            minor_at.q_step = _mm512_broadcast_i64x4(_mm512_cvttpd_epi32(part[0]));
+            minor_at.r_step = _mm512_broadcast_i64x4(_mm512_cvttpd_epi32(part[1]));
+        }
+        for (int first = 0; first < count; first += 16) {
+            const __m512i i = _mm512_add_epi32(iota, _mm512_set1_epi32(first));
+            const __m512i minor = minor_at.minor(tie);
+            minor_at.advance();
+            __m512i x, y;
+            const __m512i texels = step_texels(_mm512_add_epi32(i, m_begin), minor, _mm512_cmplt_epi32_mask(i, counts), along_x, end_major, end_minor,
+                                               minor_extent, width, none, x, y);
+            store_kept(c, _mm512_cmpneq_epi32_mask(texels, none), texels, along.at(x, y), optical_depth, whole_vectors);
+        }
+        store_start(store, c, b, l, optical);
     }
-    for (int first = 0; first < count; first += 16) {
-        const __m512i i = _mm512_add_epi32(iota, _mm512_set1_epi32(first));
-        const __m512i minor = minor_at.minor(tie);
-        minor_at.advance();
-        __m512i x, y;
-        const __m512i texels = step_texels(_mm512_add_epi32(i, m_begin), minor, _mm512_cmplt_epi32_mask(i, counts), along_x, end_major, end_minor,
-                                           minor_extent, width, none, x, y);
-        store_kept(c, _mm512_cmpneq_epi32_mask(texels, none), texels, along.at(x, y), optical_depth, whole_vectors);
-    }
-    store_start(c, b, l, optical);
-}
+};
 
-} // namespace hairshadow::detail
-// ---- end hairshadow/raster/tile_walk_avx512.hpp
+} // namespace hairshadow::detail::avx512
+// ---- end hairshadow/raster/detail/tile_walk_avx512.hpp
 #endif
-// ---- end hairshadow/raster/tile_fragments.hpp
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+namespace hairshadow {
+
+namespace detail {
+
+/// The order a tile's walk stores its fragments in.
+enum class fragment_order {
+    /// Segment after segment, in the tile's list: each texel meets its fragments in segment order, the
+    /// order of a fragment_buffer, on which sums of different optical depths depend.
+    segment,
+    /// Any order the walk finds fastest (it sorts the segments by their length in the tile and stores
+    /// sixteen at a step), the same for any thread count. Only for a build whose maps depend on each
+    /// texel's fragments as a set where they share one optical depth and none is -0 (as the vector
+    /// walk's tiles do: order_free_maps); the scalar walk keeps segment order.
+    any,
+};
+
+/// A tile's fragments with their optical depths, each texel's in segment order (unless walked in any
+/// order), so that sums over them match the fragment_buffer build bit for bit. One per thread; its memory is kept from tile to
+/// tile and from build to build.
+class tile_fragments {
+public:
+    /// Walks tile t's segments into the store, in walk order: segment after segment, or, where `order`
+    /// allows any order and the vector walk runs, in an order of the walk's own (fragment_order).
+    /// `instructions` must be resolved.
+    void gather(const segment_bins& bins, std::size_t t, instruction_set instructions, fragment_order order = fragment_order::segment) {
+        rect_ = bins.tile_rect(t);
+        width_ = rect_.x1 - rect_.x0;
+        n_ = 0;
+        const bool vector = instructions == instruction_set::avx512;
+#if HAIRSHADOW_AVX512_WALK
+        if (vector && simd_tile(bins)) {
+            const float optical = optical_depth_cached(bins.uniform_shader().shade(0.0f).alpha);
+            const bool gathered = bins.segment_count() < (std::size_t(1) << 28); // the records' word offsets fit the gathers
+            if (order == fragment_order::any && gathered) avx512::tile_walk::walk_any_order_avx512(*this, bins, t, optical);
+            else avx512::tile_walk::walk_avx512(*this, bins, t, optical);
+        } else {
+            walk_scalar(bins, t);
+        }
+#else
+        (void)vector, (void)order;
+        walk_scalar(bins, t);
+#endif
+    }
+    /// Room to sort a tile of `segments` segments and `side` texels a side for the walk in any order,
+    /// so that tiles up to that size allocate nothing, on whichever thread they land.
+    void reserve_segments(std::size_t segments, int side) {
+        if (sorted_.size() < segments) sorted_.resize(segments), steps_.resize(segments);
+        steps_of_.reserve(std::size_t(side) + 2);
+    }
+
+    /// Whether every fragment a walk of `bins` makes has one optical depth: thin lines of uniform
+    /// attributes and one alpha, the tiles the vector walk covers. That b is shared_optical_depth.
+    static bool one_optical_depth(const segment_bins& bins) noexcept {
+        return bins.options().wide_line_width == 0.0f && bins.uniform_attributes() && bins.uniform_shader().constant_alpha();
+    }
+    /// The optical depth every fragment has, where one_optical_depth(bins).
+    static float shared_optical_depth(const segment_bins& bins) noexcept { return optical_depth_of(bins.uniform_shader().shade(0.0f).alpha); }
+
+    const texel_rect& rect() const noexcept { return rect_; }
+    /// Fragments of the tile's texel (x, y), in map coordinates, once grouped (group()).
+    std::span<const optical_fragment> texel(int x, int y) const noexcept {
+        const std::size_t k = std::size_t(y - rect_.y0) * std::size_t(width_) + std::size_t(x - rect_.x0);
+        return {grouped_.data() + offsets_[k], std::size_t(offsets_[k + 1] - offsets_[k])};
+    }
+    /// Depths of the tile's texel (x, y), in map coordinates, once grouped alone (group_depths()).
+    std::span<const float> texel_depths(int x, int y) const noexcept {
+        const std::size_t k = std::size_t(y - rect_.y0) * std::size_t(width_) + std::size_t(x - rect_.x0);
+        return {grouped_depths_.data() + offsets_[k], std::size_t(offsets_[k + 1] - offsets_[k])};
+    }
+    /// The last tile's fragments in walk order: segment after segment, as in the tile's list, unless
+    /// gather was let walk in any order. Each texel's fragments come in the order texel() gives them. walk_texels() are row-major indices
+    /// within the tile.
+    std::span<const std::uint32_t> walk_texels() const noexcept { return {where_.data(), n_}; }
+    std::span<const float> walk_depths() const noexcept { return {depth_.data(), n_}; }
+    std::span<const float> walk_optical_depths() const noexcept { return {optical_.data(), n_}; }
+    /// Fragments of the last tile.
+    std::size_t size() const noexcept { return n_; }
+    /// Fragments it walks without allocating.
+    std::size_t capacity() const noexcept { return where_.size(); }
+    /// Room to walk a tile of `fragments` fragments and group `grouped` of them (group()) and
+    /// `grouped_depths` of their depths (group_depths()) without growing, allocated afresh where the
+    /// store is smaller: nothing it held is copied.
+    void reserve_fresh(std::size_t fragments, std::size_t grouped, std::size_t grouped_depths = 0) {
+        if (where_.size() < fragments) {
+            where_ = decltype(where_)(), depth_ = decltype(depth_)(), optical_ = decltype(optical_)();
+            where_.resize(fragments), depth_.resize(fragments), optical_.resize(fragments);
+        }
+        if (grouped_.size() < grouped) grouped_ = decltype(grouped_)(), grouped_.resize(grouped);
+        if (grouped_depths_.size() < grouped_depths) grouped_depths_ = decltype(grouped_depths_)(), grouped_depths_.resize(grouped_depths);
+    }
+    /// Fragments it groups without allocating (group()).
+    std::size_t grouped_capacity() const noexcept { return grouped_.size(); }
+    /// Depths it groups without allocating (group_depths()).
+    std::size_t grouped_depths_capacity() const noexcept { return grouped_depths_.size(); }
+    /// Makes room to walk `fragments` fragments, group `grouped` of them and `grouped_depths` of their
+    /// depths, in tiles of `tile_texels` texels, so that tiles up to those sizes allocate nothing.
+    void reserve(std::size_t fragments, std::size_t grouped, std::size_t grouped_depths, std::size_t tile_texels) {
+        if (where_.size() < fragments) where_.resize(fragments), depth_.resize(fragments), optical_.resize(fragments);
+        if (grouped_.size() < grouped) grouped_.resize(grouped);
+        if (grouped_depths_.size() < grouped_depths) grouped_depths_.resize(grouped_depths);
+        if (grouped > 0 || grouped_depths > 0) offsets_.reserve(tile_texels + 2);
+    }
+    std::size_t memory_bytes() const noexcept {
+        return (where_.capacity() + offsets_.capacity()) * sizeof(std::uint32_t) +
+               (depth_.capacity() + optical_.capacity() + grouped_depths_.capacity()) * sizeof(float) +
+               grouped_.capacity() * sizeof(optical_fragment) + (sorted_.capacity() + steps_of_.capacity()) * sizeof(std::uint32_t) +
+               steps_.capacity() * sizeof(std::uint16_t);
+    }
+
+private:
+    /// Room for `extra` more candidates after the n_ kept so far.
+    void make_room(std::size_t extra) {
+        if (n_ + extra <= where_.size()) return;
+        const std::size_t size = std::max(2 * where_.size(), n_ + extra);
+        where_.resize(size);
+        depth_.resize(size);
+        optical_.resize(size);
+    }
+
+    /// The b of an alpha, remembered: segments of one model mostly share one alpha, and a log per
+    /// segment would cost more than its walk.
+    float optical_depth_cached(float alpha) noexcept {
+        if (alpha != last_alpha_) last_alpha_ = alpha, last_optical_ = optical_depth_of(alpha);
+        return last_optical_;
+    }
+
+    /// A candidate of the walk: stored at n_, kept (n_ advanced) when `kept`.
+    HAIRSHADOW_ALWAYS_INLINE void store(int x, int y, bool kept, float depth, float optical) noexcept {
+        where_[n_] = std::uint32_t((y - rect_.y0) * width_ + (x - rect_.x0));
+        depth_[n_] = depth;
+        optical_[n_] = optical;
+        n_ += kept;
+    }
+
+    /// One segment, in scalar C++: the same fragments as the fragment_buffer rasteriser.
+    HAIRSHADOW_ALWAYS_INLINE void walk_segment(const segment_shader& s, float wide) {
+        const prepared_segment& seg = s.segment();
+        if (wide > 0.0f) {
+            rasterize_wide_line(seg, wide, rect_, [&](int x, int y, float param, float weight) {
+                make_room(1);
+                const fragment f = s.shade(param, weight);
+                store(x, y, true, f.depth, optical_depth_of(f.alpha));
+            });
+            return;
+        }
+        // A thin line makes at most one candidate per texel along its major axis in the tile, plus one
+        // where it starts.
+        make_room(std::size_t(std::max(width_, rect_.y1 - rect_.y0)) + 1);
+        if (s.constant_alpha()) { // b once: the same value shade() gives every fragment
+            const float b = optical_depth_cached(s.shade(0.0f).alpha);
+            walk_line(seg.a(), seg.b(), rect_, [&](int x, int y, bool kept) HAIRSHADOW_ALWAYS_INLINE { store(x, y, kept, s.depth(s.parameter(x, y)), b); });
+        } else {
+            walk_line(seg.a(), seg.b(), rect_, [&](int x, int y, bool kept) HAIRSHADOW_ALWAYS_INLINE {
+                const fragment f = s.shade(s.parameter(x, y));
+                store(x, y, kept, f.depth, kept ? optical_depth_of(f.alpha) : 0.0f);
+            });
+        }
+    }
+
+    /// walk_segment for the vector walk's leftovers, compiled apart from it: inlined into the AVX-512
+    /// function, the compiler could fuse the scalar arithmetic into multiply-adds, and the fragments
+    /// would no longer be the scalar walk's.
+#if defined(__GNUC__)
+    __attribute__((noinline))
+#endif
+    void walk_segment_apart(const segment_bins& bins, std::uint32_t segment) { walk_segment(bins.shader(segment), 0.0f); }
+
+    void walk_scalar(const segment_bins& bins, std::size_t t) {
+        const float wide = bins.options().wide_line_width;
+        bins.for_each_segment(t, [&](const segment_shader& s) HAIRSHADOW_ALWAYS_INLINE { walk_segment(s, wide); });
+    }
+
+public:
+    /// Groups the last tile's fragments by texel, for texel(): a count, prefix sums and a stable
+    /// scatter, so that texel k's fragments end in [offsets_[k], offsets_[k + 1]) in walk order.
+    void group() {
+        std::uint32_t* cursor = count_texels();
+        // Only as large as the tiles grouped (the streamed build groups only sparse ones), grown by half.
+        if (grouped_.size() < n_) grouped_.resize(std::max(n_, grouped_.size() + grouped_.size() / 2));
+        optical_fragment* grouped = grouped_.data();
+        const std::uint32_t* where = where_.data();
+        const float* depth = depth_.data();
+        const float* optical = optical_.data();
+        for (std::size_t i = 0; i < n_; ++i) grouped[cursor[where[i]]++] = {depth[i], optical[i]};
+    }
+    /// group() for the depths alone, for texel_depths(): where every fragment has one optical depth
+    /// (one_optical_depth), half the bytes to scatter, the scatter being most of the grouping's time.
+    void group_depths() {
+        std::uint32_t* cursor = count_texels();
+        if (grouped_depths_.size() < n_) grouped_depths_.resize(std::max(n_, grouped_depths_.size() + grouped_depths_.size() / 2));
+        float* grouped = grouped_depths_.data();
+        const std::uint32_t* where = where_.data();
+        const float* depth = depth_.data();
+        for (std::size_t i = 0; i < n_; ++i) grouped[cursor[where[i]]++] = depth[i];
+    }
+
+private:
+    /// The grouping's first steps: texel k's count, then its fragments' offsets, in offsets_[k + 1]
+    /// (offsets_[k + 2] once the scatter has moved each texel's cursor to its end). Returns the cursors.
+    std::uint32_t* count_texels() {
+        const std::size_t texels = std::size_t(width_) * std::size_t(rect_.y1 - rect_.y0);
+        if (n_ > std::numeric_limits<std::uint32_t>::max()) throw argument_error("more than 2^32 fragments in one tile: use smaller tiles");
+        offsets_.assign(texels + 2, 0);
+        std::uint32_t* counts = offsets_.data() + 2;
+        const std::uint32_t* where = where_.data();
+        for (std::size_t i = 0; i < n_; ++i) ++counts[where[i]];
+        for (std::size_t k = 2; k < offsets_.size(); ++k) offsets_[k] += offsets_[k - 1];
+        return offsets_.data() + 1;
+    }
+
+#if HAIRSHADOW_AVX512_WALK
+    /// The vector walk covers thin lines of one alpha (uniform attributes, a footprint constant in
+    /// depth); other tiles walk in scalar.
+    static bool simd_tile(const segment_bins& bins) noexcept { return one_optical_depth(bins); }
+    /// The store's arrays, next slot and size, held in locals through the vector walk: its vector
+    /// stores may alias anything, and through the members the compiler reloaded all of them after each.
+    struct store_cursor {
+        std::uint32_t* where;
+        float *depth, *optical;
+        std::size_t n, end;
+    };
+    store_cursor cursor() noexcept { return {where_.data(), depth_.data(), optical_.data(), n_, where_.size()}; }
+    /// make_room for a cursor, which it renews where the store grows.
+    void make_room(store_cursor& c, std::size_t extra) {
+        if (c.n + extra <= c.end) return;
+        n_ = c.n;
+        make_room(extra);
+        c = cursor();
+    }
+    friend struct avx512::tile_walk; ///< the AVX-512 walk (raster/detail/tile_walk_avx512.hpp), which fills the store through its cursor
+#endif
+
+    texel_rect rect_{};
+    int width_ = 0;
+    std::size_t n_ = 0;
+    template <class T>
+    using big_vector = std::vector<T, huge_page_allocator<T>>;
+    big_vector<std::uint32_t> where_;            ///< each candidate's texel in the tile
+    std::vector<std::uint32_t> offsets_;         ///< per texel counts, then offsets
+    big_vector<float> depth_, optical_;          ///< each candidate's depth and b
+    big_vector<optical_fragment> grouped_;
+    big_vector<float> grouped_depths_;
+    float last_alpha_ = -1.0f, last_optical_ = 0.0f;
+    std::vector<std::uint32_t> sorted_;   ///< the tile's segments by their steps (walk in any order)
+    std::vector<std::uint16_t> steps_;    ///< each segment's steps in the tile
+    std::vector<std::uint32_t> steps_of_; ///< per step count, the segments with it, then where they start
+};
+
+} // namespace detail
+} // namespace hairshadow
+// ---- end hairshadow/raster/detail/tile_fragments.hpp
 
 #include <algorithm>
 #include <array>
@@ -5058,7 +5220,7 @@ namespace hairshadow::detail {
 
 /// A texel's depth range as its nearest depth and minus its furthest. Both bounds then follow from
 /// one packed minimum, {min(d, nearest), min(-d, -furthest)}, with min(a, b) = a < b ? a : b:
-/// add_to_depth_range's comparisons, negated in the second (-max(d, f) = min(-d, -f), signed
+/// widen_extent's comparisons, negated in the second (-max(d, f) = min(-d, -f), signed
 /// zeros alike), and one 8-byte store a fragment where it made two (BENCHMARKS.md, "Full rebuilds",
 /// the entry on the depth pass in one packed minimum).
 struct negated_range {
@@ -5094,24 +5256,6 @@ inline void add_depths(negated_range* ranges, const std::uint32_t* where, const 
         r = {nearest, neg_furthest};
     }
 }
-
-/// Whether a composition can be built without grouping (streamed_tile).
-template <class Placement, class Accumulation, class Reconstruction>
-concept streams_tiles = requires(const Placement& p, typename Placement::texel_state& s,
-                                 typename Reconstruction::template accumulator<Placement, Accumulation>& a,
-                                 typename Reconstruction::template storage<Placement, Accumulation>& out) {
-    p.texel_state_from(0.0f, 0.0f, s);
-    Reconstruction::template accumulate<Placement, Accumulation>(a, 0, 0.0f);
-    Reconstruction::template finish<Placement, Accumulation>(a, out);
-};
-
-/// Whether a composition's maps are the same for any order of each texel's fragments where they all
-/// share one optical depth and no depth is -0 (both placement and reconstruction say so): then a
-/// tile may be walked in any order (fragment_order::any). The depth range is a minimum and a
-/// maximum, the same for any order once +0 and -0 cannot meet; every sum adds the same b, so that
-/// the sum of n of them is one number; bits are ORed; density clustering's k-means sums are integers.
-template <class Placement, class Reconstruction>
-concept order_free_maps = Placement::fragment_order_free && Reconstruction::fragment_order_free;
 
 /// Whether a tile of this build may be walked in any order: the composition's maps are order free
 /// and no segment end, so no fragment, has depth -0. Every fragment's depth is a + ((b - a) s)
@@ -5167,8 +5311,8 @@ public:
         } else {
             sums_.assign(texels, accumulator{});
         }
-        // The depth pass (depth_range_of, fragment by fragment), without a branch: every range starts
-        // empty, [+inf, -inf] (stored negated_range {+inf, +inf}), so that the first fragment's min and max give {d, d}, as depth_range_of
+        // The depth pass (texel_extent_of, fragment by fragment), without a branch: every range starts
+        // empty, [+inf, -inf] (stored negated_range {+inf, +inf}), so that the first fragment's min and max give {d, d}, as texel_extent_of
         // starts, and the later ones the same results in the same order. The depths are finite (the
         // model's points are), so a texel is empty where its range still is. A placement without
         // per-texel state needs no depth pass: the texels the walk names are marked instead (below).
@@ -5273,8 +5417,8 @@ using streamed_tile_for = typename std::conditional_t<streams_tiles<Placement, A
                                                       std::type_identity<no_streamed_tile>>::type;
 
 } // namespace hairshadow::detail
-// ---- end hairshadow/methods/streamed_tile.hpp
-// ---- begin hairshadow/methods/tiled_build.hpp
+// ---- end hairshadow/methods/detail/streamed_tile.hpp
+// ---- begin hairshadow/methods/detail/tiled_build.hpp
 /// @file
 /// The tiled build: every method's maps built tile by tile straight from the model, with no buffer of
 /// the whole map's fragments. Segments are projected and binned once (segment_bins); then each tile,
@@ -5406,7 +5550,62 @@ inline std::size_t count_fragments(const hair_model& model, const light_space& l
 }
 
 } // namespace hairshadow
-// ---- end hairshadow/methods/tiled_build.hpp
+// ---- end hairshadow/methods/detail/tiled_build.hpp
+
+#include <cstddef>
+#include <vector>
+
+namespace hairshadow::detail {
+
+/// Builds every tile of `w` (binned already) by the composition's plan. `texel_out(x, y)` is the
+/// texel's maps; `build_texel(fragments, out, instructions)` and `build_from_depths(depths, b, out)`
+/// build one texel; `streamed()` gives the per-thread stores, asked for only by a composition that
+/// streams. Gives the fragments walked.
+template <class Placement, class Accumulation, class Reconstruction, class Streamed, class TexelOut, class BuildTexel, class BuildFromDepths>
+std::size_t build_tiles(tiled_workspace& w, const Placement& placement, const depth_extent& extent, const raster_options& options,
+                        Streamed&& streamed, TexelOut&& texel_out, BuildTexel&& build_texel, BuildFromDepths&& build_from_depths) {
+    const instruction_set instructions = resolve(options.instructions);
+    const auto build_grouped = [&](const tile_fragments& tile) {
+        const texel_rect r = tile.rect();
+        for (int y = r.y0; y < r.y1; ++y)
+            for (int x = r.x0; x < r.x1; ++x) build_texel(tile.texel(x, y), texel_out(x, y), instructions);
+    };
+    const auto order = walks_in_any_order<Placement, Reconstruction>(extent) ? fragment_order::any : fragment_order::segment;
+    if constexpr (streams_tiles<Placement, Accumulation, Reconstruction>) {
+        auto& per_thread = streamed();
+        per_thread.resize(tile_slots(w));
+        for (auto& s : per_thread) s.reserve(std::size_t(options.tile_size) * std::size_t(options.tile_size));
+        return for_each_tile(
+            w, tile_grouping::on_demand,
+            [&](unsigned slot, tile_fragments& tile) {
+                if (per_thread[slot].pays(tile)) return per_thread[slot].build(placement, tile, instructions, texel_out);
+                tile.group();
+                build_grouped(tile);
+            },
+            order);
+    } else {
+#if HAIRSHADOW_AVX512_WALK
+        if constexpr (builds_from_depths_avx512<Placement, Accumulation, Reconstruction>) {
+            if (instructions == instruction_set::avx512 && tile_fragments::one_optical_depth(w.bins)) {
+                const float b = tile_fragments::shared_optical_depth(w.bins);
+                return for_each_tile(
+                    w, tile_grouping::grouped_depths,
+                    [&](unsigned, const tile_fragments& tile) {
+                        const texel_rect r = tile.rect();
+                        for (int y = r.y0; y < r.y1; ++y)
+                            for (int x = r.x0; x < r.x1; ++x) build_from_depths(tile.texel_depths(x, y), b, texel_out(x, y));
+                    },
+                    order);
+            }
+        }
+#endif
+        (void)build_from_depths;
+        return for_each_tile(w, tile_grouping::grouped, [&](unsigned, const tile_fragments& tile) { build_grouped(tile); }, order);
+    }
+}
+
+} // namespace hairshadow::detail
+// ---- end hairshadow/methods/detail/build_plan.hpp
 
 #include <algorithm>
 #include <cstdint>
@@ -5456,7 +5655,7 @@ public:
     explicit shadow_method(Placement placement = Placement(), Reconstruction reconstruction = Reconstruction())
         : placement_(std::move(placement)), reconstruction_(std::move(reconstruction)) {}
 
-    /// Builds the maps of `model` for `light`, tile by tile (methods/tiled_build.hpp): the fastest
+    /// Builds the maps of `model` for `light`, tile by tile (methods/detail/tiled_build.hpp): the fastest
     /// build, and the one to call every frame, since this object keeps its working memory. The
     /// whole-map values (OSM's near and far, DOM's default extent) come from the segments' ends
     /// (segment_bins::extent). Identical for any thread count and tile size, and equal to
@@ -5473,56 +5672,11 @@ public:
             const std::size_t res = std::size_t(light.resolution());
             resize_maps(res * res, options.exec);
             const auto texel_out = [&](int x, int y) -> texel_maps& { return texels_[std::size_t(y) * res + std::size_t(x)]; };
-            const instruction_set instructions = resolve(options.instructions);
-            const auto build_grouped = [&](const detail::tile_fragments& tile) {
-                const texel_rect r = tile.rect();
-                for (int y = r.y0; y < r.y1; ++y)
-                    for (int x = r.x0; x < r.x1; ++x) build_texel(tile.texel(x, y), texel_out(x, y), instructions);
-            };
-            // Where the maps do not depend on the fragments' order, the walk stores them in its own
-            // (segments sorted by length, sixteen at a step), so that long segments walk side by side
-            // too, in lanes of nearly one length (BENCHMARKS.md, "Tiles walked in any order where the
-            // maps cannot tell").
-            const auto order = detail::walks_in_any_order<Placement, Reconstruction>(extent_) ? detail::fragment_order::any
-                                                                                               : detail::fragment_order::segment;
-            if constexpr (detail::streams_tiles<Placement, Accumulation, Reconstruction>) {
-                // Dense tiles reduce their fragments where the walk left them (methods/streamed_tile.hpp);
-                // sparse ones are grouped, which is cheaper there. Both give the same texels.
-                auto& per_thread = streamed_.get();
-                per_thread.resize(detail::tile_slots(w));
-                for (auto& s : per_thread) s.reserve(std::size_t(options.tile_size) * std::size_t(options.tile_size));
-                fragments_ = detail::for_each_tile(
-                    w, detail::tile_grouping::on_demand,
-                    [&](unsigned slot, detail::tile_fragments& tile) {
-                        if (per_thread[slot].pays(tile)) return per_thread[slot].build(placement_, tile, instructions, texel_out);
-                        tile.group();
-                        build_grouped(tile);
-                    },
-                    order);
-            } else {
-#if HAIRSHADOW_AVX512_WALK
-                // Where every fragment shares one b, the tiles group their depths alone, half the bytes
-                // of the grouping's scatter and of the texels' passes (BENCHMARKS.md, "Density
-                // clustering groups depths alone where a map has one optical depth"). The same maps,
-                // bit for bit.
-                if constexpr (detail::builds_from_depths_avx512<Placement, Accumulation, Reconstruction>) {
-                    if (instructions == instruction_set::avx512 && detail::tile_fragments::one_optical_depth(w.bins)) {
-                        const float b = optical_depth_of(w.bins.uniform_shader().shade(0.0f).alpha);
-                        fragments_ = detail::for_each_tile(
-                            w, detail::tile_grouping::grouped_depths,
-                            [&](unsigned, const detail::tile_fragments& tile) {
-                                const texel_rect r = tile.rect();
-                                for (int y = r.y0; y < r.y1; ++y)
-                                    for (int x = r.x0; x < r.x1; ++x) build_texel_from_depths(tile.texel_depths(x, y), b, texel_out(x, y));
-                            },
-                            order);
-                        return;
-                    }
-                }
-#endif
-                fragments_ = detail::for_each_tile(
-                    w, detail::tile_grouping::grouped, [&](unsigned, const detail::tile_fragments& tile) { build_grouped(tile); }, order);
-            }
+            fragments_ = detail::build_tiles<Placement, Accumulation, Reconstruction>(
+                w, placement_, extent_, options, [&]() -> auto& { return streamed_.get(); }, texel_out,
+                [&](auto fragments, texel_maps& out, instruction_set instructions) HAIRSHADOW_ALWAYS_INLINE { build_texel(fragments, out, instructions); },
+                // generic: instantiated only by a composition that builds from depths
+                [&](auto depths, float b, texel_maps& out) HAIRSHADOW_ALWAYS_INLINE { this->build_texel_from_depths(depths, b, out); });
         });
     }
 
@@ -5594,7 +5748,7 @@ public:
 private:
     /// One texel's maps from its fragments (fragment or optical_fragment), in segment order (or any,
     /// for an order-free composition: detail::order_free_maps), with the
-    /// vector steps `instructions` (resolved) allows (placement/assign_each.hpp): the same maps.
+    /// vector steps `instructions` (resolved) allows (placement/detail/assign_each.hpp): the same maps.
     template <class Fragment>
     HAIRSHADOW_ALWAYS_INLINE void build_texel(std::span<const Fragment> in, texel_maps& out, instruction_set instructions) const {
         out = texel_maps{};
@@ -5606,16 +5760,14 @@ private:
             reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
     }
 
-#if HAIRSHADOW_AVX512_WALK
     /// build_texel for a texel whose fragments all have optical depth b, given by their depths alone:
-    /// the same maps (detail::builds_from_depths_avx512).
+    /// the same maps (detail::builds_from_depths_avx512; instantiated only where the plan calls it).
     void build_texel_from_depths(std::span<const float> depths, float b, texel_maps& out) const {
         out = texel_maps{};
         if (depths.empty()) return;
         placement_.prepare_texel_depths_avx512(depths, b, out.placement);
         Reconstruction::template build_from_depths<Placement, Accumulation>(placement_, out.placement, depths, b, out.data);
     }
-#endif
 
     /// The light of the maps, given to a reconstruction that needs it (a fibre density's world units).
     void set_light(const light_space& light) {
@@ -5713,7 +5865,7 @@ public:
     template <class Fragment>
     void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
         if (fragments.empty()) return;
-        const auto range = detail::depth_range_of(fragments);
+        const auto range = detail::texel_extent_of(fragments);
         texel_state_from(range.nearest, range.furthest, s);
     }
     /// The texel's state from its nearest and furthest fragment (per_pixel_depth::texel_state_from).
@@ -5730,7 +5882,7 @@ public:
     }
 #if HAIRSHADOW_AVX512_WALK
     /// assign() for fragment i of a tile, layers[i] = assign(states[texels[i]], depths[i]), sixteen at
-    /// a time (placement/assign_each.hpp): the same estimate, settled against the same boundaries,
+    /// a time (placement/detail/assign_each.hpp): the same estimate, settled against the same boundaries,
     /// lane by lane, one step at a time while any lane still moves.
     HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state* states, std::span<const std::uint32_t> texels,
                                                      std::span<const float> depths, std::int32_t* layers) const noexcept {
@@ -5833,7 +5985,7 @@ public:
     static constexpr bool contiguous = true;
     static constexpr std::string_view name = "per_pixel_depth";
     static constexpr std::string_view glsl_name = "placement/per_pixel_depth";
-    /// The GLSL twin's configuration and uniforms (gl/policy_glsl.hpp).
+    /// The GLSL twin's configuration and uniforms (gl/maps/policy_glsl.hpp).
     static std::string glsl_defines() {
         return std::string(Sizes == layer_sizes::uniform ? "#define HS_UNIFORM_SIZES\n" : "") +
                (Beyond == beyond_last_layer::ignore ? "#define HS_BEYOND_IGNORE\n" : "") + (Beyond == beyond_last_layer::extend ? "#define HS_BEYOND_EXTEND\n" : "");
@@ -5873,7 +6025,7 @@ public:
     template <class Fragment>
     void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
         if (fragments.empty()) return;
-        const auto range = detail::depth_range_of(fragments);
+        const auto range = detail::texel_extent_of(fragments);
         texel_state_from(range.nearest, range.furthest, s);
     }
     /// The texel's state from its nearest and furthest fragment: all the depth pass needs, so that a
@@ -5918,7 +6070,7 @@ public:
     }
 #if HAIRSHADOW_AVX512_WALK
     /// assign() for fragment i of a tile, layers[i] = assign(states[texels[i]], depths[i]), sixteen at
-    /// a time (placement/assign_each.hpp): z0 (and the stretch) gathered from the texels' states, the
+    /// a time (placement/detail/assign_each.hpp): z0 (and the stretch) gathered from the texels' states, the
     /// same subtraction and division lane by lane, then assign's boundary count (K <= 8) or locate's
     /// estimate settled against the same boundaries. The settled layer does not depend on the
     /// estimate, only on the boundaries, so the estimate need not match locate's to the bit.
@@ -6270,7 +6422,7 @@ struct emulated_8bit {
 /// falls in (Kim & Neumann 2001 section 2; Yuksel & Keyser 2008 section 3; Mertens et al. 2004 section
 /// 3.2: piecewise-constant density, piecewise-linear optical depth).
 
-// ---- begin hairshadow/accumulation/repeated_sums.hpp
+// ---- begin hairshadow/accumulation/detail/repeated_sums.hpp
 /// @file
 /// The sum of n fragments of one optical depth b, as an accumulation adds them one by one: a pure
 /// function of n, kept in a table. A texel whose fragments all share b (a model of one alpha, the
@@ -6330,7 +6482,7 @@ repeated_sums<Accumulation>& repeated_sums_of(float b) noexcept {
 }
 
 } // namespace hairshadow::detail
-// ---- end hairshadow/accumulation/repeated_sums.hpp
+// ---- end hairshadow/accumulation/detail/repeated_sums.hpp
 
 #include <array>
 #include <bit>
@@ -6365,7 +6517,7 @@ struct interpolation {
     };
 
     /// Sums the texel's fragments into its layers; `instructions` (resolved) chooses how the layers
-    /// are found (placement/assign_each.hpp), which changes no bit.
+    /// are found (placement/detail/assign_each.hpp), which changes no bit.
     template <class Placement, class Accumulation, class Fragment>
     static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const Fragment> fragments,
                       storage<Placement, Accumulation>& out, instruction_set instructions = instruction_set::scalar) {
@@ -6552,7 +6704,7 @@ struct deep_opacity_maps_family {
 /// mu_j +- sqrt(3) sigma_j (a uniform distribution's width from its variance); overlapping bins meet at
 /// the midpoint of the overlap; a fragment outside every bin goes to the nearest cluster.
 
-// ---- begin hairshadow/placement/clustered_avx512.hpp
+// ---- begin hairshadow/placement/detail/clustered_avx512.hpp
 /// @file
 /// Density clustering's per-texel passes sixteen fragments at a time (placement/clustered.hpp): the
 /// depth range, the two k-means sums and the assignment of fragments to bins. Each lane does the
@@ -6615,7 +6767,7 @@ struct texel_scan {
     bool one_optical_depth;
 };
 
-/// detail::depth_range_of: the same nearest and furthest depth, and whether every optical depth equals
+/// detail::texel_extent_of: the same nearest and furthest depth, and whether every optical depth equals
 /// the first (as floats: a zero of either sign makes the same fixed-point terms; depths alone share
 /// one by construction). The lanes are reduced in another order than the fragments come, which can
 /// change only the sign of a zero, so a range that ends at zero is reduced again in order.
@@ -6634,9 +6786,9 @@ HAIRSHADOW_AVX512_TARGET inline texel_scan texel_scan_of(std::span<const Fragmen
         if constexpr (!depths_alone) other_optical |= _mm512_mask_cmp_ps_mask(lanes, optical, first_optical, _CMP_NEQ_UQ);
     }
     // vminps and vmaxps return their second operand where either is NaN, and every lane starts at
-    // the first depth, so a NaN there stays, as in depth_range_of; a later NaN never enters a lane.
+    // the first depth, so a NaN there stays, as in texel_extent_of; a later NaN never enters a lane.
     depth_extent range{_mm512_reduce_min_ps(nearest), _mm512_reduce_max_ps(furthest)};
-    if (range.nearest == 0.0f || range.furthest == 0.0f) range = depth_range_of(fragments);
+    if (range.nearest == 0.0f || range.furthest == 0.0f) range = texel_extent_of(fragments);
     return {range, other_optical == 0};
 }
 
@@ -6805,7 +6957,7 @@ HAIRSHADOW_AVX512_TARGET inline void count_in_bins(std::span<const Fragment> fra
 #endif
 
 } // namespace hairshadow::detail
-// ---- end hairshadow/placement/clustered_avx512.hpp
+// ---- end hairshadow/placement/detail/clustered_avx512.hpp
 
 #include <array>
 #include <cmath>
@@ -6860,7 +7012,7 @@ public:
     /// vectors' set-up and reductions cost more than they save (BENCHMARKS.md, issue 11).
     static constexpr std::size_t vector_worthwhile = 4;
     /// prepare_texel for a texel's optical fragments, sixteen at a time: the same state, bit for bit
-    /// (placement/clustered_avx512.hpp).
+    /// (placement/detail/clustered_avx512.hpp).
     HAIRSHADOW_AVX512_TARGET void prepare_texel_avx512(std::span<const optical_fragment> fragments, texel_state& s) const noexcept
         requires(K <= 16) {
         if (fragments.size() < vector_worthwhile) return prepare_texel(fragments, s);
@@ -6985,7 +7137,7 @@ private:
     void prepare_scalar(std::span<const Fragment> fragments, OpticalDepth&& optical_depth, texel_state& s) const noexcept {
         s.sigma.fill(-1.0f);
         if (fragments.empty()) return;
-        const depth_extent range = detail::depth_range_of(fragments);
+        const depth_extent range = detail::texel_extent_of(fragments);
         const std::array<float, K> centre = initial_centres(range.nearest, range.furthest);
         // One k-means iteration: weighted means of the fragments nearest each centre. The sums are
         // exact integers (fixed_sum), so no order of the fragments changes them, and the GPU's compute
@@ -7197,10 +7349,10 @@ struct occupancy_bitcount {
     }
 
     /// The build in pieces, for a build that meets a texel's fragments among other texels' (in each
-    /// texel's own order all the same; methods/streamed_tile.hpp): each fragment's bit set and its
+    /// texel's own order all the same; methods/detail/streamed_tile.hpp): each fragment's bit set and its
     /// optical depth added to its slab's sum, as build does, then stored. The same maps as build, bit
     /// for bit: build's branch-free loop adds +0 to the other slabs, which changes no sum. It pays
-    /// where the slices are chosen sixteen fragments at a time (placement/assign_each.hpp); with them
+    /// where the slices are chosen sixteen fragments at a time (placement/detail/assign_each.hpp); with them
     /// chosen fragment by fragment, grouping was faster (BENCHMARKS.md, "Full rebuilds", the entry on
     /// layers chosen sixteen fragments at a time).
     template <class Placement, class Accumulation>
@@ -7442,7 +7594,7 @@ public:
     static constexpr bool contiguous = true; ///< the slices tile [D_0, D_N) without gaps
     static constexpr std::string_view name = Spacing::name;
     static constexpr std::string_view glsl_name = "placement/planar_slices";
-    /// The GLSL twin's configuration (gl/policy_glsl.hpp); D_0 and D_N come from the map's extent.
+    /// The GLSL twin's configuration (gl/maps/policy_glsl.hpp); D_0 and D_N come from the map's extent.
     static std::string glsl_defines() { return Spacing::name == gamma_spacing::name ? "#define HS_GAMMA_SPACING\n" : ""; }
     struct texel_state {
         friend bool operator==(const texel_state&, const texel_state&) = default;
@@ -7467,7 +7619,7 @@ public:
     /// The slice a fragment at `depth` falls in: D_k <= depth < D_{k+1}.
     int assign(const texel_state&, float depth) const noexcept { return std::min(reached(depth), N - 1); }
 #if HAIRSHADOW_AVX512_WALK
-    /// assign() for each depth, sixteen at a time (placement/assign_each.hpp): the same comparisons
+    /// assign() for each depth, sixteen at a time (placement/detail/assign_each.hpp): the same comparisons
     /// with D_1..D_N lane by lane. For the branch-free count's N only.
     HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state*, std::span<const std::uint32_t> texels, std::span<const float> depths,
                                                      std::int32_t* layers) const noexcept

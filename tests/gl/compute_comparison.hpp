@@ -3,7 +3,7 @@
 // fragment, states and bitmasks bit for bit, float sums relative to the CPU's. Shared by the
 // compute-path tests and bench/gl_gpu_check.
 #include <hairshadow/gl.hpp>
-#include <hairshadow/methods/tiled_build.hpp>
+#include <hairshadow/methods/detail/tiled_build.hpp>
 
 #include <algorithm>
 #include <cmath>

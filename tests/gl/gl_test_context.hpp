@@ -2,7 +2,7 @@
 // One OSMesa core 4.5 context for all GL tests of the executable, current and loaded.
 #include <glad/gl.h>
 
-#include <hairshadow/gl/osmesa_context.hpp>
+#include <hairshadow/gl/context/osmesa_context.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -16,8 +16,8 @@ inline hairshadow::gl::osmesa_context& gl_context() {
 }
 } // namespace test
 
-#include <hairshadow/gl/objects.hpp>
-#include <hairshadow/gl/point_queries.hpp>
+#include <hairshadow/gl/context/objects.hpp>
+#include <hairshadow/gl/lookup/point_queries.hpp>
 #include <hairshadow/hairshadow.hpp>
 
 #include <glm/matrix.hpp>

@@ -3,7 +3,7 @@
 #include <EGL/eglext.h>
 #include <glad/gl.h>
 
-#include <hairshadow/gl/egl_context.hpp>
+#include <hairshadow/gl/context/egl_context.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -3,7 +3,7 @@
 #include <glad/gl.h>
 
 #include <hairshadow/gl.hpp>
-#include <hairshadow/gl/osmesa_context.hpp>
+#include <hairshadow/gl/context/osmesa_context.hpp>
 #include <hairshadow/hairshadow.hpp>
 
 #include "../test_support.hpp"
@@ -74,14 +74,16 @@ void main() {
     CHECK(gl::link_program({&vs, &fs}, "occupancy composition").get() != 0);
 }
 
-TEST_CASE("llvmpipe's lines agree with the CPU rasteriser on Sintel", "[gl][raster]") {
-    context();
-    const auto model = read_tfx(test::sintel_hair());
-    const int res = 512;
-    const auto light = light_space::fit(light_spec::directional({0, -1, -1}), model.bounds(), res);
-    const auto cpu = rasterize(model, light);
+namespace {
+/// The model's segments as GL lines, bound: position, thickness and opacity a vertex; one index
+/// pair a segment.
+struct uploaded_lines {
+    gl::vertex_array vao;
+    gl::buffer vbo, ebo;
+    GLsizei index_count;
+};
 
-    // Vertex arrays: position, thickness, opacity; one index pair per segment.
+uploaded_lines upload_lines(const hair_model& model) {
     std::vector<float> vertices;
     for (std::size_t i = 0; i < model.point_count(); ++i) {
         const auto& p = model.points[i];
@@ -90,10 +92,9 @@ TEST_CASE("llvmpipe's lines agree with the CPU rasteriser on Sintel", "[gl][rast
     std::vector<std::uint32_t> indices;
     for (std::size_t s = 0; s < model.strand_count(); ++s)
         for (std::uint32_t i = model.strand_offsets[s]; i + 1 < model.strand_offsets[s + 1]; ++i) indices.insert(indices.end(), {i, i + 1});
-    auto vao = gl::make_vertex_array();
-    glBindVertexArray(vao.get());
-    auto vbo = gl::make_buffer(), ebo = gl::make_buffer();
-    glBindBuffer(GL_ARRAY_BUFFER, vbo.get());
+    uploaded_lines lines{gl::make_vertex_array(), gl::make_buffer(), gl::make_buffer(), GLsizei(indices.size())};
+    glBindVertexArray(lines.vao.get());
+    glBindBuffer(GL_ARRAY_BUFFER, lines.vbo.get());
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(float)), vertices.data(), GL_STATIC_DRAW);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 20, nullptr);
@@ -101,8 +102,20 @@ TEST_CASE("llvmpipe's lines agree with the CPU rasteriser on Sintel", "[gl][rast
     glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, 20, reinterpret_cast<void*>(12));
     glEnableVertexAttribArray(2);
     glVertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, 20, reinterpret_cast<void*>(16));
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo.get());
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, lines.ebo.get());
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * 4), indices.data(), GL_STATIC_DRAW);
+    return lines;
+}
+} // namespace
+
+TEST_CASE("llvmpipe's lines agree with the CPU rasteriser on Sintel", "[gl][raster]") {
+    context();
+    const auto model = read_tfx(test::sintel_hair());
+    const int res = 512;
+    const auto light = light_space::fit(light_spec::directional({0, -1, -1}), model.bounds(), res);
+    const auto cpu = rasterize(model, light);
+
+    const uploaded_lines lines = upload_lines(model);
 
     auto program = line_program();
     glUseProgram(program.get());
@@ -134,7 +147,7 @@ TEST_CASE("llvmpipe's lines agree with the CPU rasteriser on Sintel", "[gl][rast
         glClear(GL_COLOR_BUFFER_BIT);
         glBlendEquation(pass == 0 ? GL_FUNC_ADD : GL_MIN);
         glBlendFunc(GL_ONE, GL_ONE);
-        glDrawElements(GL_LINES, GLsizei(indices.size()), GL_UNSIGNED_INT, nullptr);
+        glDrawElements(GL_LINES, lines.index_count, GL_UNSIGNED_INT, nullptr);
         glReadPixels(0, 0, res, res, GL_RGBA, GL_FLOAT, pass == 0 ? sum_pixels.data() : depth_pixels.data());
         gl::check("line passes");
     }

@@ -4,7 +4,7 @@
 #include "gl_test_context.hpp"
 
 #include <hairshadow/gl.hpp>
-#include <hairshadow/gl/fragment_capture.hpp>
+#include <hairshadow/gl/passes/fragment_capture.hpp>
 
 #include "../sheets.hpp"
 #include "../test_support.hpp"

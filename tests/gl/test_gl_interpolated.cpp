@@ -3,8 +3,8 @@
 #include "gl_test_context.hpp"
 
 #include <hairshadow/gl.hpp>
-#include <hairshadow/gl/fragment_capture.hpp>
-#include <hairshadow/gl/interpolated_maps.hpp>
+#include <hairshadow/gl/passes/fragment_capture.hpp>
+#include <hairshadow/gl/maps/interpolated_maps.hpp>
 
 #include "../test_support.hpp"
 

@@ -2,8 +2,8 @@
 #include "gl_test_context.hpp"
 
 #include <hairshadow/gl.hpp>
-#include <hairshadow/gl/fragment_capture.hpp>
-#include <hairshadow/gl/occupancy_maps.hpp>
+#include <hairshadow/gl/passes/fragment_capture.hpp>
+#include <hairshadow/gl/maps/occupancy_maps.hpp>
 #include <hairshadow/hairshadow.hpp>
 
 #include <glm/matrix.hpp>

@@ -3,7 +3,7 @@
 #include "gl_test_context.hpp"
 
 #include <hairshadow/gl.hpp>
-#include <hairshadow/gl/scene_renderer.hpp>
+#include <hairshadow/gl/render/scene_renderer.hpp>
 
 #include "../test_support.hpp"
 

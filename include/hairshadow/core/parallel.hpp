@@ -4,7 +4,7 @@
 /// kernel writes its result to a place fixed by the item's index, so results never depend on the
 /// thread count.
 
-#include <hairshadow/core/thread_pool.hpp>
+#include <hairshadow/core/detail/thread_pool.hpp>
 
 #include <algorithm>
 #include <atomic>

@@ -145,7 +145,7 @@ void main() {
 )hs_glsl";
 
 /// shaders/compute/common.glsl
-inline constexpr std::string_view compute_common = R"hs_glsl(// What every pass of the compute build shares (gl/compute_raster.hpp): the prepared segments and their
+inline constexpr std::string_view compute_common = R"hs_glsl(// What every pass of the compute build shares (gl/passes/compute_raster.hpp): the prepared segments and their
 // tiles, and the line rule of raster/line_rule.hpp in 64-bit integers, so that a tile's work group
 // makes exactly the fragments the CPU rasteriser makes. A pass defines hs_emit(x, y), which the walk
 // calls for every fragment of the current segment inside the tile. Needs GL_ARB_gpu_shader_int64 and

@@ -3,7 +3,7 @@
 /// USC-HairSalon `.data`: i32 strand count; per strand an i32 point count and that many float3 points.
 
 #include <hairshadow/core/hair_model.hpp>
-#include <hairshadow/io/binary_file.hpp>
+#include <hairshadow/io/detail/binary_file.hpp>
 
 #include <limits>
 #include <span>

@@ -8,7 +8,7 @@
 /// points, f32 thickness, f32 transparency, f32[3] colour. All little-endian.
 
 #include <hairshadow/core/hair_model.hpp>
-#include <hairshadow/io/binary_file.hpp>
+#include <hairshadow/io/detail/binary_file.hpp>
 
 #include <bit>
 #include <cstring>

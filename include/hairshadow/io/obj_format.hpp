@@ -13,7 +13,7 @@
 #include <hairshadow/core/hair_model.hpp>
 #include <hairshadow/core/parse.hpp>
 #include <hairshadow/core/triangle_mesh.hpp>
-#include <hairshadow/io/binary_file.hpp>
+#include <hairshadow/io/detail/binary_file.hpp>
 
 #include <charconv>
 #include <cmath>

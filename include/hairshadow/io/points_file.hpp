@@ -3,7 +3,7 @@
 /// Query points as text: one `x y z` per line; blank lines and lines starting with `#` are skipped.
 
 #include <hairshadow/core/parse.hpp>
-#include <hairshadow/io/binary_file.hpp>
+#include <hairshadow/io/detail/binary_file.hpp>
 
 #include <glm/vec3.hpp>
 

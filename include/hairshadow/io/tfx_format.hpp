@@ -14,7 +14,7 @@
 ///   per-strand f32 thickness and vertex colours (0 = absent); u32 reserved[32].
 
 #include <hairshadow/core/hair_model.hpp>
-#include <hairshadow/io/binary_file.hpp>
+#include <hairshadow/io/detail/binary_file.hpp>
 
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>

@@ -7,7 +7,7 @@
 /// Each file that includes it compiles every method's builds, which is slow. A project that parses
 /// specs in several files can compile the registry once: define HAIRSHADOW_SEPARATE_REGISTRY in every
 /// file (make_shadow_map is then only declared), and HAIRSHADOW_REGISTRY_IMPLEMENTATION as well in
-/// exactly one (which then defines it); gl/registry.hpp does the same with
+/// exactly one (which then defines it); gl/maps/registry.hpp does the same with
 /// HAIRSHADOW_GL_REGISTRY_IMPLEMENTATION, and then instantiates no CPU build (its read-backs go into
 /// maps that make_shadow_map makes).
 

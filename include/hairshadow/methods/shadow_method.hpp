@@ -9,10 +9,9 @@
 #include <hairshadow/core/map_queries.hpp>
 #include <hairshadow/core/parallel.hpp>
 #include <hairshadow/core/hair_model.hpp>
-#include <hairshadow/core/huge_pages.hpp>
+#include <hairshadow/core/detail/huge_pages.hpp>
 #include <hairshadow/methods/concepts.hpp>
-#include <hairshadow/methods/streamed_tile.hpp>
-#include <hairshadow/methods/tiled_build.hpp>
+#include <hairshadow/methods/detail/build_plan.hpp>
 #include <hairshadow/raster/fragment.hpp>
 #include <hairshadow/raster/raster_options.hpp>
 
@@ -64,7 +63,7 @@ public:
     explicit shadow_method(Placement placement = Placement(), Reconstruction reconstruction = Reconstruction())
         : placement_(std::move(placement)), reconstruction_(std::move(reconstruction)) {}
 
-    /// Builds the maps of `model` for `light`, tile by tile (methods/tiled_build.hpp): the fastest
+    /// Builds the maps of `model` for `light`, tile by tile (methods/detail/tiled_build.hpp): the fastest
     /// build, and the one to call every frame, since this object keeps its working memory. The
     /// whole-map values (OSM's near and far, DOM's default extent) come from the segments' ends
     /// (segment_bins::extent). Identical for any thread count and tile size, and equal to
@@ -81,56 +80,11 @@ public:
             const std::size_t res = std::size_t(light.resolution());
             resize_maps(res * res, options.exec);
             const auto texel_out = [&](int x, int y) -> texel_maps& { return texels_[std::size_t(y) * res + std::size_t(x)]; };
-            const instruction_set instructions = resolve(options.instructions);
-            const auto build_grouped = [&](const detail::tile_fragments& tile) {
-                const texel_rect r = tile.rect();
-                for (int y = r.y0; y < r.y1; ++y)
-                    for (int x = r.x0; x < r.x1; ++x) build_texel(tile.texel(x, y), texel_out(x, y), instructions);
-            };
-            // Where the maps do not depend on the fragments' order, the walk stores them in its own
-            // (segments sorted by length, sixteen at a step), so that long segments walk side by side
-            // too, in lanes of nearly one length (BENCHMARKS.md, "Tiles walked in any order where the
-            // maps cannot tell").
-            const auto order = detail::walks_in_any_order<Placement, Reconstruction>(extent_) ? detail::fragment_order::any
-                                                                                               : detail::fragment_order::segment;
-            if constexpr (detail::streams_tiles<Placement, Accumulation, Reconstruction>) {
-                // Dense tiles reduce their fragments where the walk left them (methods/streamed_tile.hpp);
-                // sparse ones are grouped, which is cheaper there. Both give the same texels.
-                auto& per_thread = streamed_.get();
-                per_thread.resize(detail::tile_slots(w));
-                for (auto& s : per_thread) s.reserve(std::size_t(options.tile_size) * std::size_t(options.tile_size));
-                fragments_ = detail::for_each_tile(
-                    w, detail::tile_grouping::on_demand,
-                    [&](unsigned slot, detail::tile_fragments& tile) {
-                        if (per_thread[slot].pays(tile)) return per_thread[slot].build(placement_, tile, instructions, texel_out);
-                        tile.group();
-                        build_grouped(tile);
-                    },
-                    order);
-            } else {
-#if HAIRSHADOW_AVX512_WALK
-                // Where every fragment shares one b, the tiles group their depths alone, half the bytes
-                // of the grouping's scatter and of the texels' passes (BENCHMARKS.md, "Density
-                // clustering groups depths alone where a map has one optical depth"). The same maps,
-                // bit for bit.
-                if constexpr (detail::builds_from_depths_avx512<Placement, Accumulation, Reconstruction>) {
-                    if (instructions == instruction_set::avx512 && detail::tile_fragments::one_optical_depth(w.bins)) {
-                        const float b = optical_depth_of(w.bins.uniform_shader().shade(0.0f).alpha);
-                        fragments_ = detail::for_each_tile(
-                            w, detail::tile_grouping::grouped_depths,
-                            [&](unsigned, const detail::tile_fragments& tile) {
-                                const texel_rect r = tile.rect();
-                                for (int y = r.y0; y < r.y1; ++y)
-                                    for (int x = r.x0; x < r.x1; ++x) build_texel_from_depths(tile.texel_depths(x, y), b, texel_out(x, y));
-                            },
-                            order);
-                        return;
-                    }
-                }
-#endif
-                fragments_ = detail::for_each_tile(
-                    w, detail::tile_grouping::grouped, [&](unsigned, const detail::tile_fragments& tile) { build_grouped(tile); }, order);
-            }
+            fragments_ = detail::build_tiles<Placement, Accumulation, Reconstruction>(
+                w, placement_, extent_, options, [&]() -> auto& { return streamed_.get(); }, texel_out,
+                [&](auto fragments, texel_maps& out, instruction_set instructions) HAIRSHADOW_ALWAYS_INLINE { build_texel(fragments, out, instructions); },
+                // generic: instantiated only by a composition that builds from depths
+                [&](auto depths, float b, texel_maps& out) HAIRSHADOW_ALWAYS_INLINE { this->build_texel_from_depths(depths, b, out); });
         });
     }
 
@@ -202,7 +156,7 @@ public:
 private:
     /// One texel's maps from its fragments (fragment or optical_fragment), in segment order (or any,
     /// for an order-free composition: detail::order_free_maps), with the
-    /// vector steps `instructions` (resolved) allows (placement/assign_each.hpp): the same maps.
+    /// vector steps `instructions` (resolved) allows (placement/detail/assign_each.hpp): the same maps.
     template <class Fragment>
     HAIRSHADOW_ALWAYS_INLINE void build_texel(std::span<const Fragment> in, texel_maps& out, instruction_set instructions) const {
         out = texel_maps{};
@@ -214,16 +168,14 @@ private:
             reconstruction_.template build<Placement, Accumulation>(placement_, out.placement, in, out.data);
     }
 
-#if HAIRSHADOW_AVX512_WALK
     /// build_texel for a texel whose fragments all have optical depth b, given by their depths alone:
-    /// the same maps (detail::builds_from_depths_avx512).
+    /// the same maps (detail::builds_from_depths_avx512; instantiated only where the plan calls it).
     void build_texel_from_depths(std::span<const float> depths, float b, texel_maps& out) const {
         out = texel_maps{};
         if (depths.empty()) return;
         placement_.prepare_texel_depths_avx512(depths, b, out.placement);
         Reconstruction::template build_from_depths<Placement, Accumulation>(placement_, out.placement, depths, b, out.data);
     }
-#endif
 
     /// The light of the maps, given to a reconstruction that needs it (a fibre density's world units).
     void set_light(const light_space& light) {

@@ -8,7 +8,7 @@
 /// mu_j +- sqrt(3) sigma_j (a uniform distribution's width from its variance); overlapping bins meet at
 /// the midpoint of the overlap; a fragment outside every bin goes to the nearest cluster.
 
-#include <hairshadow/placement/clustered_avx512.hpp>
+#include <hairshadow/placement/detail/clustered_avx512.hpp>
 #include <hairshadow/placement/layer_position.hpp>
 
 #include <array>
@@ -64,7 +64,7 @@ public:
     /// vectors' set-up and reductions cost more than they save (BENCHMARKS.md, issue 11).
     static constexpr std::size_t vector_worthwhile = 4;
     /// prepare_texel for a texel's optical fragments, sixteen at a time: the same state, bit for bit
-    /// (placement/clustered_avx512.hpp).
+    /// (placement/detail/clustered_avx512.hpp).
     HAIRSHADOW_AVX512_TARGET void prepare_texel_avx512(std::span<const optical_fragment> fragments, texel_state& s) const noexcept
         requires(K <= 16) {
         if (fragments.size() < vector_worthwhile) return prepare_texel(fragments, s);
@@ -189,7 +189,7 @@ private:
     void prepare_scalar(std::span<const Fragment> fragments, OpticalDepth&& optical_depth, texel_state& s) const noexcept {
         s.sigma.fill(-1.0f);
         if (fragments.empty()) return;
-        const depth_extent range = detail::depth_range_of(fragments);
+        const depth_extent range = detail::texel_extent_of(fragments);
         const std::array<float, K> centre = initial_centres(range.nearest, range.furthest);
         // One k-means iteration: weighted means of the fragments nearest each centre. The sums are
         // exact integers (fixed_sum), so no order of the fragments changes them, and the GPU's compute

@@ -4,7 +4,7 @@
 /// furthest fragment of each texel bound S equal slices, so that every slice lies inside the hair.
 
 #include <hairshadow/config.hpp>
-#include <hairshadow/placement/assign_each.hpp>
+#include <hairshadow/placement/detail/assign_each.hpp>
 #include <hairshadow/placement/layer_position.hpp>
 
 #include <cmath>
@@ -42,7 +42,7 @@ public:
     template <class Fragment>
     void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
         if (fragments.empty()) return;
-        const auto range = detail::depth_range_of(fragments);
+        const auto range = detail::texel_extent_of(fragments);
         texel_state_from(range.nearest, range.furthest, s);
     }
     /// The texel's state from its nearest and furthest fragment (per_pixel_depth::texel_state_from).
@@ -59,7 +59,7 @@ public:
     }
 #if HAIRSHADOW_AVX512_WALK
     /// assign() for fragment i of a tile, layers[i] = assign(states[texels[i]], depths[i]), sixteen at
-    /// a time (placement/assign_each.hpp): the same estimate, settled against the same boundaries,
+    /// a time (placement/detail/assign_each.hpp): the same estimate, settled against the same boundaries,
     /// lane by lane, one step at a time while any lane still moves.
     HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state* states, std::span<const std::uint32_t> texels,
                                                      std::span<const float> depths, std::int32_t* layers) const noexcept {

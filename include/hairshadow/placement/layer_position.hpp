@@ -1,13 +1,12 @@
 #pragma once
 /// @file
-/// Where a depth falls among a texel's layers, and the depth extent of a fragment buffer.
+/// Where a depth falls among a texel's layers: the helpers every placement shares.
 
-#include <hairshadow/raster/fragment.hpp>
+#include <hairshadow/raster/depth_extent.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <span>
 
 namespace hairshadow {
 
@@ -17,22 +16,6 @@ struct layer_position {
     int index;
     float fraction;
 };
-
-/// Nearest and furthest fragment depth of a whole buffer (a global pre-pass); {0, 0} when empty.
-struct depth_extent {
-    float nearest = 0.0f;
-    float furthest = 0.0f;
-};
-
-inline depth_extent extent_of(const fragment_buffer& fragments) noexcept {
-    if (fragments.size() == 0) return {};
-    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-    for (const auto& f : fragments.fragments()) {
-        lo = std::min(lo, f.depth);
-        hi = std::max(hi, f.depth);
-    }
-    return {lo, hi};
-}
 
 namespace detail {
 /// Moves an estimated layer index to the k in [0, last] with boundary(k) <= depth < boundary(k + 1).
@@ -52,29 +35,6 @@ template <class Placement>
 auto texel_assigner(const Placement& placement, const typename Placement::texel_state& state) noexcept {
     if constexpr (requires { placement.assigner(state); }) return placement.assigner(state);
     else return [&placement, &state](float depth) noexcept { return placement.assign(state, depth); };
-}
-
-/// Widens a texel's depth range by one more fragment's depth (started at the first fragment's).
-inline void add_to_depth_range(depth_extent& range, float depth) noexcept {
-    range.nearest = std::min(range.nearest, depth);
-    range.furthest = std::max(range.furthest, depth);
-}
-
-/// A fragment's depth, where a texel holds fragments, or their depths alone (a texel whose fragments
-/// share one optical depth: tile_fragments::group_depths).
-template <class Fragment>
-float depth_of(const Fragment& f) noexcept {
-    return f.depth;
-}
-inline float depth_of(float depth) noexcept { return depth; }
-
-/// The nearest and furthest depth of a texel's fragments, reduced in their order from the first:
-/// the order matters only for the sign of a zero, and add_to_depth_range keeps the same order.
-template <class Fragment>
-depth_extent depth_range_of(std::span<const Fragment> fragments) noexcept {
-    depth_extent range{depth_of(fragments[0]), depth_of(fragments[0])};
-    for (const auto& f : fragments) add_to_depth_range(range, depth_of(f));
-    return range;
 }
 
 /// Layer k's position for a depth between its boundaries lo and hi.

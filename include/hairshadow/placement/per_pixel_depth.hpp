@@ -5,7 +5,7 @@
 /// same d_k for every texel. A fragment adds to its layer and every later one.
 
 #include <hairshadow/core/error.hpp>
-#include <hairshadow/placement/assign_each.hpp>
+#include <hairshadow/placement/detail/assign_each.hpp>
 #include <hairshadow/placement/layer_position.hpp>
 
 #include <array>
@@ -50,7 +50,7 @@ public:
     static constexpr bool contiguous = true;
     static constexpr std::string_view name = "per_pixel_depth";
     static constexpr std::string_view glsl_name = "placement/per_pixel_depth";
-    /// The GLSL twin's configuration and uniforms (gl/policy_glsl.hpp).
+    /// The GLSL twin's configuration and uniforms (gl/maps/policy_glsl.hpp).
     static std::string glsl_defines() {
         return std::string(Sizes == layer_sizes::uniform ? "#define HS_UNIFORM_SIZES\n" : "") +
                (Beyond == beyond_last_layer::ignore ? "#define HS_BEYOND_IGNORE\n" : "") + (Beyond == beyond_last_layer::extend ? "#define HS_BEYOND_EXTEND\n" : "");
@@ -90,7 +90,7 @@ public:
     template <class Fragment>
     void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
         if (fragments.empty()) return;
-        const auto range = detail::depth_range_of(fragments);
+        const auto range = detail::texel_extent_of(fragments);
         texel_state_from(range.nearest, range.furthest, s);
     }
     /// The texel's state from its nearest and furthest fragment: all the depth pass needs, so that a
@@ -135,7 +135,7 @@ public:
     }
 #if HAIRSHADOW_AVX512_WALK
     /// assign() for fragment i of a tile, layers[i] = assign(states[texels[i]], depths[i]), sixteen at
-    /// a time (placement/assign_each.hpp): z0 (and the stretch) gathered from the texels' states, the
+    /// a time (placement/detail/assign_each.hpp): z0 (and the stretch) gathered from the texels' states, the
     /// same subtraction and division lane by lane, then assign's boundary count (K <= 8) or locate's
     /// estimate settled against the same boundaries. The settled layer does not depend on the
     /// estimate, only on the boundaries, so the estimate need not match locate's to the bit.

@@ -5,7 +5,7 @@
 /// map of its slice and to every later one (each map holds the opacity in front of its depth); a query
 /// interpolates linearly in depth between the maps that enclose it.
 
-#include <hairshadow/placement/assign_each.hpp>
+#include <hairshadow/placement/detail/assign_each.hpp>
 #include <hairshadow/placement/layer_position.hpp>
 
 #include <algorithm>
@@ -52,7 +52,7 @@ public:
     static constexpr bool contiguous = true; ///< the slices tile [D_0, D_N) without gaps
     static constexpr std::string_view name = Spacing::name;
     static constexpr std::string_view glsl_name = "placement/planar_slices";
-    /// The GLSL twin's configuration (gl/policy_glsl.hpp); D_0 and D_N come from the map's extent.
+    /// The GLSL twin's configuration (gl/maps/policy_glsl.hpp); D_0 and D_N come from the map's extent.
     static std::string glsl_defines() { return Spacing::name == gamma_spacing::name ? "#define HS_GAMMA_SPACING\n" : ""; }
     struct texel_state {
         friend bool operator==(const texel_state&, const texel_state&) = default;
@@ -77,7 +77,7 @@ public:
     /// The slice a fragment at `depth` falls in: D_k <= depth < D_{k+1}.
     int assign(const texel_state&, float depth) const noexcept { return std::min(reached(depth), N - 1); }
 #if HAIRSHADOW_AVX512_WALK
-    /// assign() for each depth, sixteen at a time (placement/assign_each.hpp): the same comparisons
+    /// assign() for each depth, sixteen at a time (placement/detail/assign_each.hpp): the same comparisons
     /// with D_1..D_N lane by lane. For the branch-free count's N only.
     HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state*, std::span<const std::uint32_t> texels, std::span<const float> depths,
                                                      std::int32_t* layers) const noexcept

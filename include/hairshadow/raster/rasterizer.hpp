@@ -3,7 +3,7 @@
 /// Rasterises a hair model's segments into one buffer of light-space fragments (texel, depth, alpha),
 /// in parallel tiles, with per-texel output identical for any thread count. The exact reference and
 /// users who want the fragments themselves need it; the methods build tile by tile without it
-/// (methods/tiled_build.hpp).
+/// (methods/detail/tiled_build.hpp).
 
 #include <hairshadow/config.hpp>
 #include <hairshadow/core/hair_model.hpp>
@@ -11,7 +11,7 @@
 #include <hairshadow/core/parallel.hpp>
 #include <hairshadow/raster/fragment.hpp>
 #include <hairshadow/raster/raster_options.hpp>
-#include <hairshadow/raster/segment_bins.hpp>
+#include <hairshadow/raster/detail/segment_bins.hpp>
 
 #include <cstdint>
 #include <vector>

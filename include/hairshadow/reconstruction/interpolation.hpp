@@ -6,8 +6,8 @@
 /// 3.2: piecewise-constant density, piecewise-linear optical depth).
 
 #include <hairshadow/accumulation/float_accumulation.hpp>
-#include <hairshadow/accumulation/repeated_sums.hpp>
-#include <hairshadow/placement/assign_each.hpp>
+#include <hairshadow/accumulation/detail/repeated_sums.hpp>
+#include <hairshadow/placement/detail/assign_each.hpp>
 #include <hairshadow/placement/layer_position.hpp>
 
 #include <array>
@@ -43,7 +43,7 @@ struct interpolation {
     };
 
     /// Sums the texel's fragments into its layers; `instructions` (resolved) chooses how the layers
-    /// are found (placement/assign_each.hpp), which changes no bit.
+    /// are found (placement/detail/assign_each.hpp), which changes no bit.
     template <class Placement, class Accumulation, class Fragment>
     static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const Fragment> fragments,
                       storage<Placement, Accumulation>& out, instruction_set instructions = instruction_set::scalar) {

@@ -73,10 +73,10 @@ struct occupancy_bitcount {
     }
 
     /// The build in pieces, for a build that meets a texel's fragments among other texels' (in each
-    /// texel's own order all the same; methods/streamed_tile.hpp): each fragment's bit set and its
+    /// texel's own order all the same; methods/detail/streamed_tile.hpp): each fragment's bit set and its
     /// optical depth added to its slab's sum, as build does, then stored. The same maps as build, bit
     /// for bit: build's branch-free loop adds +0 to the other slabs, which changes no sum. It pays
-    /// where the slices are chosen sixteen fragments at a time (placement/assign_each.hpp); with them
+    /// where the slices are chosen sixteen fragments at a time (placement/detail/assign_each.hpp); with them
     /// chosen fragment by fragment, grouping was faster (BENCHMARKS.md, "Full rebuilds", the entry on
     /// layers chosen sixteen fragments at a time).
     template <class Placement, class Accumulation>

@@ -1,0 +1,46 @@
+#pragma once
+/// @file
+/// The GL twin of any shadow_method, chosen by its reconstruction: gl::maps<Method> is
+/// interpolated_maps_gl for interpolation, occupancy_maps_gl for occupancy_bitcount and
+/// fibre_density_maps_gl for fibre_density. A new reconstruction adds its class and one line here.
+
+#include <hairshadow/gl/maps/fibre_density_maps.hpp>
+#include <hairshadow/gl/maps/interpolated_maps.hpp>
+#include <hairshadow/gl/maps/occupancy_maps.hpp>
+
+#include <type_traits>
+
+namespace hairshadow::gl {
+
+namespace detail {
+template <class Method, class Reconstruction = typename Method::reconstruction_type>
+struct maps_of {
+    static_assert(sizeof(Method) == 0, "this method's reconstruction has no GL twin");
+};
+template <class Method>
+struct maps_of<Method, interpolation> {
+    using type = interpolated_maps_gl<Method>;
+};
+template <class Method, int B>
+struct maps_of<Method, occupancy_bitcount<B>> {
+    using type = occupancy_maps_gl<Method>;
+};
+template <class Method, fibre_density_source Source>
+struct maps_of<Method, fibre_density<Source>> {
+    using type = fibre_density_maps_gl<Method>;
+};
+} // namespace detail
+
+template <class Method>
+using maps = typename detail::maps_of<Method>::type;
+
+namespace detail {
+/// The GL maps of `method`, made with its parameters where they take them (a fibre density).
+template <class Method>
+maps<Method> maps_of_method(const Method& method) {
+    if constexpr (std::is_constructible_v<maps<Method>, const Method&>) return maps<Method>(method);
+    else return maps<Method>();
+}
+} // namespace detail
+
+} // namespace hairshadow::gl

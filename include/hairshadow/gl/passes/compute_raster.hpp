@@ -1,0 +1,250 @@
+#pragma once
+/// @file
+/// The compute build's shared half: the hair mesh's segments prepared, binned and walked on the GPU
+/// by compute shaders (shaders/compute/), with exactly the CPU rasteriser's arithmetic, so that the
+/// maps built from them hold the CPU maps' fragments, not the GL driver's. A light pass on
+/// build_path::compute runs it: prepare (transform, clip, snap; count tiles; the map's extent), scan
+/// (tile offsets), scatter (segment lists per 16x16 tile), then the range map, one work group per tile.
+/// Each method's compute pass then walks the same lists (interpolated_maps.hpp, occupancy_maps.hpp).
+/// Sums are taken in fixed point, so no result depends on the order the GPU runs anything in.
+
+#include <hairshadow/config.hpp>
+#include <hairshadow/gl/context/context.hpp>
+#include <hairshadow/gl/passes/hair_mesh.hpp>
+#include <hairshadow/gl/context/objects.hpp>
+#include <hairshadow/gl/shaders.generated.hpp>
+#include <hairshadow/gl/context/state_guard.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace hairshadow::gl {
+
+/// How GL maps are built.
+enum class build_path {
+    compute, ///< compute shaders walk the CPU's line rule tile by tile: the CPU's fragments, no blending
+    raster,  ///< the papers' passes: GL lines drawn into blended targets, the driver's fragments
+};
+
+inline std::string_view to_string(build_path p) noexcept { return p == build_path::compute ? "compute" : "raster"; }
+
+/// What the current context lacks for build_path::compute, or "" when it has everything: GL 4.3
+/// (compute shaders), GL_ARB_gpu_shader_int64 (the line rule's 64-bit integers), 8 shader storage
+/// blocks and 4 image units in a compute shader, and 32 KiB of shared memory per work group.
+inline std::string compute_path_missing() {
+    if (gl_version() < 43) return "OpenGL 4.3 (compute shaders)";
+    bool int64 = false;
+    GLint count = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+    for (GLint i = 0; i < count; ++i) {
+        const auto* name = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)));
+        if (name && std::strcmp(name, "GL_ARB_gpu_shader_int64") == 0) int64 = true;
+    }
+    if (!int64) return "GL_ARB_gpu_shader_int64 (64-bit integers in shaders)";
+    GLint value = 0;
+    glGetIntegerv(GL_MAX_COMPUTE_SHARED_MEMORY_SIZE, &value);
+    if (value < 32 * 1024) return "32 KiB of compute shared memory (the context has " + std::to_string(value) + " bytes)";
+    glGetIntegerv(GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS, &value);
+    if (value < 8) return "8 shader storage blocks in a compute shader";
+    glGetIntegerv(GL_MAX_COMPUTE_IMAGE_UNIFORMS, &value);
+    if (value < 4) return "4 image uniforms in a compute shader";
+    return "";
+}
+
+/// Throws feature_error, naming what is missing, unless the context runs build_path::compute; `what`
+/// names the caller and `instead` what to do.
+inline void require_compute_path(const std::string& what, const std::string& instead = "build on build_path::raster instead") {
+    if (const auto missing = compute_path_missing(); !missing.empty()) throw feature_error(what + " needs " + missing + "; " + instead);
+}
+
+/// The path a build takes by default: compute where the context runs it, else raster.
+inline build_path default_build_path() { return compute_path_missing().empty() ? build_path::compute : build_path::raster; }
+
+namespace detail {
+
+inline constexpr int compute_tile = 16; // texels per side of a compute tile (HS_TILE)
+
+/// Source pieces every compute program starts with (after compile_stage's version line): defines,
+/// the shared snippet.
+inline std::vector<std::string_view> compute_pieces(const std::string& defines) {
+    static const std::string common_defines = "#define HS_SUBPIXEL_BITS " + std::to_string(HAIRSHADOW_SUBPIXEL_BITS) + "\n#define HS_ALPHA_MAX " +
+                                              std::to_string(HAIRSHADOW_ALPHA_MAX) + "\n";
+    return {common_defines, defines, shaders::compute_common};
+}
+
+inline void set_uniform(GLuint prog, const char* name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }
+inline void set_uniform_u(GLuint prog, const char* name, std::uint32_t v) { glUniform1ui(glGetUniformLocation(prog, name), v); }
+
+/// The segments of one mesh seen from one light, prepared and binned on the GPU.
+class compute_segments {
+public:
+    compute_segments() {
+        require_compute_path("the compute build path");
+        const auto program_of = [](std::string_view body, const std::string& defines, const std::string& name) {
+            auto pieces = compute_pieces(defines);
+            pieces.push_back(body);
+            const auto s = compile_stage(GL_COMPUTE_SHADER, {}, pieces, name);
+            return link_program({&s}, name);
+        };
+        prepare_ = program_of(shaders::compute_prepare, "", "compute/prepare");
+        scan_ = program_of(shaders::compute_scan, "", "compute/scan");
+        scatter_ = program_of(shaders::compute_scatter, "", "compute/scatter");
+        range_ = program_of(shaders::compute_range, "#define HS_DEPTH_ONLY\n", "compute/range");
+        for (auto* b : {&segments_, &counts_, &offsets_, &binned_}) *b = make_buffer();
+    }
+
+    /// Prepares and bins `mesh`'s segments for `light`, writes the range map and the map's extent
+    /// into `range` (RGBA32F, res x res + 1), all on the GPU, reading nothing back. The caller holds a
+    /// state_guard.
+    void run(const hair_mesh& mesh, const light_space& light, const raster_options& options, GLuint range) {
+        if (options.wide_line_width > 0.0f)
+            throw feature_error("build_path::compute draws thin lines only: wide lines need build_path::raster");
+        light_ = light;
+        options_ = options;
+        const int res = light.resolution();
+        tiles_x_ = (res + compute_tile - 1) / compute_tile;
+        const std::size_t tiles = std::size_t(tiles_x_) * std::size_t(tiles_x_);
+        segment_count_ = mesh.segment_count();
+        // The buffers the shaders index: 48 bytes a segment, and their indices in 32 bits.
+        GLint64 block = 0;
+        glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &block);
+        if (segment_count_ > std::numeric_limits<std::uint32_t>::max() / (short_tiles + 1) || double(segment_count_) * 48.0 > double(block))
+            throw feature_error("build_path::compute holds 48 bytes a segment in one shader storage block: " + std::to_string(segment_count_) +
+                                " segments need more than this context's " + std::to_string(block) + " bytes; use build_path::raster");
+        grow(segments_, segment_bytes_, std::max<std::size_t>(segment_count_, 1) * 48);
+        grow(counts_, count_bytes_, tiles * 4);
+        grow(offsets_, offset_bytes_, 16 + (tiles + 1) * 4);
+        // Short segments (a box over at most 4 tiles) in at most 4 tiles' lists each, long ones in a
+        // list of their own: a bound from the segment count alone (compute/common's hs_binned).
+        grow(binned_, binned_bytes_, (short_tiles + 1) * std::max<std::size_t>(segment_count_, 1) * 4);
+        const GLuint zero = 0;
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, counts_.get());
+        glClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        const std::uint32_t totals[4] = {0xffffffffu, 0u, 0u, 0u}; // nearest, furthest (ordered bits), pairs, long segments
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, offsets_.get());
+        glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof totals, totals);
+        bind_lists();
+
+        // 1. Prepare and count.
+        const auto& src = mesh.sources();
+        const GLuint p = prepare_.get();
+        glUseProgram(p);
+        set_light_uniforms(p);
+        const auto layout = [&](const char* name, const buffer_attribute& a, std::size_t floats) {
+            const std::size_t stride = a.stride == 0 ? floats : std::size_t(a.stride) / 4;
+            glUniform2ui(glGetUniformLocation(p, name), GLuint(std::size_t(a.offset) / 4), GLuint(stride));
+        };
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, src.points.positions.buffer);
+        layout("hs_position_layout", src.points.positions, 3);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, src.points.thickness ? src.points.thickness->buffer : src.points.positions.buffer);
+        if (src.points.thickness) layout("hs_thickness_layout", *src.points.thickness, 1);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, src.points.opacity ? src.points.opacity->buffer : src.points.positions.buffer);
+        if (src.points.opacity) layout("hs_opacity_layout", *src.points.opacity, 1);
+        set_uniform(p, "hs_thickness_constant", src.points.thickness ? 0 : 1);
+        set_uniform(p, "hs_opacity_constant", src.points.opacity ? 0 : 1);
+        glUniform1f(glGetUniformLocation(p, "hs_thickness_value"), src.points.uniform_thickness);
+        glUniform1f(glGetUniformLocation(p, "hs_opacity_value"), src.points.uniform_opacity);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, src.index_buffer);
+        set_uniform_u(p, "hs_index_first", GLuint(std::size_t(src.index_offset) / 4));
+        set_uniform_u(p, "hs_segment_count", GLuint(segment_count_));
+        set_uniform(p, "hs_tile_size", compute_tile);
+        glUniformMatrix4fv(glGetUniformLocation(p, "hs_view_projection"), 1, GL_FALSE, &light.view_projection()[0][0]);
+        glUniformMatrix4fv(glGetUniformLocation(p, "hs_view"), 1, GL_FALSE, &light.view()[0][0]);
+        glUniform1f(glGetUniformLocation(p, "hs_near"), light.near_plane());
+        glUniform1f(glGetUniformLocation(p, "hs_far"), light.far_plane());
+        dispatch_segments();
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+
+        // 2. Offsets and the extent.
+        glUseProgram(scan_.get());
+        set_light_uniforms(scan_.get());
+        set_uniform_u(scan_.get(), "hs_tile_total", GLuint(tiles));
+        glBindImageTexture(0, range, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glDispatchCompute(1, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+
+        // 3. Scatter.
+        glUseProgram(scatter_.get());
+        set_light_uniforms(scatter_.get());
+        set_uniform_u(scatter_.get(), "hs_segment_count", GLuint(segment_count_));
+        dispatch_segments();
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+
+        // 4. The range map.
+        glUseProgram(range_.get());
+        set_light_uniforms(range_.get());
+        set_shading_uniforms(range_.get());
+        glBindImageTexture(0, range, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        dispatch_tiles();
+    }
+
+    /// Binds the segment lists (storage bindings 0 to 3) and sets the uniforms every tile pass reads.
+    void bind_for_tiles(GLuint prog) const {
+        bind_lists();
+        set_light_uniforms(prog);
+        set_shading_uniforms(prog);
+    }
+    /// One work group per tile.
+    void dispatch_tiles() const { glDispatchCompute(GLuint(tiles_x_), GLuint(tiles_x_), 1); }
+    /// Segment-tile pairs of the last run, and its long segments: read back (a wait for the GPU),
+    /// for tests and inspection.
+    std::pair<std::size_t, std::size_t> pairs() const {
+        state_guard guard("hairshadow: compute pair counts"); // the caller's storage buffer binding stays
+        std::uint32_t counts[2] = {0, 0};
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, offsets_.get());
+        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 8, sizeof counts, counts);
+        return {counts[0], counts[1]};
+    }
+
+private:
+    static void grow(buffer& b, std::size_t& bytes, std::size_t needed) {
+        if (needed <= bytes) return;
+        bytes = std::max(needed, bytes + bytes / 4);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, b.get());
+        glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes), nullptr, GL_DYNAMIC_COPY);
+    }
+    void bind_lists() const {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, segments_.get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counts_.get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, offsets_.get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, binned_.get());
+    }
+    void set_light_uniforms(GLuint prog) const {
+        set_uniform(prog, "hs_resolution", light_.resolution());
+        set_uniform(prog, "hs_tiles_x", tiles_x_);
+        set_uniform_u(prog, "hs_long_first", GLuint(short_tiles * segment_count_));
+    }
+    void set_shading_uniforms(GLuint prog) const {
+        set_uniform(prog, "hs_use_fixed_alpha", options_.fixed_alpha ? 1 : 0);
+        glUniform1f(glGetUniformLocation(prog, "hs_fixed_alpha"), options_.fixed_alpha.value_or(0.0f));
+        glUniform1f(glGetUniformLocation(prog, "hs_footprint"), light_.texel_size(0.5f));
+        set_uniform(prog, "hs_footprint_varies", light_.perspective() && options_.depth_weighting ? 1 : 0);
+        glUniform4f(glGetUniformLocation(prog, "hs_footprint_terms"), 2.0f * light_.half_extent(), light_.near_plane(),
+                    light_.far_plane() - light_.near_plane(), float(light_.resolution()));
+    }
+    /// One invocation per segment: groups of 256 in rows of at most 65535 groups.
+    void dispatch_segments() const {
+        const std::size_t groups = (segment_count_ + 255) / 256;
+        if (groups == 0) return;
+        const std::size_t x = std::min<std::size_t>(groups, 65535), y = (groups + x - 1) / x;
+        glDispatchCompute(GLuint(x), GLuint(y), 1);
+    }
+
+    program prepare_, scan_, scatter_, range_;
+    buffer segments_, counts_, offsets_, binned_;
+    std::size_t segment_bytes_ = 0, count_bytes_ = 0, offset_bytes_ = 0, binned_bytes_ = 0;
+    static constexpr std::size_t short_tiles = 4; // HS_SHORT_TILES
+    std::size_t segment_count_ = 0;
+    int tiles_x_ = 0;
+    light_space light_;
+    raster_options options_;
+};
+
+} // namespace detail
+} // namespace hairshadow::gl
