@@ -876,30 +876,34 @@ struct triangle_mesh {
 
 
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
+#include <memory>
 #include <span>
 #include <string>
 #include <type_traits>
 #include <vector>
 
+#include <sys/stat.h>
+
 namespace hairshadow::detail {
+
+/// A C file, closed on leaving scope. The C library's files rather than <fstream> and <filesystem>:
+/// those two cost a user's program about half a second of compile time (docs/performance.md).
+using c_file = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
+inline c_file open_file(const std::string& path, const char* mode) noexcept { return {std::fopen(path.c_str(), mode), &std::fclose}; }
 
 /// Reads a whole file into memory (refusing files over HAIRSHADOW_MAX_FILE_BYTES).
 inline std::vector<unsigned char> read_file_bytes(const std::string& path) {
-    std::error_code ec;
-    const auto status = std::filesystem::status(path, ec);
-    if (ec || !std::filesystem::exists(status)) throw io_error(path, "no such file");
-    if (std::filesystem::is_directory(status)) throw io_error(path, "is a directory");
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    struct stat status {};
+    if (::stat(path.c_str(), &status) != 0) throw io_error(path, "no such file");
+    if (S_ISDIR(status.st_mode)) throw io_error(path, "is a directory");
+    const c_file in = open_file(path, "rb");
     if (!in) throw io_error(path, "cannot open for reading");
-    const std::streamoff size = in.tellg();
-    if (size < 0) throw io_error(path, "cannot determine the file size");
-    if (static_cast<std::uint64_t>(size) > HAIRSHADOW_MAX_FILE_BYTES) throw io_error(path, "file is larger than the configured maximum");
-    std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
-    in.seekg(0);
-    if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), size)) throw io_error(path, "read failed");
+    if (status.st_size < 0) throw io_error(path, "cannot determine the file size");
+    if (static_cast<std::uint64_t>(status.st_size) > HAIRSHADOW_MAX_FILE_BYTES) throw io_error(path, "file is larger than the configured maximum");
+    std::vector<unsigned char> bytes(static_cast<std::size_t>(status.st_size));
+    if (!bytes.empty() && std::fread(bytes.data(), 1, bytes.size(), in.get()) != bytes.size()) throw io_error(path, "read failed");
     return bytes;
 }
 
@@ -974,10 +978,10 @@ public:
         bytes_.insert(bytes_.end(), p, p + sizeof(T) * values.size());
     }
     void save(const std::string& path) const {
-        std::ofstream out(path, std::ios::binary | std::ios::trunc);
+        c_file out = open_file(path, "wb");
         if (!out) throw io_error(path, "cannot open for writing");
-        out.write(reinterpret_cast<const char*>(bytes_.data()), static_cast<std::streamsize>(bytes_.size()));
-        if (!out) throw io_error(path, "write failed");
+        const bool written = bytes_.empty() || std::fwrite(bytes_.data(), 1, bytes_.size(), out.get()) == bytes_.size();
+        if (!written || std::fclose(out.release()) != 0) throw io_error(path, "write failed");
     }
 
 private:
@@ -1737,13 +1741,17 @@ inline void write_tfx(const hair_model& model, const std::string& path, int majo
 
 #include <algorithm>
 #include <cctype>
-#include <filesystem>
+#include <string>
 
 namespace hairshadow {
 
 /// The extension of `path` in lower case (".tfx"), which names its format.
 inline std::string model_format_extension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
+    // std::filesystem::path(path).extension(), without <filesystem>: the file name's last dot onwards,
+    // none for a name that starts with its only dot (".hair") or is "." or "..".
+    const std::string name = path.substr(path.find_last_of('/') + 1);
+    const std::size_t dot = name.find_last_of('.');
+    std::string ext = dot == std::string::npos || dot == 0 || name == ".." ? std::string() : name.substr(dot);
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     return ext;
 }

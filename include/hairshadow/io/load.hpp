@@ -10,13 +10,17 @@
 
 #include <algorithm>
 #include <cctype>
-#include <filesystem>
+#include <string>
 
 namespace hairshadow {
 
 /// The extension of `path` in lower case (".tfx"), which names its format.
 inline std::string model_format_extension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
+    // std::filesystem::path(path).extension(), without <filesystem>: the file name's last dot onwards,
+    // none for a name that starts with its only dot (".hair") or is "." or "..".
+    const std::string name = path.substr(path.find_last_of('/') + 1);
+    const std::size_t dot = name.find_last_of('.');
+    std::string ext = dot == std::string::npos || dot == 0 || name == ".." ? std::string() : name.substr(dot);
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     return ext;
 }
