@@ -44,7 +44,6 @@ public:
         float nearest = 0.0f, furthest = 0.0f;
         friend bool operator==(const texel_state&, const texel_state&) = default;
     };
-    void prepare(const hairshadow::fragment_buffer&) const noexcept {}
     void prepare(const hairshadow::depth_extent&) const noexcept {}
     template <class Fragment>
     void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
@@ -65,7 +64,6 @@ public:
         const float lo = boundary(s, k), hi = boundary(s, k + 1);
         return {k, hi > lo ? std::clamp((depth - lo) / (hi - lo), 0.0f, 1.0f) : 0.0f};
     }
-    static constexpr std::size_t global_bytes() noexcept { return 0; }
 
     // Optional: the state from a texel's nearest and furthest fragment lets the tiled build stream
     // dense tiles without grouping them; a state that depends on the fragments as a set lets it walk

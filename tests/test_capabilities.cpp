@@ -6,6 +6,10 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <span>
+#include <string_view>
+
 using namespace hairshadow;
 
 namespace {
@@ -56,4 +60,51 @@ TEST_CASE("the capabilities are the policies' own: each policy alone", "[capabil
     STATIC_REQUIRE(detail::streams_tiles<per_pixel_depth<128>, emulated_8bit, occupancy_bitcount<1>>);
     // A placement with only the required members: a whole method, built by the grouped build.
     STATIC_REQUIRE_FALSE(detail::assigns_each_avx512<clustered<4>>);
+}
+
+namespace {
+/// A placement with only the required members (docs/policies.md, "Placement"): four fixed slices
+/// of the light's depth, [0, 1/4), [1/4, 1/2), ... No capability, no global state, no contiguity.
+struct four_fixed_slices {
+    static constexpr int layer_count = 4;
+    static constexpr bool cumulative = true;
+    static constexpr std::string_view glsl_name = "none";
+    struct texel_state {
+        friend bool operator==(const texel_state&, const texel_state&) = default;
+    };
+    void prepare(const depth_extent&) noexcept {}
+    template <class Fragment>
+    void prepare_texel(std::span<const Fragment>, texel_state&) const noexcept {}
+    int assign(const texel_state&, float depth) const noexcept { return std::clamp(int(depth * 4.0f), 0, 3); }
+    layer_position locate(const texel_state&, float depth) const noexcept {
+        if (!(depth >= 0.0f)) return {-1, 0.0f};
+        if (depth >= 1.0f) return {4, 0.0f};
+        const int k = std::clamp(int(depth * 4.0f), 0, 3);
+        return detail::position_in(k, depth, 0.25f * float(k), 0.25f * float(k + 1));
+    }
+};
+} // namespace
+
+TEST_CASE("a placement with only the required members is a whole method: the tiled build groups it and gives the buffer build's maps", "[capabilities]") {
+    using minimal = shadow_method<four_fixed_slices, float_accumulation, interpolation>;
+    using c = detail::capabilities_of<minimal>;
+    STATIC_REQUIRE_FALSE(c::streams);
+    STATIC_REQUIRE_FALSE(c::order_free);
+    STATIC_REQUIRE_FALSE(c::assigns_each);
+    STATIC_REQUIRE(placement_global_bytes<four_fixed_slices>() == 0);
+    STATIC_REQUIRE_FALSE(contiguous_layers<four_fixed_slices>());
+    const hair_model model = make_procedural({.style = hair_style::wavy, .strands = 400, .segments = 16, .seed = 3});
+    const auto light = light_space::fit(light_spec::directional({0, -1, 0}), model.bounds(), 64);
+    minimal tiled, from_buffer;
+    tiled.build(model, light);
+    from_buffer.build(rasterize(model, light), light, tiled.map_extent());
+    std::size_t differing = 0, shadowed = 0;
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) {
+            differing += !(tiled.texel(x, y) == from_buffer.texel(x, y));
+            shadowed += tiled.transmittance(x, y, 1.0f) < 1.0f;
+        }
+    CHECK(differing == 0);
+    CHECK(shadowed > 100);
+    CHECK(tiled.memory_bytes() == 64u * 64u * sizeof(minimal::texel_maps));
 }

@@ -54,7 +54,7 @@ TEST_CASE("emulated 8-bit accumulation quantises every add and saturates", "[pol
 TEST_CASE("planar slices: boundaries, assignment and interpolation", "[policy][placement][osm]") {
     const auto fb = one_texel({0.2f, 0.25f, 0.41f, 0.6f});
     uniform_slices<4> u;
-    u.prepare(fb);
+    u.prepare(extent_of(fb));
     const uniform_slices<4>::texel_state s{};
     CHECK(u.boundary(s, 0) == 0.2f);
     CHECK(u.boundary(s, 2) == Approx(0.4f));
@@ -64,7 +64,7 @@ TEST_CASE("planar slices: boundaries, assignment and interpolation", "[policy][p
     CHECK(u.locate(s, 0.1f).index == -1);
     CHECK(u.locate(s, 0.7f).index == 4);
     gamma_slices<4> g;
-    g.prepare(fb);
+    g.prepare(extent_of(fb));
     const gamma_slices<4>::texel_state gs{};
     CHECK(g.boundary(gs, 1) == Approx(0.2f + 0.4f / 16.0f)); // (1/4)^2 of the range
     CHECK(g.boundary(gs, 2) == Approx(0.3f));
@@ -85,7 +85,7 @@ TEST_CASE("planar slices: boundaries, assignment and interpolation", "[policy][p
 TEST_CASE("per-pixel depth layers start at the first fragment and grow linearly", "[policy][placement][dom]") {
     const auto fb = one_texel({0.3f, 0.31f, 0.36f, 0.6f, 0.9f});
     per_pixel_depth<3> p(0.3f);
-    p.prepare(fb);
+    p.prepare(extent_of(fb));
     per_pixel_depth<3>::texel_state s;
     p.prepare_texel(fb.texel(0, 0), s);
     CHECK(s.z0 == 0.3f);
@@ -97,10 +97,10 @@ TEST_CASE("per-pixel depth layers start at the first fragment and grow linearly"
     CHECK(p.assign(s, 0.36f) == 1);
     CHECK(p.assign(s, 0.9f) == 2); // beyond the last layer: clamped into it (the paper's choice)
     per_pixel_depth<3, layer_sizes::linear, beyond_last_layer::ignore> ignore(0.3f);
-    ignore.prepare(fb);
+    ignore.prepare(extent_of(fb));
     CHECK(ignore.assign({0.3f}, 0.9f) == -1);
     per_pixel_depth<3, layer_sizes::uniform, beyond_last_layer::extend> extend(0.3f);
-    extend.prepare(fb);
+    extend.prepare(extent_of(fb));
     decltype(extend)::texel_state e;
     extend.prepare_texel(fb.texel(0, 0), e);
     CHECK(extend.boundary(e, 3) > 0.9f); // stretched to reach the last fragment

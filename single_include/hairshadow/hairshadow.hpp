@@ -3907,6 +3907,7 @@ struct accumulation_list {
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 namespace hairshadow {
@@ -3917,6 +3918,21 @@ struct layer_position {
     int index;
     float fraction;
 };
+
+/// Whether a placement's layers tile a depth interval without gaps (P::contiguous; false where it
+/// does not say): occupancy_bitcount needs it.
+template <class P>
+constexpr bool contiguous_layers() noexcept {
+    if constexpr (requires { P::contiguous; }) return P::contiguous;
+    else return false;
+}
+
+/// Bytes of a placement's global state (P::global_bytes(); none where it does not say).
+template <class P>
+constexpr std::size_t placement_global_bytes() noexcept {
+    if constexpr (requires { P::global_bytes(); }) return P::global_bytes();
+    else return 0;
+}
 
 namespace detail {
 /// Moves an estimated layer index to the k in [0, last] with boundary(k) <= depth < boundary(k + 1).
@@ -3951,6 +3967,7 @@ inline float just_above(float hi) noexcept { return std::nextafter(hi, std::nume
 // ---- end hairshadow/placement/layer_position.hpp
 
 #include <concepts>
+#include <cstddef>
 #include <span>
 #include <string_view>
 
@@ -3959,24 +3976,24 @@ namespace hairshadow {
 /// Placement: which pre-passes run and where a depth falls among a texel's layers. The per-texel
 /// steps take a texel's fragments as a span of `fragment` (from a fragment_buffer) or of
 /// `optical_fragment` (the tiled build), read through `.depth` and fragment_optical_depth(f).
+/// Required: the layers (layer_count, cumulative), the state (texel_state), the steps (prepare,
+/// prepare_texel, assign) and the result (locate), and the GLSL snippet's name. Optional, with
+/// their defaults: contiguous (false), global_bytes() (0), and the capabilities of
+/// policies/capabilities.hpp.
 template <class P>
-concept placement_policy = std::default_initializable<P> && std::copyable<P> && requires(P p, const P cp, const fragment_buffer& fb,
-                                                                                         const depth_extent& extent,
+concept placement_policy = std::default_initializable<P> && std::copyable<P> && requires(P p, const P cp, const depth_extent& extent,
                                                                                          std::span<const fragment> frags,
                                                                                          std::span<const optical_fragment> tile_frags,
                                                                                          typename P::texel_state& state, float depth) {
     { P::layer_count } -> std::convertible_to<int>;
     { P::cumulative } -> std::convertible_to<bool>;
-    { P::contiguous } -> std::convertible_to<bool>;
     { P::glsl_name } -> std::convertible_to<std::string_view>;
     requires std::default_initializable<typename P::texel_state>;
-    p.prepare(fb);
     p.prepare(extent);
     cp.prepare_texel(frags, state);
     cp.prepare_texel(tile_frags, state);
     { cp.assign(state, depth) } -> std::same_as<int>;
     { cp.locate(state, depth) } -> std::same_as<layer_position>;
-    { P::global_bytes() } -> std::convertible_to<std::size_t>;
 };
 
 /// Accumulation: how each fragment's optical depth is summed and stored.
@@ -5631,9 +5648,9 @@ namespace hairshadow {
 template <class Placement, class Accumulation, class Reconstruction>
 class shadow_method : public map_queries<shadow_method<Placement, Accumulation, Reconstruction>> {
     static_assert(placement_policy<Placement>,
-                  "Placement must provide layer_count, cumulative, contiguous, glsl_name, texel_state, prepare(fragment_buffer), "
-                  "prepare(depth_extent), prepare_texel(fragments, state) for spans of fragment and optical_fragment, assign(state, depth) -> int, locate(state, depth) -> layer_position and "
-                  "global_bytes() - see docs/policies.md");
+                  "Placement must provide layer_count, cumulative, glsl_name, texel_state, prepare(depth_extent), prepare_texel(fragments, state) "
+                  "for spans of fragment and optical_fragment, assign(state, depth) -> int and locate(state, depth) -> layer_position "
+                  "- see docs/policies.md");
     static_assert(accumulation_policy<Accumulation>,
                   "Accumulation must provide value_type, sum_type, add(sum, b), combine(sum, sum), store(sum), decode(value) -> float "
                   "and glsl_name - see docs/policies.md");
@@ -5749,7 +5766,7 @@ public:
     }
     const light_space& light() const noexcept { return light_; }
     /// Bytes the maps hold: every texel's placement state and stored layers, plus the global state.
-    std::size_t memory_bytes() const noexcept { return texels_.size() * sizeof(texel_maps) + Placement::global_bytes(); }
+    std::size_t memory_bytes() const noexcept { return texels_.size() * sizeof(texel_maps) + placement_global_bytes<Placement>(); }
     /// Bytes per texel.
     static constexpr std::size_t texel_bytes() noexcept { return sizeof(texel_maps); }
 
@@ -5868,7 +5885,6 @@ public:
         friend bool operator==(const texel_state&, const texel_state&) = default;
     };
 
-    void prepare(const fragment_buffer&) const noexcept {}
     void prepare(const depth_extent&) const noexcept {}
     template <class Fragment>
     void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
@@ -6024,7 +6040,6 @@ public:
         if (!(extent > 0.0f && extent <= 1.0f)) throw argument_error("per_pixel_depth: the layer extent must be in (0, 1]");
     }
 
-    void prepare(const fragment_buffer& fragments) noexcept { prepare(extent_of(fragments)); }
     /// The same from the map's depth extent (the GL back end reduces it from its depth-range map).
     void prepare(const depth_extent& e) noexcept {
         extent_ = requested_extent_ ? *requested_extent_ : std::max(0.5f * (e.furthest - e.nearest), 1e-6f);
@@ -7007,7 +7022,6 @@ public:
         bool empty;
     };
 
-    void prepare(const fragment_buffer&) const noexcept {}
     void prepare(const depth_extent&) const noexcept {}
 
     template <class Fragment>
@@ -7315,7 +7329,7 @@ struct occupancy_bitcount {
 
     /// Needs contiguous slices, a whole number of 32-bit words, split evenly into the slabs.
     template <class Placement>
-    static constexpr bool accepts = Placement::contiguous && Placement::layer_count % 32 == 0 && Placement::layer_count % Slabs == 0;
+    static constexpr bool accepts = contiguous_layers<Placement>() && Placement::layer_count % 32 == 0 && Placement::layer_count % Slabs == 0;
 
     /// A texel's maps depend on its fragments as a set where they share one optical depth: every sum
     /// then adds the same b, whatever the order (order_free_maps).
@@ -7609,7 +7623,6 @@ public:
     };
 
     /// Global pre-pass: D_0 is the nearest fragment, D_N just beyond the furthest.
-    void prepare(const fragment_buffer& fragments) noexcept { prepare(extent_of(fragments)); }
     /// The same from the map's depth extent (the GL back end reduces it from its depth-range map).
     void prepare(const depth_extent& e) noexcept {
         near_ = e.nearest;

@@ -5,6 +5,7 @@
 #include <hairshadow/placement/layer_position.hpp>
 
 #include <concepts>
+#include <cstddef>
 #include <span>
 #include <string_view>
 
@@ -13,24 +14,24 @@ namespace hairshadow {
 /// Placement: which pre-passes run and where a depth falls among a texel's layers. The per-texel
 /// steps take a texel's fragments as a span of `fragment` (from a fragment_buffer) or of
 /// `optical_fragment` (the tiled build), read through `.depth` and fragment_optical_depth(f).
+/// Required: the layers (layer_count, cumulative), the state (texel_state), the steps (prepare,
+/// prepare_texel, assign) and the result (locate), and the GLSL snippet's name. Optional, with
+/// their defaults: contiguous (false), global_bytes() (0), and the capabilities of
+/// policies/capabilities.hpp.
 template <class P>
-concept placement_policy = std::default_initializable<P> && std::copyable<P> && requires(P p, const P cp, const fragment_buffer& fb,
-                                                                                         const depth_extent& extent,
+concept placement_policy = std::default_initializable<P> && std::copyable<P> && requires(P p, const P cp, const depth_extent& extent,
                                                                                          std::span<const fragment> frags,
                                                                                          std::span<const optical_fragment> tile_frags,
                                                                                          typename P::texel_state& state, float depth) {
     { P::layer_count } -> std::convertible_to<int>;
     { P::cumulative } -> std::convertible_to<bool>;
-    { P::contiguous } -> std::convertible_to<bool>;
     { P::glsl_name } -> std::convertible_to<std::string_view>;
     requires std::default_initializable<typename P::texel_state>;
-    p.prepare(fb);
     p.prepare(extent);
     cp.prepare_texel(frags, state);
     cp.prepare_texel(tile_frags, state);
     { cp.assign(state, depth) } -> std::same_as<int>;
     { cp.locate(state, depth) } -> std::same_as<layer_position>;
-    { P::global_bytes() } -> std::convertible_to<std::size_t>;
 };
 
 /// Accumulation: how each fragment's optical depth is summed and stored.

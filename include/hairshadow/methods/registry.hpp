@@ -113,7 +113,7 @@ public:
     std::size_t memory_bytes() const override { return method_.memory_bytes(); }
     int layer_count() const override { return Method::stored_maps == 0 ? 0 : Method::layer_count; }
     std::optional<std::size_t> memory_bytes_at(int resolution) const override {
-        return std::size_t(resolution) * std::size_t(resolution) * Method::texel_bytes() + Method::placement_type::global_bytes();
+        return std::size_t(resolution) * std::size_t(resolution) * Method::texel_bytes() + placement_global_bytes<typename Method::placement_type>();
     }
     int stored_maps() const override { return Method::stored_maps; }
     std::size_t fragment_count() const override { return method_.fragment_count(); }

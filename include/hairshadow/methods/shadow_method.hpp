@@ -31,9 +31,9 @@ namespace hairshadow {
 template <class Placement, class Accumulation, class Reconstruction>
 class shadow_method : public map_queries<shadow_method<Placement, Accumulation, Reconstruction>> {
     static_assert(placement_policy<Placement>,
-                  "Placement must provide layer_count, cumulative, contiguous, glsl_name, texel_state, prepare(fragment_buffer), "
-                  "prepare(depth_extent), prepare_texel(fragments, state) for spans of fragment and optical_fragment, assign(state, depth) -> int, locate(state, depth) -> layer_position and "
-                  "global_bytes() - see docs/policies.md");
+                  "Placement must provide layer_count, cumulative, glsl_name, texel_state, prepare(depth_extent), prepare_texel(fragments, state) "
+                  "for spans of fragment and optical_fragment, assign(state, depth) -> int and locate(state, depth) -> layer_position "
+                  "- see docs/policies.md");
     static_assert(accumulation_policy<Accumulation>,
                   "Accumulation must provide value_type, sum_type, add(sum, b), combine(sum, sum), store(sum), decode(value) -> float "
                   "and glsl_name - see docs/policies.md");
@@ -149,7 +149,7 @@ public:
     }
     const light_space& light() const noexcept { return light_; }
     /// Bytes the maps hold: every texel's placement state and stored layers, plus the global state.
-    std::size_t memory_bytes() const noexcept { return texels_.size() * sizeof(texel_maps) + Placement::global_bytes(); }
+    std::size_t memory_bytes() const noexcept { return texels_.size() * sizeof(texel_maps) + placement_global_bytes<Placement>(); }
     /// Bytes per texel.
     static constexpr std::size_t texel_bytes() noexcept { return sizeof(texel_maps); }
 

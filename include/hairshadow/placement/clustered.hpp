@@ -51,7 +51,6 @@ public:
         bool empty;
     };
 
-    void prepare(const fragment_buffer&) const noexcept {}
     void prepare(const depth_extent&) const noexcept {}
 
     template <class Fragment>

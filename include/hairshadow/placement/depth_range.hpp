@@ -37,7 +37,6 @@ public:
         friend bool operator==(const texel_state&, const texel_state&) = default;
     };
 
-    void prepare(const fragment_buffer&) const noexcept {}
     void prepare(const depth_extent&) const noexcept {}
     template <class Fragment>
     void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 namespace hairshadow {
@@ -16,6 +17,21 @@ struct layer_position {
     int index;
     float fraction;
 };
+
+/// Whether a placement's layers tile a depth interval without gaps (P::contiguous; false where it
+/// does not say): occupancy_bitcount needs it.
+template <class P>
+constexpr bool contiguous_layers() noexcept {
+    if constexpr (requires { P::contiguous; }) return P::contiguous;
+    else return false;
+}
+
+/// Bytes of a placement's global state (P::global_bytes(); none where it does not say).
+template <class P>
+constexpr std::size_t placement_global_bytes() noexcept {
+    if constexpr (requires { P::global_bytes(); }) return P::global_bytes();
+    else return 0;
+}
 
 namespace detail {
 /// Moves an estimated layer index to the k in [0, last] with boundary(k) <= depth < boundary(k + 1).

@@ -81,7 +81,6 @@ public:
         if (!(extent > 0.0f && extent <= 1.0f)) throw argument_error("per_pixel_depth: the layer extent must be in (0, 1]");
     }
 
-    void prepare(const fragment_buffer& fragments) noexcept { prepare(extent_of(fragments)); }
     /// The same from the map's depth extent (the GL back end reduces it from its depth-range map).
     void prepare(const depth_extent& e) noexcept {
         extent_ = requested_extent_ ? *requested_extent_ : std::max(0.5f * (e.furthest - e.nearest), 1e-6f);

@@ -59,7 +59,6 @@ public:
     };
 
     /// Global pre-pass: D_0 is the nearest fragment, D_N just beyond the furthest.
-    void prepare(const fragment_buffer& fragments) noexcept { prepare(extent_of(fragments)); }
     /// The same from the map's depth extent (the GL back end reduces it from its depth-range map).
     void prepare(const depth_extent& e) noexcept {
         near_ = e.nearest;

@@ -31,7 +31,7 @@ struct occupancy_bitcount {
 
     /// Needs contiguous slices, a whole number of 32-bit words, split evenly into the slabs.
     template <class Placement>
-    static constexpr bool accepts = Placement::contiguous && Placement::layer_count % 32 == 0 && Placement::layer_count % Slabs == 0;
+    static constexpr bool accepts = contiguous_layers<Placement>() && Placement::layer_count % 32 == 0 && Placement::layer_count % Slabs == 0;
 
     /// A texel's maps depend on its fragments as a set where they share one optical depth: every sum
     /// then adds the same b, whatever the order (order_free_maps).
