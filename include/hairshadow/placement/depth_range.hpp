@@ -4,7 +4,7 @@
 /// furthest fragment of each texel bound S equal slices, so that every slice lies inside the hair.
 
 #include <hairshadow/config.hpp>
-#include <hairshadow/placement/detail/assign_each.hpp>
+#include <hairshadow/placement/detail/slices_avx512.hpp>
 #include <hairshadow/placement/layer_position.hpp>
 
 #include <cmath>
@@ -57,32 +57,11 @@ public:
         return std::clamp(slice_of(s, depth), 0, S - 1);
     }
 #if HAIRSHADOW_AVX512_WALK
-    /// assign() for fragment i of a tile, layers[i] = assign(states[texels[i]], depths[i]), sixteen at
-    /// a time (placement/detail/assign_each.hpp): the same estimate, settled against the same boundaries,
-    /// lane by lane, one step at a time while any lane still moves.
+    /// assign() for fragments of many texels, sixteen at a time (placement/detail/slices_avx512.hpp).
     HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state* states, std::span<const std::uint32_t> texels,
                                                      std::span<const float> depths, std::int32_t* layers) const noexcept {
         static_assert(sizeof(texel_state) == 2 * sizeof(float) && offsetof(texel_state, furthest) == sizeof(float));
-        const float* ranges = reinterpret_cast<const float*>(states);
-        const __m512 slices = _mm512_set1_ps(float(S));
-        for (std::size_t i = 0; i < texels.size(); i += 16) {
-            const __mmask16 lanes = detail::avx512::first_lanes(texels.size() - i);
-            const __m512i texel = _mm512_maskz_loadu_epi32(lanes, texels.data() + i);
-            const __m512 depth = _mm512_maskz_loadu_ps(lanes, depths.data() + i);
-            const __m512 nearest = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, texel, ranges, 8);
-            const __m512 furthest = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, texel, ranges + 1, 8);
-            const __m512 span = _mm512_sub_ps(furthest, nearest);
-            const __mmask16 ranged = _mm512_mask_cmp_ps_mask(lanes, furthest, nearest, _CMP_GT_OQ); // else slice 0
-            // settle_layer: the estimate's whole part (0 for NaN and negatives), then down and up.
-            const __m512 estimate = _mm512_mul_ps(_mm512_div_ps(_mm512_sub_ps(depth, nearest), span), slices);
-            const __mmask16 positive = _mm512_mask_cmp_ps_mask(ranged, estimate, _mm512_setzero_ps(), _CMP_GT_OQ);
-            __m512i k = _mm512_maskz_cvttps_epi32(positive, _mm512_min_ps(estimate, slices));
-            k = detail::avx512::settle_layers(k, depth, ranged, S, [=](__m512i j, __mmask16) HAIRSHADOW_AVX512_TARGET {
-                return boundary_avx512(nearest, span, j);
-            });
-            k = _mm512_min_epi32(k, _mm512_set1_epi32(S - 1)); // never negative: it starts at 0 or above and stops there
-            _mm512_mask_storeu_epi32(layers + i, lanes, k);
-        }
+        detail::avx512::assign_depth_range<S>(reinterpret_cast<const float*>(states), texels, depths, layers);
     }
 #endif
     layer_position locate(const texel_state& s, float depth) const noexcept {
@@ -95,13 +74,6 @@ public:
     static constexpr std::size_t global_bytes() noexcept { return 0; }
 
 private:
-#if HAIRSHADOW_AVX512_WALK
-    /// boundary(k) for each lane's texel (nearest, and span = furthest - nearest) and k.
-    HAIRSHADOW_AVX512_TARGET static __m512 boundary_avx512(__m512 nearest, __m512 span, __m512i k) noexcept {
-        const __m512 fraction = _mm512_div_ps(_mm512_cvtepi32_ps(k), _mm512_set1_ps(float(S)));
-        return _mm512_add_ps(nearest, detail::avx512::rounded(_mm512_mul_ps(span, fraction)));
-    }
-#endif
     /// The k with boundary(k) <= depth < boundary(k + 1), or S past the furthest boundary, settled
     /// against the boundaries so that slab boundaries are exact.
     int slice_of(const texel_state& s, float depth) const noexcept {

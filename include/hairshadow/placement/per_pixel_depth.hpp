@@ -5,7 +5,7 @@
 /// same d_k for every texel. A fragment adds to its layer and every later one.
 
 #include <hairshadow/core/error.hpp>
-#include <hairshadow/placement/detail/assign_each.hpp>
+#include <hairshadow/placement/detail/slices_avx512.hpp>
 #include <hairshadow/placement/layer_position.hpp>
 
 #include <array>
@@ -133,33 +133,11 @@ public:
         }
     }
 #if HAIRSHADOW_AVX512_WALK
-    /// assign() for fragment i of a tile, layers[i] = assign(states[texels[i]], depths[i]), sixteen at
-    /// a time (placement/detail/assign_each.hpp): z0 (and the stretch) gathered from the texels' states, the
-    /// same subtraction and division lane by lane, then assign's boundary count (K <= 8) or locate's
-    /// estimate settled against the same boundaries. The settled layer does not depend on the
-    /// estimate, only on the boundaries, so the estimate need not match locate's to the bit.
+    /// assign() for fragments of many texels, sixteen at a time (placement/detail/slices_avx512.hpp).
     HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state* states, std::span<const std::uint32_t> texels,
                                                      std::span<const float> depths, std::int32_t* layers) const noexcept {
-        constexpr int stride = int(sizeof(texel_state)); // the gathers' scale: 4 or 8 bytes a texel
-        const float* z0s = reinterpret_cast<const float*>(states);
-        const __m512 extent = _mm512_set1_ps(extent_);
-        for (std::size_t i = 0; i < texels.size(); i += 16) {
-            const __mmask16 lanes = detail::avx512::first_lanes(texels.size() - i);
-            const __m512i texel = _mm512_maskz_loadu_epi32(lanes, texels.data() + i);
-            const __m512 depth = _mm512_maskz_loadu_ps(lanes, depths.data() + i);
-            const __m512 z0 = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, texel, z0s, stride);
-            __m512 span = extent;
-            if constexpr (Beyond == beyond_last_layer::extend)
-                span = _mm512_mul_ps(extent, _mm512_mask_i32gather_ps(_mm512_set1_ps(1.0f), lanes, texel, z0s + 1, stride));
-            const __m512 rel = _mm512_div_ps(_mm512_sub_ps(depth, z0), span);
-            __m512i layer; // the boundaries d_1..d_K reached: K beyond the last layer, 0 in front and for NaN
-            if constexpr (K <= 8) layer = detail::avx512::boundaries_reached<K>(rel, relative_boundaries.data() + 1);
-            else layer = settled_layer_avx512(rel, lanes);
-            if constexpr (Beyond == beyond_last_layer::ignore)
-                layer = _mm512_mask_set1_epi32(layer, _mm512_cmpeq_epi32_mask(layer, _mm512_set1_epi32(K)), -1);
-            else layer = _mm512_min_epi32(layer, _mm512_set1_epi32(K - 1));
-            _mm512_mask_storeu_epi32(layers + i, lanes, layer);
-        }
+        detail::avx512::assign_per_pixel<K, Sizes == layer_sizes::linear, Beyond == beyond_last_layer::extend, Beyond == beyond_last_layer::ignore>(
+            states, extent_, relative_boundaries.data(), texels, depths, layers);
     }
 #endif
     layer_position locate(const texel_state& s, float depth) const noexcept {
@@ -179,31 +157,6 @@ public:
     std::optional<float> requested_extent() const noexcept { return requested_extent_; }
 
 private:
-#if HAIRSHADOW_AVX512_WALK
-    /// For K > 8, per lane, locate()'s layer of `rel`: 0 in front (and for NaN), K from 1 on, else the
-    /// k with d_k <= rel < d_k+1, settled from the closed-form estimate one step at a time.
-    HAIRSHADOW_AVX512_TARGET static __m512i settled_layer_avx512(__m512 rel, __mmask16 lanes) noexcept {
-        const __m512 last = _mm512_set1_ps(float(K - 1));
-        const float* d = relative_boundaries.data();
-        const __mmask16 inside = _mm512_mask_cmp_ps_mask(_mm512_mask_cmp_ps_mask(lanes, rel, _mm512_setzero_ps(), _CMP_GE_OQ), rel,
-                                                         _mm512_set1_ps(1.0f), _CMP_LT_OQ);
-        __m512 estimate;
-        if constexpr (Sizes == layer_sizes::linear) {
-            const __m512 root = _mm512_sqrt_ps(_mm512_add_ps(_mm512_set1_ps(1.0f), _mm512_mul_ps(rel, _mm512_set1_ps(4.0f * float(K * (K + 1))))));
-            estimate = _mm512_mul_ps(_mm512_sub_ps(root, _mm512_set1_ps(1.0f)), _mm512_set1_ps(0.5f));
-        } else {
-            estimate = _mm512_mul_ps(rel, _mm512_set1_ps(float(K)));
-        }
-        const __mmask16 positive = _mm512_mask_cmp_ps_mask(inside, estimate, _mm512_setzero_ps(), _CMP_GT_OQ);
-        __m512i k = _mm512_maskz_cvttps_epi32(positive, _mm512_min_ps(estimate, last));
-        k = detail::avx512::settle_layers(k, rel, inside, K - 1, [=](__m512i j, __mmask16 movable) HAIRSHADOW_AVX512_TARGET {
-            return _mm512_mask_i32gather_ps(rel, movable, j, d, 4);
-        });
-        // Beyond the last boundary (rel >= 1): K; in front or NaN: 0, as assign maps locate's -1.
-        const __mmask16 beyond = _mm512_mask_cmp_ps_mask(lanes, rel, _mm512_set1_ps(1.0f), _CMP_GE_OQ);
-        return _mm512_mask_mov_epi32(_mm512_maskz_mov_epi32(inside, k), beyond, _mm512_set1_epi32(K));
-    }
-#endif
     float span_of(const texel_state& s) const noexcept {
         if constexpr (Beyond == beyond_last_layer::extend) return extent_ * s.scale;
         else return extent_;

@@ -5,7 +5,7 @@
 /// map of its slice and to every later one (each map holds the opacity in front of its depth); a query
 /// interpolates linearly in depth between the maps that enclose it.
 
-#include <hairshadow/placement/detail/assign_each.hpp>
+#include <hairshadow/placement/detail/slices_avx512.hpp>
 #include <hairshadow/placement/layer_position.hpp>
 
 #include <algorithm>
@@ -76,42 +76,14 @@ public:
     /// The slice a fragment at `depth` falls in: D_k <= depth < D_{k+1}.
     int assign(const texel_state&, float depth) const noexcept { return std::min(reached(depth), N - 1); }
 #if HAIRSHADOW_AVX512_WALK
-    /// assign() for each depth, sixteen at a time (placement/detail/assign_each.hpp): the same comparisons
-    /// with D_1..D_N lane by lane. For the branch-free count's N only.
+    /// assign() for fragments of many texels, sixteen at a time (placement/detail/slices_avx512.hpp):
+    /// by counting boundaries up to 16 maps, by bisection in registers from 17 to 64.
     HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state*, std::span<const std::uint32_t> texels, std::span<const float> depths,
                                                      std::int32_t* layers) const noexcept
-        requires(N <= 16)
+        requires(N <= 64)
     {
-        for (std::size_t i = 0; i < texels.size(); i += 16) {
-            const __mmask16 lanes = detail::avx512::first_lanes(texels.size() - i);
-            const __m512i reached = detail::avx512::boundaries_reached<N>(_mm512_maskz_loadu_ps(lanes, depths.data() + i), boundaries_.data() + 1);
-            _mm512_mask_storeu_epi32(layers + i, lanes, _mm512_min_epi32(reached, _mm512_set1_epi32(N - 1)));
-        }
-    }
-    /// The same for 17 to 64 maps, by bisection in registers: assign's min(reached, N - 1) is the
-    /// number of D_1..D_{N-1} at or below the depth, and since they never decrease, six halvings of a
-    /// table of them (padded with NaN, which no depth reaches) find it, as reached's upper_bound does.
-    /// A NaN depth reaches none, as in reached.
-    HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state*, std::span<const std::uint32_t> texels, std::span<const float> depths,
-                                                     std::int32_t* layers) const noexcept
-        requires(N > 16 && N <= 64)
-    {
-        alignas(64) float table[64];
-        std::fill(std::begin(table), std::end(table), std::numeric_limits<float>::quiet_NaN());
-        std::copy(boundaries_.begin() + 1, boundaries_.begin() + N, table); // D_1 .. D_{N-1}
-        const __m512 t0 = _mm512_load_ps(table), t1 = _mm512_load_ps(table + 16), t2 = _mm512_load_ps(table + 32), t3 = _mm512_load_ps(table + 48);
-        for (std::size_t i = 0; i < texels.size(); i += 16) {
-            const __mmask16 lanes = detail::avx512::first_lanes(texels.size() - i);
-            const __m512 depth = _mm512_maskz_loadu_ps(lanes, depths.data() + i);
-            __m512i below = _mm512_setzero_si512(); // table entries known to be at or below the depth
-            for (int step = 32; step >= 1; step /= 2) {
-                const __m512i probe = _mm512_add_epi32(below, _mm512_set1_epi32(step - 1));
-                const __m512 low_half = _mm512_permutex2var_ps(t0, probe, t1), high_half = _mm512_permutex2var_ps(t2, probe, t3);
-                const __m512 entry = _mm512_mask_blend_ps(_mm512_test_epi32_mask(probe, _mm512_set1_epi32(32)), low_half, high_half);
-                below = _mm512_mask_add_epi32(below, _mm512_cmp_ps_mask(entry, depth, _CMP_LE_OQ), below, _mm512_set1_epi32(step));
-            }
-            _mm512_mask_storeu_epi32(layers + i, lanes, below);
-        }
+        if constexpr (N <= 16) detail::avx512::assign_planar_by_count<N>(boundaries_.data(), texels, depths, layers);
+        else detail::avx512::assign_planar_by_bisection<N>(boundaries_.data(), texels, depths, layers);
     }
 #endif
     layer_position locate(const texel_state&, float depth) const noexcept {
