@@ -889,7 +889,7 @@ struct triangle_mesh {
 namespace hairshadow::detail {
 
 /// A C file, closed on leaving scope. The C library's files rather than <fstream> and <filesystem>:
-/// those two cost a user's program about half a second of compile time (docs/performance.md).
+/// those two cost a user's program a few tenths of a second of compile time (docs/performance.md).
 using c_file = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
 inline c_file open_file(const std::string& path, const char* mode) noexcept { return {std::fopen(path.c_str(), mode), &std::fclose}; }
 
@@ -5862,8 +5862,7 @@ private:
 /// same IEEE subtraction, division and comparisons in every lane as the scalar assign, and the
 /// estimates settled against the same boundaries, so every layer is assign's, bit for bit
 /// (tests/test_placement_steps.cpp). Each is inlined into its member, as it was when it was the
-/// member's body: called once a block of fragments, an extra call cost the streamed build 2-3% at
-/// 2048x2048 (hairshadow bench, side by side).
+/// member's body (measured with and without: no difference, BENCHMARKS.md, "Issue 40").
 
 
 #include <algorithm>

@@ -20,7 +20,7 @@
 namespace hairshadow::detail {
 
 /// A C file, closed on leaving scope. The C library's files rather than <fstream> and <filesystem>:
-/// those two cost a user's program about half a second of compile time (docs/performance.md).
+/// those two cost a user's program a few tenths of a second of compile time (docs/performance.md).
 using c_file = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
 inline c_file open_file(const std::string& path, const char* mode) noexcept { return {std::fopen(path.c_str(), mode), &std::fclose}; }
 

@@ -6,8 +6,7 @@
 /// same IEEE subtraction, division and comparisons in every lane as the scalar assign, and the
 /// estimates settled against the same boundaries, so every layer is assign's, bit for bit
 /// (tests/test_placement_steps.cpp). Each is inlined into its member, as it was when it was the
-/// member's body: called once a block of fragments, an extra call cost the streamed build 2-3% at
-/// 2048x2048 (hairshadow bench, side by side).
+/// member's body (measured with and without: no difference, BENCHMARKS.md, "Issue 40").
 
 #include <hairshadow/placement/detail/assign_each.hpp>
 
