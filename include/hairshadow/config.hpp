@@ -39,6 +39,27 @@
 #endif
 #endif
 
+/// The kernels compiled once, opt in. By default hairshadow is header-only: every function is inline
+/// and each file that includes a header compiles what it calls. A program may instead define
+/// HAIRSHADOW_SEPARATE_KERNELS in all its files, and HAIRSHADOW_KERNELS_IMPLEMENTATION as well in
+/// exactly one, which includes <hairshadow/hairshadow.hpp> (CMake's hairshadow::kernels is that
+/// file, tools/kernels.cpp): the non-template kernels (the tiled build's binning and walk, the
+/// light's fit, the model's checks, the file readers), three quarters of a method's machine code,
+/// are then compiled in that file alone, and the others compile only the templates of the methods
+/// they use (docs/performance.md, "What a user pays to compile"). The maps are the same either way.
+/// HAIRSHADOW_DECL marks those kernels' entry points; HAIRSHADOW_KERNEL_BODIES says whether this file
+/// compiles their bodies.
+#if !defined(HAIRSHADOW_SEPARATE_KERNELS)
+#define HAIRSHADOW_DECL inline
+#define HAIRSHADOW_KERNEL_BODIES 1
+#elif defined(HAIRSHADOW_KERNELS_IMPLEMENTATION)
+#define HAIRSHADOW_DECL
+#define HAIRSHADOW_KERNEL_BODIES 1
+#else
+#define HAIRSHADOW_DECL
+#define HAIRSHADOW_KERNEL_BODIES 0
+#endif
+
 namespace hairshadow::detail {
 /// x itself, as a rounded float: a fence that keeps the compiler from fusing the multiplication that
 /// made x with a later addition. A fused multiply-add rounds once, not twice, so fusing would make

@@ -51,6 +51,27 @@
 #endif
 #endif
 
+/// The kernels compiled once, opt in. By default hairshadow is header-only: every function is inline
+/// and each file that includes a header compiles what it calls. A program may instead define
+/// HAIRSHADOW_SEPARATE_KERNELS in all its files, and HAIRSHADOW_KERNELS_IMPLEMENTATION as well in
+/// exactly one, which includes <hairshadow/hairshadow.hpp> (CMake's hairshadow::kernels is that
+/// file, tools/kernels.cpp): the non-template kernels (the tiled build's binning and walk, the
+/// light's fit, the model's checks, the file readers), three quarters of a method's machine code,
+/// are then compiled in that file alone, and the others compile only the templates of the methods
+/// they use (docs/performance.md, "What a user pays to compile"). The maps are the same either way.
+/// HAIRSHADOW_DECL marks those kernels' entry points; HAIRSHADOW_KERNEL_BODIES says whether this file
+/// compiles their bodies.
+#if !defined(HAIRSHADOW_SEPARATE_KERNELS)
+#define HAIRSHADOW_DECL inline
+#define HAIRSHADOW_KERNEL_BODIES 1
+#elif defined(HAIRSHADOW_KERNELS_IMPLEMENTATION)
+#define HAIRSHADOW_DECL
+#define HAIRSHADOW_KERNEL_BODIES 1
+#else
+#define HAIRSHADOW_DECL
+#define HAIRSHADOW_KERNEL_BODIES 0
+#endif
+
 namespace hairshadow::detail {
 /// x itself, as a rounded float: a fence that keeps the compiler from fusing the multiplication that
 /// made x with a later addition. A fused multiply-add rounds once, not twice, so fusing would make
@@ -227,7 +248,10 @@ inline void ensure_thickness(hair_model& model) {
 /// strand, consistent offsets and array sizes, finite coordinates, thickness >= 0, transparency in
 /// [0, 1], and at least one segment of non-zero length. Zero-length segments inside a model are
 /// allowed: they are common in production data and, as in GL, produce no fragments.
-inline void validate(const hair_model& model) {
+HAIRSHADOW_DECL void validate(const hair_model& model);
+
+#if HAIRSHADOW_KERNEL_BODIES
+HAIRSHADOW_DECL void validate(const hair_model& model) {
     if (model.strand_offsets.empty() || model.strand_offsets.front() != 0)
         throw model_error("strand offsets must start at 0");
     if (model.strand_count() == 0) throw model_error("the model has no strands");
@@ -272,6 +296,7 @@ inline void validate(const hair_model& model) {
     }
     throw model_error("the model has no segment of non-zero length");
 }
+#endif
 
 } // namespace hairshadow
 // ---- end hairshadow/core/hair_model.hpp
@@ -468,93 +493,7 @@ class light_space {
 public:
     /// Fits the light's frustum to `bounds` at `resolution` texels per side. Throws argument_error for a
     /// zero or non-finite direction, an out-of-range resolution, or a point light inside the bounds.
-    static light_space fit(const light_spec& light, const aabb& bounds, int resolution) {
-        check_resolution(resolution);
-        check_light_spec(light);
-        if (bounds.empty() || !std::isfinite(bounds.diagonal())) throw argument_error("the model's bounds are empty or not finite");
-        light_space ls;
-        ls.resolution_ = resolution;
-        ls.type_ = light.type;
-        const glm::vec3 center = bounds.center();
-        const float radius = std::max(0.5f * bounds.diagonal(), 1e-6f);
-        // World coordinates are floats: a model far from the origin for its size has too few steps
-        // of its own coordinates to be told apart in depth.
-        const float offset = std::max({std::abs(center.x), std::abs(center.y), std::abs(center.z)});
-        if (!(offset <= max_light_distance_in_radii * radius))
-            throw argument_error("the model lies more than " + std::to_string(int(max_light_distance_in_radii)) +
-                                 " radii from the origin, too far for float coordinates; move it nearer the origin");
-        glm::vec3 forward;
-        glm::vec3 eye;
-        if (light.type == light_type::directional) {
-            forward = detail::unit_direction(light.direction, "the light direction");
-            eye = center - forward * (2.0f * radius);
-        } else {
-            eye = light.position;
-            // Depth is a float distance from the light: from too far away, the model's whole depth
-            // span falls within a few of its steps (and the frustum's products overflow).
-            const double distance = glm::length(glm::dvec3(center) - glm::dvec3(eye));
-            if (!(distance <= double(max_light_distance_in_radii) * double(radius)))
-                throw argument_error("the light is more than " + std::to_string(int(max_light_distance_in_radii)) +
-                                     " model radii away, too far for float depth; use a directional light (dir:X,Y,Z)");
-            if (light.type == light_type::spot) {
-                forward = detail::unit_direction(light.direction, "the spot light direction");
-            } else {
-                if (glm::length(center - eye) <= radius * 1.0001f)
-                    throw argument_error("the point light is inside the model's bounding sphere; a single perspective map cannot cover it");
-                forward = glm::normalize(center - eye);
-            }
-        }
-        const glm::vec3 up = std::abs(forward.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-        ls.view_ = glm::lookAt(eye, eye + forward, up);
-
-        // Extent of the bounds' corners in view space.
-        glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
-        for (int c = 0; c < 8; ++c) {
-            const glm::vec3 corner((c & 1) ? bounds.max.x : bounds.min.x, (c & 2) ? bounds.max.y : bounds.min.y,
-                                   (c & 4) ? bounds.max.z : bounds.min.z);
-            const glm::vec3 v = glm::vec3(ls.view_ * glm::vec4(corner, 1.0f));
-            lo = glm::min(lo, v);
-            hi = glm::max(hi, v);
-        }
-        const float dmin = -hi.z, dmax = -lo.z; // distances in front of the light
-        const float margin = std::max(0.01f * (dmax - dmin), 1e-4f * radius);
-        if (light.type == light_type::directional) {
-            // Square texels; half a percent of padding keeps every point strictly inside the map.
-            const float half = 0.5f * std::max(hi.x - lo.x, hi.y - lo.y) * 1.01f + 1e-6f * radius;
-            const float cx = 0.5f * (lo.x + hi.x), cy = 0.5f * (lo.y + hi.y);
-            ls.near_ = dmin - margin;
-            ls.far_ = dmax + margin;
-            ls.half_extent_ = half;
-            ls.projection_ = glm::ortho(cx - half, cx + half, cy - half, cy + half, ls.near_, ls.far_);
-        } else {
-            float half_tan;
-            if (light.type == light_type::point) {
-                const float dist = glm::length(center - eye);
-                half_tan = std::tan(std::asin(std::min(radius / dist, 0.999f))) * 1.01f;
-                ls.near_ = std::max(dist - radius, dist * 1e-3f) * 0.99f;
-                ls.far_ = (dist + radius) * 1.01f;
-            } else {
-                half_tan = std::tan(glm::radians(light.spot_half_angle_degrees));
-                if (dmax <= 0.0f) throw argument_error("the model lies behind the spot light");
-                ls.near_ = std::max(dmin - margin, std::max(dmax, 1e-6f) * 1e-3f);
-                ls.far_ = dmax + margin;
-            }
-            ls.half_extent_ = half_tan;
-            ls.projection_ = glm::frustum(-half_tan * ls.near_, half_tan * ls.near_, -half_tan * ls.near_, half_tan * ls.near_,
-                                          ls.near_, ls.far_);
-        }
-        ls.view_projection_ = ls.projection_ * ls.view_;
-        const auto finite_matrix = [](const glm::mat4& m) {
-            for (int c = 0; c < 4; ++c)
-                for (int r = 0; r < 4; ++r)
-                    if (!std::isfinite(m[c][r])) return false;
-            return true;
-        };
-        if (!finite_matrix(ls.view_projection_) || !std::isfinite(ls.near_) || !std::isfinite(ls.far_) || !(ls.far_ > ls.near_) ||
-            !(ls.half_extent_ > 0.0f) || !std::isfinite(ls.half_extent_))
-            throw argument_error("the light and the model's bounds give no usable frustum (too far apart, or too large for float)");
-        return ls;
-    }
+    HAIRSHADOW_DECL static light_space fit(const light_spec& light, const aabb& bounds, int resolution);
 
     int resolution() const noexcept { return resolution_; }
     light_type type() const noexcept { return type_; }
@@ -621,6 +560,96 @@ private:
     float near_ = 0.0f, far_ = 1.0f;
     float half_extent_ = 1.0f; ///< orthographic half width, or tan of the perspective half-angle
 };
+
+#if HAIRSHADOW_KERNEL_BODIES
+HAIRSHADOW_DECL light_space light_space::fit(const light_spec& light, const aabb& bounds, int resolution) {
+    check_resolution(resolution);
+    check_light_spec(light);
+    if (bounds.empty() || !std::isfinite(bounds.diagonal())) throw argument_error("the model's bounds are empty or not finite");
+    light_space ls;
+    ls.resolution_ = resolution;
+    ls.type_ = light.type;
+    const glm::vec3 center = bounds.center();
+    const float radius = std::max(0.5f * bounds.diagonal(), 1e-6f);
+    // World coordinates are floats: a model far from the origin for its size has too few steps
+    // of its own coordinates to be told apart in depth.
+    const float offset = std::max({std::abs(center.x), std::abs(center.y), std::abs(center.z)});
+    if (!(offset <= max_light_distance_in_radii * radius))
+        throw argument_error("the model lies more than " + std::to_string(int(max_light_distance_in_radii)) +
+                             " radii from the origin, too far for float coordinates; move it nearer the origin");
+    glm::vec3 forward;
+    glm::vec3 eye;
+    if (light.type == light_type::directional) {
+        forward = detail::unit_direction(light.direction, "the light direction");
+        eye = center - forward * (2.0f * radius);
+    } else {
+        eye = light.position;
+        // Depth is a float distance from the light: from too far away, the model's whole depth
+        // span falls within a few of its steps (and the frustum's products overflow).
+        const double distance = glm::length(glm::dvec3(center) - glm::dvec3(eye));
+        if (!(distance <= double(max_light_distance_in_radii) * double(radius)))
+            throw argument_error("the light is more than " + std::to_string(int(max_light_distance_in_radii)) +
+                                 " model radii away, too far for float depth; use a directional light (dir:X,Y,Z)");
+        if (light.type == light_type::spot) {
+            forward = detail::unit_direction(light.direction, "the spot light direction");
+        } else {
+            if (glm::length(center - eye) <= radius * 1.0001f)
+                throw argument_error("the point light is inside the model's bounding sphere; a single perspective map cannot cover it");
+            forward = glm::normalize(center - eye);
+        }
+    }
+    const glm::vec3 up = std::abs(forward.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    ls.view_ = glm::lookAt(eye, eye + forward, up);
+
+    // Extent of the bounds' corners in view space.
+    glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
+    for (int c = 0; c < 8; ++c) {
+        const glm::vec3 corner((c & 1) ? bounds.max.x : bounds.min.x, (c & 2) ? bounds.max.y : bounds.min.y,
+                               (c & 4) ? bounds.max.z : bounds.min.z);
+        const glm::vec3 v = glm::vec3(ls.view_ * glm::vec4(corner, 1.0f));
+        lo = glm::min(lo, v);
+        hi = glm::max(hi, v);
+    }
+    const float dmin = -hi.z, dmax = -lo.z; // distances in front of the light
+    const float margin = std::max(0.01f * (dmax - dmin), 1e-4f * radius);
+    if (light.type == light_type::directional) {
+        // Square texels; half a percent of padding keeps every point strictly inside the map.
+        const float half = 0.5f * std::max(hi.x - lo.x, hi.y - lo.y) * 1.01f + 1e-6f * radius;
+        const float cx = 0.5f * (lo.x + hi.x), cy = 0.5f * (lo.y + hi.y);
+        ls.near_ = dmin - margin;
+        ls.far_ = dmax + margin;
+        ls.half_extent_ = half;
+        ls.projection_ = glm::ortho(cx - half, cx + half, cy - half, cy + half, ls.near_, ls.far_);
+    } else {
+        float half_tan;
+        if (light.type == light_type::point) {
+            const float dist = glm::length(center - eye);
+            half_tan = std::tan(std::asin(std::min(radius / dist, 0.999f))) * 1.01f;
+            ls.near_ = std::max(dist - radius, dist * 1e-3f) * 0.99f;
+            ls.far_ = (dist + radius) * 1.01f;
+        } else {
+            half_tan = std::tan(glm::radians(light.spot_half_angle_degrees));
+            if (dmax <= 0.0f) throw argument_error("the model lies behind the spot light");
+            ls.near_ = std::max(dmin - margin, std::max(dmax, 1e-6f) * 1e-3f);
+            ls.far_ = dmax + margin;
+        }
+        ls.half_extent_ = half_tan;
+        ls.projection_ = glm::frustum(-half_tan * ls.near_, half_tan * ls.near_, -half_tan * ls.near_, half_tan * ls.near_,
+                                      ls.near_, ls.far_);
+    }
+    ls.view_projection_ = ls.projection_ * ls.view_;
+    const auto finite_matrix = [](const glm::mat4& m) {
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r)
+                if (!std::isfinite(m[c][r])) return false;
+        return true;
+    };
+    if (!finite_matrix(ls.view_projection_) || !std::isfinite(ls.near_) || !std::isfinite(ls.far_) || !(ls.far_ > ls.near_) ||
+        !(ls.half_extent_ > 0.0f) || !std::isfinite(ls.half_extent_))
+        throw argument_error("the light and the model's bounds give no usable frustum (too far apart, or too large for float)");
+    return ls;
+}
+#endif
 
 } // namespace hairshadow
 // ---- end hairshadow/core/light.hpp
@@ -894,18 +923,7 @@ using c_file = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
 inline c_file open_file(const std::string& path, const char* mode) noexcept { return {std::fopen(path.c_str(), mode), &std::fclose}; }
 
 /// Reads a whole file into memory (refusing files over HAIRSHADOW_MAX_FILE_BYTES).
-inline std::vector<unsigned char> read_file_bytes(const std::string& path) {
-    struct stat status {};
-    if (::stat(path.c_str(), &status) != 0) throw io_error(path, "no such file");
-    if (S_ISDIR(status.st_mode)) throw io_error(path, "is a directory");
-    const c_file in = open_file(path, "rb");
-    if (!in) throw io_error(path, "cannot open for reading");
-    if (status.st_size < 0) throw io_error(path, "cannot determine the file size");
-    if (static_cast<std::uint64_t>(status.st_size) > HAIRSHADOW_MAX_FILE_BYTES) throw io_error(path, "file is larger than the configured maximum");
-    std::vector<unsigned char> bytes(static_cast<std::size_t>(status.st_size));
-    if (!bytes.empty() && std::fread(bytes.data(), 1, bytes.size(), in.get()) != bytes.size()) throw io_error(path, "read failed");
-    return bytes;
-}
+HAIRSHADOW_DECL std::vector<unsigned char> read_file_bytes(const std::string& path);
 
 /// A cursor over a byte buffer; every read is checked against the end.
 class byte_reader {
@@ -998,6 +1016,21 @@ Model validated(Model model, const std::string& file) {
     }
     return model;
 }
+
+#if HAIRSHADOW_KERNEL_BODIES
+HAIRSHADOW_DECL std::vector<unsigned char> read_file_bytes(const std::string& path) {
+    struct stat status {};
+    if (::stat(path.c_str(), &status) != 0) throw io_error(path, "no such file");
+    if (S_ISDIR(status.st_mode)) throw io_error(path, "is a directory");
+    const c_file in = open_file(path, "rb");
+    if (!in) throw io_error(path, "cannot open for reading");
+    if (status.st_size < 0) throw io_error(path, "cannot determine the file size");
+    if (static_cast<std::uint64_t>(status.st_size) > HAIRSHADOW_MAX_FILE_BYTES) throw io_error(path, "file is larger than the configured maximum");
+    std::vector<unsigned char> bytes(static_cast<std::size_t>(status.st_size));
+    if (!bytes.empty() && std::fread(bytes.data(), 1, bytes.size(), in.get()) != bytes.size()) throw io_error(path, "read failed");
+    return bytes;
+}
+#endif
 
 } // namespace hairshadow::detail
 // ---- end hairshadow/io/detail/binary_file.hpp
@@ -1628,7 +1661,60 @@ inline bool tfx_array_at(byte_reader& in, std::uint32_t offset, std::size_t head
 
 /// Parses the bytes of a TressFX 3 or 4 file; `name` names it in errors. Throws io_error on malformed
 /// content, and on a version other than 3.x or 4.x, naming the version.
-inline tfx_contents parse_tfx_file(std::span<const unsigned char> bytes, const std::string& name) {
+HAIRSHADOW_DECL tfx_contents parse_tfx_file(std::span<const unsigned char> bytes, const std::string& name);
+
+/// Reads the strands of a TressFX 3 or 4 file (TressFX 3: the guides), with per-strand thickness when
+/// present, spread to the strand's points. Throws io_error naming the file on malformed content.
+inline hair_model read_tfx(const std::string& path) { return parse_tfx_file(detail::read_file_bytes(path), path).strands; }
+
+/// Writes a TressFX file of `major_version` 3 or 4: positions and per-strand thickness (each strand's
+/// first point's). Throws io_error unless every strand has the same point count (TressFX 3: 4 to 64).
+inline void write_tfx(const hair_model& model, const std::string& path, int major_version = 4, std::uint32_t follow_hairs_per_guide = 0) {
+    using namespace detail;
+    if (major_version != 3 && major_version != 4) throw io_error(path, "TressFX version must be 3 or 4");
+    const auto strands = model.strand_count();
+    const auto per_strand = strands ? model.strand_size(0) : 0;
+    for (std::size_t s = 0; s < strands; ++s)
+        if (model.strand_size(s) != per_strand) throw io_error(path, "TressFX needs the same point count in every strand");
+    if (per_strand < (major_version == 3 ? 4u : 2u) || (major_version == 3 && per_strand > 64))
+        throw io_error(path, "TressFX " + std::to_string(major_version) + " cannot hold strands of " + std::to_string(per_strand) + " points");
+    if (model.point_count() * 16 + strands * 4 + tfx3_header_bytes > std::numeric_limits<std::uint32_t>::max())
+        throw io_error(path, "too large for TressFX's 32-bit offsets");
+    const bool v3 = major_version == 3;
+    const std::size_t header_bytes = v3 ? tfx3_header_bytes : tfx4_header_bytes;
+    const auto positions = static_cast<std::uint32_t>(header_bytes);
+    const auto thickness = static_cast<std::uint32_t>(header_bytes + model.point_count() * (v3 ? 12 : 16));
+    byte_writer out;
+    out.write(v3 ? 3.0f : 4.0f);
+    out.write(static_cast<std::uint32_t>(strands));
+    out.write(static_cast<std::uint32_t>(per_strand));
+    if (v3) {
+        out.write(follow_hairs_per_guide);
+        out.write(std::int32_t(0));
+        for (int i = 0; i < 31; ++i) out.write(std::uint32_t(0));
+        out.write(positions);
+        out.write(thickness);
+        for (int i = 0; i < 4; ++i) out.write(std::uint32_t(0));
+    } else {
+        out.write(positions);
+        out.write(std::uint32_t(0));
+        out.write(std::uint32_t(0));
+        out.write(thickness);
+        out.write(std::uint32_t(0));
+    }
+    for (int i = 0; i < 32; ++i) out.write(std::uint32_t(0));
+    for (std::size_t s = 0; s < strands; ++s)
+        for (std::size_t i = 0; i < per_strand; ++i) {
+            const auto& p = model.points[model.strand_offsets[s] + i];
+            if (v3) out.write(p);
+            else out.write(glm::vec4(p, i == 0 ? 0.0f : 1.0f)); // w = 0 pins the root
+        }
+    for (std::size_t s = 0; s < strands; ++s) out.write(model.thickness_at(model.strand_offsets[s]));
+    out.save(path);
+}
+
+#if HAIRSHADOW_KERNEL_BODIES
+HAIRSHADOW_DECL tfx_contents parse_tfx_file(std::span<const unsigned char> bytes, const std::string& name) {
     using namespace detail;
     byte_reader in(bytes, name);
     tfx_contents out;
@@ -1685,56 +1771,7 @@ inline tfx_contents parse_tfx_file(std::span<const unsigned char> bytes, const s
     model = validated(std::move(model), name);
     return out;
 }
-
-/// Reads the strands of a TressFX 3 or 4 file (TressFX 3: the guides), with per-strand thickness when
-/// present, spread to the strand's points. Throws io_error naming the file on malformed content.
-inline hair_model read_tfx(const std::string& path) { return parse_tfx_file(detail::read_file_bytes(path), path).strands; }
-
-/// Writes a TressFX file of `major_version` 3 or 4: positions and per-strand thickness (each strand's
-/// first point's). Throws io_error unless every strand has the same point count (TressFX 3: 4 to 64).
-inline void write_tfx(const hair_model& model, const std::string& path, int major_version = 4, std::uint32_t follow_hairs_per_guide = 0) {
-    using namespace detail;
-    if (major_version != 3 && major_version != 4) throw io_error(path, "TressFX version must be 3 or 4");
-    const auto strands = model.strand_count();
-    const auto per_strand = strands ? model.strand_size(0) : 0;
-    for (std::size_t s = 0; s < strands; ++s)
-        if (model.strand_size(s) != per_strand) throw io_error(path, "TressFX needs the same point count in every strand");
-    if (per_strand < (major_version == 3 ? 4u : 2u) || (major_version == 3 && per_strand > 64))
-        throw io_error(path, "TressFX " + std::to_string(major_version) + " cannot hold strands of " + std::to_string(per_strand) + " points");
-    if (model.point_count() * 16 + strands * 4 + tfx3_header_bytes > std::numeric_limits<std::uint32_t>::max())
-        throw io_error(path, "too large for TressFX's 32-bit offsets");
-    const bool v3 = major_version == 3;
-    const std::size_t header_bytes = v3 ? tfx3_header_bytes : tfx4_header_bytes;
-    const auto positions = static_cast<std::uint32_t>(header_bytes);
-    const auto thickness = static_cast<std::uint32_t>(header_bytes + model.point_count() * (v3 ? 12 : 16));
-    byte_writer out;
-    out.write(v3 ? 3.0f : 4.0f);
-    out.write(static_cast<std::uint32_t>(strands));
-    out.write(static_cast<std::uint32_t>(per_strand));
-    if (v3) {
-        out.write(follow_hairs_per_guide);
-        out.write(std::int32_t(0));
-        for (int i = 0; i < 31; ++i) out.write(std::uint32_t(0));
-        out.write(positions);
-        out.write(thickness);
-        for (int i = 0; i < 4; ++i) out.write(std::uint32_t(0));
-    } else {
-        out.write(positions);
-        out.write(std::uint32_t(0));
-        out.write(std::uint32_t(0));
-        out.write(thickness);
-        out.write(std::uint32_t(0));
-    }
-    for (int i = 0; i < 32; ++i) out.write(std::uint32_t(0));
-    for (std::size_t s = 0; s < strands; ++s)
-        for (std::size_t i = 0; i < per_strand; ++i) {
-            const auto& p = model.points[model.strand_offsets[s] + i];
-            if (v3) out.write(p);
-            else out.write(glm::vec4(p, i == 0 ? 0.0f : 1.0f)); // w = 0 pins the root
-        }
-    for (std::size_t s = 0; s < strands; ++s) out.write(model.thickness_at(model.strand_offsets[s]));
-    out.save(path);
-}
+#endif
 
 } // namespace hairshadow
 // ---- end hairshadow/io/tfx_format.hpp
@@ -3036,13 +3073,7 @@ public:
     /// options.tile_size texels, and bounds each tile's fragments where `bound_tiles` (a first build,
     /// whose tile stores are still to be sized; a rebuild skips the work). Throws argument_error for
     /// bad options.
-    void prepare(const hair_model& model, const light_space& light, const raster_options& options, bool bound_tiles = true) {
-        options.check();
-        opt_ = options;
-        light_ = light;
-        bounded_ = bound_tiles && opt_.wide_line_width == 0.0f;
-        project_and_bin(model, light, light.resolution());
-    }
+    HAIRSHADOW_DECL void prepare(const hair_model& model, const light_space& light, const raster_options& options, bool bound_tiles = true);
 
     int resolution() const noexcept { return res_; }
     const raster_options& options() const noexcept { return opt_; }
@@ -3494,6 +3525,15 @@ private:
     depth_extent extent_{};
 };
 
+#if HAIRSHADOW_KERNEL_BODIES
+HAIRSHADOW_DECL void segment_bins::prepare(const hair_model& model, const light_space& light, const raster_options& options, bool bound_tiles) {
+    options.check();
+    opt_ = options;
+    light_ = light;
+    bounded_ = bound_tiles && opt_.wide_line_width == 0.0f;
+    project_and_bin(model, light, light.resolution());
+}
+#endif
 } // namespace hairshadow::detail
 // ---- end hairshadow/raster/detail/segment_bins.hpp
 
@@ -5005,25 +5045,7 @@ public:
     /// Walks tile t's segments into the store, in walk order: segment after segment, or, where `order`
     /// allows any order and the vector walk runs, in an order of the walk's own (fragment_order).
     /// `instructions` must be resolved.
-    void gather(const segment_bins& bins, std::size_t t, instruction_set instructions, fragment_order order = fragment_order::segment) {
-        rect_ = bins.tile_rect(t);
-        width_ = rect_.x1 - rect_.x0;
-        n_ = 0;
-        const bool vector = instructions == instruction_set::avx512;
-#if HAIRSHADOW_AVX512_WALK
-        if (vector && simd_tile(bins)) {
-            const float optical = optical_depth_cached(bins.uniform_shader().shade(0.0f).alpha);
-            const bool gathered = bins.segment_count() < (std::size_t(1) << 28); // the records' word offsets fit the gathers
-            if (order == fragment_order::any && gathered) avx512::tile_walk::walk_any_order_avx512(*this, bins, t, optical);
-            else avx512::tile_walk::walk_avx512(*this, bins, t, optical);
-        } else {
-            walk_scalar(bins, t);
-        }
-#else
-        (void)vector, (void)order;
-        walk_scalar(bins, t);
-#endif
-    }
+    HAIRSHADOW_DECL void gather(const segment_bins& bins, std::size_t t, instruction_set instructions, fragment_order order = fragment_order::segment);
     /// Room to sort a tile of `segments` segments and `side` texels a side for the walk in any order,
     /// so that tiles up to that size allocate nothing, on whichever thread they land.
     void reserve_segments(std::size_t segments, int side) {
@@ -5228,6 +5250,28 @@ private:
     std::vector<std::uint16_t> steps_;    ///< each segment's steps in the tile
     std::vector<std::uint32_t> steps_of_; ///< per step count, the segments with it, then where they start
 };
+
+#if HAIRSHADOW_KERNEL_BODIES
+HAIRSHADOW_DECL void tile_fragments::gather(const segment_bins& bins, std::size_t t, instruction_set instructions, fragment_order order) {
+    rect_ = bins.tile_rect(t);
+    width_ = rect_.x1 - rect_.x0;
+    n_ = 0;
+    const bool vector = instructions == instruction_set::avx512;
+#if HAIRSHADOW_AVX512_WALK
+    if (vector && simd_tile(bins)) {
+        const float optical = optical_depth_cached(bins.uniform_shader().shade(0.0f).alpha);
+        const bool gathered = bins.segment_count() < (std::size_t(1) << 28); // the records' word offsets fit the gathers
+        if (order == fragment_order::any && gathered) avx512::tile_walk::walk_any_order_avx512(*this, bins, t, optical);
+        else avx512::tile_walk::walk_avx512(*this, bins, t, optical);
+    } else {
+        walk_scalar(bins, t);
+    }
+#else
+    (void)vector, (void)order;
+    walk_scalar(bins, t);
+#endif
+}
+#endif
 
 } // namespace detail
 } // namespace hairshadow

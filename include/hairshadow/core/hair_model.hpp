@@ -2,6 +2,7 @@
 /// @file
 /// The hair model: strands of points with optional per-point thickness, transparency and colour.
 
+#include <hairshadow/config.hpp>
 #include <hairshadow/core/bounds.hpp>
 #include <hairshadow/core/error.hpp>
 
@@ -83,7 +84,10 @@ inline void ensure_thickness(hair_model& model) {
 /// strand, consistent offsets and array sizes, finite coordinates, thickness >= 0, transparency in
 /// [0, 1], and at least one segment of non-zero length. Zero-length segments inside a model are
 /// allowed: they are common in production data and, as in GL, produce no fragments.
-inline void validate(const hair_model& model) {
+HAIRSHADOW_DECL void validate(const hair_model& model);
+
+#if HAIRSHADOW_KERNEL_BODIES
+HAIRSHADOW_DECL void validate(const hair_model& model) {
     if (model.strand_offsets.empty() || model.strand_offsets.front() != 0)
         throw model_error("strand offsets must start at 0");
     if (model.strand_count() == 0) throw model_error("the model has no strands");
@@ -128,5 +132,6 @@ inline void validate(const hair_model& model) {
     }
     throw model_error("the model has no segment of non-zero length");
 }
+#endif
 
 } // namespace hairshadow

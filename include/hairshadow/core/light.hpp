@@ -126,93 +126,7 @@ class light_space {
 public:
     /// Fits the light's frustum to `bounds` at `resolution` texels per side. Throws argument_error for a
     /// zero or non-finite direction, an out-of-range resolution, or a point light inside the bounds.
-    static light_space fit(const light_spec& light, const aabb& bounds, int resolution) {
-        check_resolution(resolution);
-        check_light_spec(light);
-        if (bounds.empty() || !std::isfinite(bounds.diagonal())) throw argument_error("the model's bounds are empty or not finite");
-        light_space ls;
-        ls.resolution_ = resolution;
-        ls.type_ = light.type;
-        const glm::vec3 center = bounds.center();
-        const float radius = std::max(0.5f * bounds.diagonal(), 1e-6f);
-        // World coordinates are floats: a model far from the origin for its size has too few steps
-        // of its own coordinates to be told apart in depth.
-        const float offset = std::max({std::abs(center.x), std::abs(center.y), std::abs(center.z)});
-        if (!(offset <= max_light_distance_in_radii * radius))
-            throw argument_error("the model lies more than " + std::to_string(int(max_light_distance_in_radii)) +
-                                 " radii from the origin, too far for float coordinates; move it nearer the origin");
-        glm::vec3 forward;
-        glm::vec3 eye;
-        if (light.type == light_type::directional) {
-            forward = detail::unit_direction(light.direction, "the light direction");
-            eye = center - forward * (2.0f * radius);
-        } else {
-            eye = light.position;
-            // Depth is a float distance from the light: from too far away, the model's whole depth
-            // span falls within a few of its steps (and the frustum's products overflow).
-            const double distance = glm::length(glm::dvec3(center) - glm::dvec3(eye));
-            if (!(distance <= double(max_light_distance_in_radii) * double(radius)))
-                throw argument_error("the light is more than " + std::to_string(int(max_light_distance_in_radii)) +
-                                     " model radii away, too far for float depth; use a directional light (dir:X,Y,Z)");
-            if (light.type == light_type::spot) {
-                forward = detail::unit_direction(light.direction, "the spot light direction");
-            } else {
-                if (glm::length(center - eye) <= radius * 1.0001f)
-                    throw argument_error("the point light is inside the model's bounding sphere; a single perspective map cannot cover it");
-                forward = glm::normalize(center - eye);
-            }
-        }
-        const glm::vec3 up = std::abs(forward.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-        ls.view_ = glm::lookAt(eye, eye + forward, up);
-
-        // Extent of the bounds' corners in view space.
-        glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
-        for (int c = 0; c < 8; ++c) {
-            const glm::vec3 corner((c & 1) ? bounds.max.x : bounds.min.x, (c & 2) ? bounds.max.y : bounds.min.y,
-                                   (c & 4) ? bounds.max.z : bounds.min.z);
-            const glm::vec3 v = glm::vec3(ls.view_ * glm::vec4(corner, 1.0f));
-            lo = glm::min(lo, v);
-            hi = glm::max(hi, v);
-        }
-        const float dmin = -hi.z, dmax = -lo.z; // distances in front of the light
-        const float margin = std::max(0.01f * (dmax - dmin), 1e-4f * radius);
-        if (light.type == light_type::directional) {
-            // Square texels; half a percent of padding keeps every point strictly inside the map.
-            const float half = 0.5f * std::max(hi.x - lo.x, hi.y - lo.y) * 1.01f + 1e-6f * radius;
-            const float cx = 0.5f * (lo.x + hi.x), cy = 0.5f * (lo.y + hi.y);
-            ls.near_ = dmin - margin;
-            ls.far_ = dmax + margin;
-            ls.half_extent_ = half;
-            ls.projection_ = glm::ortho(cx - half, cx + half, cy - half, cy + half, ls.near_, ls.far_);
-        } else {
-            float half_tan;
-            if (light.type == light_type::point) {
-                const float dist = glm::length(center - eye);
-                half_tan = std::tan(std::asin(std::min(radius / dist, 0.999f))) * 1.01f;
-                ls.near_ = std::max(dist - radius, dist * 1e-3f) * 0.99f;
-                ls.far_ = (dist + radius) * 1.01f;
-            } else {
-                half_tan = std::tan(glm::radians(light.spot_half_angle_degrees));
-                if (dmax <= 0.0f) throw argument_error("the model lies behind the spot light");
-                ls.near_ = std::max(dmin - margin, std::max(dmax, 1e-6f) * 1e-3f);
-                ls.far_ = dmax + margin;
-            }
-            ls.half_extent_ = half_tan;
-            ls.projection_ = glm::frustum(-half_tan * ls.near_, half_tan * ls.near_, -half_tan * ls.near_, half_tan * ls.near_,
-                                          ls.near_, ls.far_);
-        }
-        ls.view_projection_ = ls.projection_ * ls.view_;
-        const auto finite_matrix = [](const glm::mat4& m) {
-            for (int c = 0; c < 4; ++c)
-                for (int r = 0; r < 4; ++r)
-                    if (!std::isfinite(m[c][r])) return false;
-            return true;
-        };
-        if (!finite_matrix(ls.view_projection_) || !std::isfinite(ls.near_) || !std::isfinite(ls.far_) || !(ls.far_ > ls.near_) ||
-            !(ls.half_extent_ > 0.0f) || !std::isfinite(ls.half_extent_))
-            throw argument_error("the light and the model's bounds give no usable frustum (too far apart, or too large for float)");
-        return ls;
-    }
+    HAIRSHADOW_DECL static light_space fit(const light_spec& light, const aabb& bounds, int resolution);
 
     int resolution() const noexcept { return resolution_; }
     light_type type() const noexcept { return type_; }
@@ -279,5 +193,95 @@ private:
     float near_ = 0.0f, far_ = 1.0f;
     float half_extent_ = 1.0f; ///< orthographic half width, or tan of the perspective half-angle
 };
+
+#if HAIRSHADOW_KERNEL_BODIES
+HAIRSHADOW_DECL light_space light_space::fit(const light_spec& light, const aabb& bounds, int resolution) {
+    check_resolution(resolution);
+    check_light_spec(light);
+    if (bounds.empty() || !std::isfinite(bounds.diagonal())) throw argument_error("the model's bounds are empty or not finite");
+    light_space ls;
+    ls.resolution_ = resolution;
+    ls.type_ = light.type;
+    const glm::vec3 center = bounds.center();
+    const float radius = std::max(0.5f * bounds.diagonal(), 1e-6f);
+    // World coordinates are floats: a model far from the origin for its size has too few steps
+    // of its own coordinates to be told apart in depth.
+    const float offset = std::max({std::abs(center.x), std::abs(center.y), std::abs(center.z)});
+    if (!(offset <= max_light_distance_in_radii * radius))
+        throw argument_error("the model lies more than " + std::to_string(int(max_light_distance_in_radii)) +
+                             " radii from the origin, too far for float coordinates; move it nearer the origin");
+    glm::vec3 forward;
+    glm::vec3 eye;
+    if (light.type == light_type::directional) {
+        forward = detail::unit_direction(light.direction, "the light direction");
+        eye = center - forward * (2.0f * radius);
+    } else {
+        eye = light.position;
+        // Depth is a float distance from the light: from too far away, the model's whole depth
+        // span falls within a few of its steps (and the frustum's products overflow).
+        const double distance = glm::length(glm::dvec3(center) - glm::dvec3(eye));
+        if (!(distance <= double(max_light_distance_in_radii) * double(radius)))
+            throw argument_error("the light is more than " + std::to_string(int(max_light_distance_in_radii)) +
+                                 " model radii away, too far for float depth; use a directional light (dir:X,Y,Z)");
+        if (light.type == light_type::spot) {
+            forward = detail::unit_direction(light.direction, "the spot light direction");
+        } else {
+            if (glm::length(center - eye) <= radius * 1.0001f)
+                throw argument_error("the point light is inside the model's bounding sphere; a single perspective map cannot cover it");
+            forward = glm::normalize(center - eye);
+        }
+    }
+    const glm::vec3 up = std::abs(forward.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    ls.view_ = glm::lookAt(eye, eye + forward, up);
+
+    // Extent of the bounds' corners in view space.
+    glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
+    for (int c = 0; c < 8; ++c) {
+        const glm::vec3 corner((c & 1) ? bounds.max.x : bounds.min.x, (c & 2) ? bounds.max.y : bounds.min.y,
+                               (c & 4) ? bounds.max.z : bounds.min.z);
+        const glm::vec3 v = glm::vec3(ls.view_ * glm::vec4(corner, 1.0f));
+        lo = glm::min(lo, v);
+        hi = glm::max(hi, v);
+    }
+    const float dmin = -hi.z, dmax = -lo.z; // distances in front of the light
+    const float margin = std::max(0.01f * (dmax - dmin), 1e-4f * radius);
+    if (light.type == light_type::directional) {
+        // Square texels; half a percent of padding keeps every point strictly inside the map.
+        const float half = 0.5f * std::max(hi.x - lo.x, hi.y - lo.y) * 1.01f + 1e-6f * radius;
+        const float cx = 0.5f * (lo.x + hi.x), cy = 0.5f * (lo.y + hi.y);
+        ls.near_ = dmin - margin;
+        ls.far_ = dmax + margin;
+        ls.half_extent_ = half;
+        ls.projection_ = glm::ortho(cx - half, cx + half, cy - half, cy + half, ls.near_, ls.far_);
+    } else {
+        float half_tan;
+        if (light.type == light_type::point) {
+            const float dist = glm::length(center - eye);
+            half_tan = std::tan(std::asin(std::min(radius / dist, 0.999f))) * 1.01f;
+            ls.near_ = std::max(dist - radius, dist * 1e-3f) * 0.99f;
+            ls.far_ = (dist + radius) * 1.01f;
+        } else {
+            half_tan = std::tan(glm::radians(light.spot_half_angle_degrees));
+            if (dmax <= 0.0f) throw argument_error("the model lies behind the spot light");
+            ls.near_ = std::max(dmin - margin, std::max(dmax, 1e-6f) * 1e-3f);
+            ls.far_ = dmax + margin;
+        }
+        ls.half_extent_ = half_tan;
+        ls.projection_ = glm::frustum(-half_tan * ls.near_, half_tan * ls.near_, -half_tan * ls.near_, half_tan * ls.near_,
+                                      ls.near_, ls.far_);
+    }
+    ls.view_projection_ = ls.projection_ * ls.view_;
+    const auto finite_matrix = [](const glm::mat4& m) {
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r)
+                if (!std::isfinite(m[c][r])) return false;
+        return true;
+    };
+    if (!finite_matrix(ls.view_projection_) || !std::isfinite(ls.near_) || !std::isfinite(ls.far_) || !(ls.far_ > ls.near_) ||
+        !(ls.half_extent_ > 0.0f) || !std::isfinite(ls.half_extent_))
+        throw argument_error("the light and the model's bounds give no usable frustum (too far apart, or too large for float)");
+    return ls;
+}
+#endif
 
 } // namespace hairshadow

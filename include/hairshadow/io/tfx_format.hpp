@@ -13,6 +13,7 @@
 ///   strand; u32 offsets of the float4 positions (w = 0 at pinned points), strand UVs, vertex UVs,
 ///   per-strand f32 thickness and vertex colours (0 = absent); u32 reserved[32].
 
+#include <hairshadow/config.hpp>
 #include <hairshadow/core/hair_model.hpp>
 #include <hairshadow/io/detail/binary_file.hpp>
 
@@ -53,7 +54,60 @@ inline bool tfx_array_at(byte_reader& in, std::uint32_t offset, std::size_t head
 
 /// Parses the bytes of a TressFX 3 or 4 file; `name` names it in errors. Throws io_error on malformed
 /// content, and on a version other than 3.x or 4.x, naming the version.
-inline tfx_contents parse_tfx_file(std::span<const unsigned char> bytes, const std::string& name) {
+HAIRSHADOW_DECL tfx_contents parse_tfx_file(std::span<const unsigned char> bytes, const std::string& name);
+
+/// Reads the strands of a TressFX 3 or 4 file (TressFX 3: the guides), with per-strand thickness when
+/// present, spread to the strand's points. Throws io_error naming the file on malformed content.
+inline hair_model read_tfx(const std::string& path) { return parse_tfx_file(detail::read_file_bytes(path), path).strands; }
+
+/// Writes a TressFX file of `major_version` 3 or 4: positions and per-strand thickness (each strand's
+/// first point's). Throws io_error unless every strand has the same point count (TressFX 3: 4 to 64).
+inline void write_tfx(const hair_model& model, const std::string& path, int major_version = 4, std::uint32_t follow_hairs_per_guide = 0) {
+    using namespace detail;
+    if (major_version != 3 && major_version != 4) throw io_error(path, "TressFX version must be 3 or 4");
+    const auto strands = model.strand_count();
+    const auto per_strand = strands ? model.strand_size(0) : 0;
+    for (std::size_t s = 0; s < strands; ++s)
+        if (model.strand_size(s) != per_strand) throw io_error(path, "TressFX needs the same point count in every strand");
+    if (per_strand < (major_version == 3 ? 4u : 2u) || (major_version == 3 && per_strand > 64))
+        throw io_error(path, "TressFX " + std::to_string(major_version) + " cannot hold strands of " + std::to_string(per_strand) + " points");
+    if (model.point_count() * 16 + strands * 4 + tfx3_header_bytes > std::numeric_limits<std::uint32_t>::max())
+        throw io_error(path, "too large for TressFX's 32-bit offsets");
+    const bool v3 = major_version == 3;
+    const std::size_t header_bytes = v3 ? tfx3_header_bytes : tfx4_header_bytes;
+    const auto positions = static_cast<std::uint32_t>(header_bytes);
+    const auto thickness = static_cast<std::uint32_t>(header_bytes + model.point_count() * (v3 ? 12 : 16));
+    byte_writer out;
+    out.write(v3 ? 3.0f : 4.0f);
+    out.write(static_cast<std::uint32_t>(strands));
+    out.write(static_cast<std::uint32_t>(per_strand));
+    if (v3) {
+        out.write(follow_hairs_per_guide);
+        out.write(std::int32_t(0));
+        for (int i = 0; i < 31; ++i) out.write(std::uint32_t(0));
+        out.write(positions);
+        out.write(thickness);
+        for (int i = 0; i < 4; ++i) out.write(std::uint32_t(0));
+    } else {
+        out.write(positions);
+        out.write(std::uint32_t(0));
+        out.write(std::uint32_t(0));
+        out.write(thickness);
+        out.write(std::uint32_t(0));
+    }
+    for (int i = 0; i < 32; ++i) out.write(std::uint32_t(0));
+    for (std::size_t s = 0; s < strands; ++s)
+        for (std::size_t i = 0; i < per_strand; ++i) {
+            const auto& p = model.points[model.strand_offsets[s] + i];
+            if (v3) out.write(p);
+            else out.write(glm::vec4(p, i == 0 ? 0.0f : 1.0f)); // w = 0 pins the root
+        }
+    for (std::size_t s = 0; s < strands; ++s) out.write(model.thickness_at(model.strand_offsets[s]));
+    out.save(path);
+}
+
+#if HAIRSHADOW_KERNEL_BODIES
+HAIRSHADOW_DECL tfx_contents parse_tfx_file(std::span<const unsigned char> bytes, const std::string& name) {
     using namespace detail;
     byte_reader in(bytes, name);
     tfx_contents out;
@@ -110,55 +164,6 @@ inline tfx_contents parse_tfx_file(std::span<const unsigned char> bytes, const s
     model = validated(std::move(model), name);
     return out;
 }
-
-/// Reads the strands of a TressFX 3 or 4 file (TressFX 3: the guides), with per-strand thickness when
-/// present, spread to the strand's points. Throws io_error naming the file on malformed content.
-inline hair_model read_tfx(const std::string& path) { return parse_tfx_file(detail::read_file_bytes(path), path).strands; }
-
-/// Writes a TressFX file of `major_version` 3 or 4: positions and per-strand thickness (each strand's
-/// first point's). Throws io_error unless every strand has the same point count (TressFX 3: 4 to 64).
-inline void write_tfx(const hair_model& model, const std::string& path, int major_version = 4, std::uint32_t follow_hairs_per_guide = 0) {
-    using namespace detail;
-    if (major_version != 3 && major_version != 4) throw io_error(path, "TressFX version must be 3 or 4");
-    const auto strands = model.strand_count();
-    const auto per_strand = strands ? model.strand_size(0) : 0;
-    for (std::size_t s = 0; s < strands; ++s)
-        if (model.strand_size(s) != per_strand) throw io_error(path, "TressFX needs the same point count in every strand");
-    if (per_strand < (major_version == 3 ? 4u : 2u) || (major_version == 3 && per_strand > 64))
-        throw io_error(path, "TressFX " + std::to_string(major_version) + " cannot hold strands of " + std::to_string(per_strand) + " points");
-    if (model.point_count() * 16 + strands * 4 + tfx3_header_bytes > std::numeric_limits<std::uint32_t>::max())
-        throw io_error(path, "too large for TressFX's 32-bit offsets");
-    const bool v3 = major_version == 3;
-    const std::size_t header_bytes = v3 ? tfx3_header_bytes : tfx4_header_bytes;
-    const auto positions = static_cast<std::uint32_t>(header_bytes);
-    const auto thickness = static_cast<std::uint32_t>(header_bytes + model.point_count() * (v3 ? 12 : 16));
-    byte_writer out;
-    out.write(v3 ? 3.0f : 4.0f);
-    out.write(static_cast<std::uint32_t>(strands));
-    out.write(static_cast<std::uint32_t>(per_strand));
-    if (v3) {
-        out.write(follow_hairs_per_guide);
-        out.write(std::int32_t(0));
-        for (int i = 0; i < 31; ++i) out.write(std::uint32_t(0));
-        out.write(positions);
-        out.write(thickness);
-        for (int i = 0; i < 4; ++i) out.write(std::uint32_t(0));
-    } else {
-        out.write(positions);
-        out.write(std::uint32_t(0));
-        out.write(std::uint32_t(0));
-        out.write(thickness);
-        out.write(std::uint32_t(0));
-    }
-    for (int i = 0; i < 32; ++i) out.write(std::uint32_t(0));
-    for (std::size_t s = 0; s < strands; ++s)
-        for (std::size_t i = 0; i < per_strand; ++i) {
-            const auto& p = model.points[model.strand_offsets[s] + i];
-            if (v3) out.write(p);
-            else out.write(glm::vec4(p, i == 0 ? 0.0f : 1.0f)); // w = 0 pins the root
-        }
-    for (std::size_t s = 0; s < strands; ++s) out.write(model.thickness_at(model.strand_offsets[s]));
-    out.save(path);
-}
+#endif
 
 } // namespace hairshadow

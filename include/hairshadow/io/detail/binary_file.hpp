@@ -25,18 +25,7 @@ using c_file = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
 inline c_file open_file(const std::string& path, const char* mode) noexcept { return {std::fopen(path.c_str(), mode), &std::fclose}; }
 
 /// Reads a whole file into memory (refusing files over HAIRSHADOW_MAX_FILE_BYTES).
-inline std::vector<unsigned char> read_file_bytes(const std::string& path) {
-    struct stat status {};
-    if (::stat(path.c_str(), &status) != 0) throw io_error(path, "no such file");
-    if (S_ISDIR(status.st_mode)) throw io_error(path, "is a directory");
-    const c_file in = open_file(path, "rb");
-    if (!in) throw io_error(path, "cannot open for reading");
-    if (status.st_size < 0) throw io_error(path, "cannot determine the file size");
-    if (static_cast<std::uint64_t>(status.st_size) > HAIRSHADOW_MAX_FILE_BYTES) throw io_error(path, "file is larger than the configured maximum");
-    std::vector<unsigned char> bytes(static_cast<std::size_t>(status.st_size));
-    if (!bytes.empty() && std::fread(bytes.data(), 1, bytes.size(), in.get()) != bytes.size()) throw io_error(path, "read failed");
-    return bytes;
-}
+HAIRSHADOW_DECL std::vector<unsigned char> read_file_bytes(const std::string& path);
 
 /// A cursor over a byte buffer; every read is checked against the end.
 class byte_reader {
@@ -129,5 +118,20 @@ Model validated(Model model, const std::string& file) {
     }
     return model;
 }
+
+#if HAIRSHADOW_KERNEL_BODIES
+HAIRSHADOW_DECL std::vector<unsigned char> read_file_bytes(const std::string& path) {
+    struct stat status {};
+    if (::stat(path.c_str(), &status) != 0) throw io_error(path, "no such file");
+    if (S_ISDIR(status.st_mode)) throw io_error(path, "is a directory");
+    const c_file in = open_file(path, "rb");
+    if (!in) throw io_error(path, "cannot open for reading");
+    if (status.st_size < 0) throw io_error(path, "cannot determine the file size");
+    if (static_cast<std::uint64_t>(status.st_size) > HAIRSHADOW_MAX_FILE_BYTES) throw io_error(path, "file is larger than the configured maximum");
+    std::vector<unsigned char> bytes(static_cast<std::size_t>(status.st_size));
+    if (!bytes.empty() && std::fread(bytes.data(), 1, bytes.size(), in.get()) != bytes.size()) throw io_error(path, "read failed");
+    return bytes;
+}
+#endif
 
 } // namespace hairshadow::detail

@@ -36,13 +36,7 @@ public:
     /// options.tile_size texels, and bounds each tile's fragments where `bound_tiles` (a first build,
     /// whose tile stores are still to be sized; a rebuild skips the work). Throws argument_error for
     /// bad options.
-    void prepare(const hair_model& model, const light_space& light, const raster_options& options, bool bound_tiles = true) {
-        options.check();
-        opt_ = options;
-        light_ = light;
-        bounded_ = bound_tiles && opt_.wide_line_width == 0.0f;
-        project_and_bin(model, light, light.resolution());
-    }
+    HAIRSHADOW_DECL void prepare(const hair_model& model, const light_space& light, const raster_options& options, bool bound_tiles = true);
 
     int resolution() const noexcept { return res_; }
     const raster_options& options() const noexcept { return opt_; }
@@ -494,4 +488,13 @@ private:
     depth_extent extent_{};
 };
 
+#if HAIRSHADOW_KERNEL_BODIES
+HAIRSHADOW_DECL void segment_bins::prepare(const hair_model& model, const light_space& light, const raster_options& options, bool bound_tiles) {
+    options.check();
+    opt_ = options;
+    light_ = light;
+    bounded_ = bound_tiles && opt_.wide_line_width == 0.0f;
+    project_and_bin(model, light, light.resolution());
+}
+#endif
 } // namespace hairshadow::detail

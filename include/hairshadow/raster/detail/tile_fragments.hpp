@@ -49,25 +49,7 @@ public:
     /// Walks tile t's segments into the store, in walk order: segment after segment, or, where `order`
     /// allows any order and the vector walk runs, in an order of the walk's own (fragment_order).
     /// `instructions` must be resolved.
-    void gather(const segment_bins& bins, std::size_t t, instruction_set instructions, fragment_order order = fragment_order::segment) {
-        rect_ = bins.tile_rect(t);
-        width_ = rect_.x1 - rect_.x0;
-        n_ = 0;
-        const bool vector = instructions == instruction_set::avx512;
-#if HAIRSHADOW_AVX512_WALK
-        if (vector && simd_tile(bins)) {
-            const float optical = optical_depth_cached(bins.uniform_shader().shade(0.0f).alpha);
-            const bool gathered = bins.segment_count() < (std::size_t(1) << 28); // the records' word offsets fit the gathers
-            if (order == fragment_order::any && gathered) avx512::tile_walk::walk_any_order_avx512(*this, bins, t, optical);
-            else avx512::tile_walk::walk_avx512(*this, bins, t, optical);
-        } else {
-            walk_scalar(bins, t);
-        }
-#else
-        (void)vector, (void)order;
-        walk_scalar(bins, t);
-#endif
-    }
+    HAIRSHADOW_DECL void gather(const segment_bins& bins, std::size_t t, instruction_set instructions, fragment_order order = fragment_order::segment);
     /// Room to sort a tile of `segments` segments and `side` texels a side for the walk in any order,
     /// so that tiles up to that size allocate nothing, on whichever thread they land.
     void reserve_segments(std::size_t segments, int side) {
@@ -272,6 +254,28 @@ private:
     std::vector<std::uint16_t> steps_;    ///< each segment's steps in the tile
     std::vector<std::uint32_t> steps_of_; ///< per step count, the segments with it, then where they start
 };
+
+#if HAIRSHADOW_KERNEL_BODIES
+HAIRSHADOW_DECL void tile_fragments::gather(const segment_bins& bins, std::size_t t, instruction_set instructions, fragment_order order) {
+    rect_ = bins.tile_rect(t);
+    width_ = rect_.x1 - rect_.x0;
+    n_ = 0;
+    const bool vector = instructions == instruction_set::avx512;
+#if HAIRSHADOW_AVX512_WALK
+    if (vector && simd_tile(bins)) {
+        const float optical = optical_depth_cached(bins.uniform_shader().shade(0.0f).alpha);
+        const bool gathered = bins.segment_count() < (std::size_t(1) << 28); // the records' word offsets fit the gathers
+        if (order == fragment_order::any && gathered) avx512::tile_walk::walk_any_order_avx512(*this, bins, t, optical);
+        else avx512::tile_walk::walk_avx512(*this, bins, t, optical);
+    } else {
+        walk_scalar(bins, t);
+    }
+#else
+    (void)vector, (void)order;
+    walk_scalar(bins, t);
+#endif
+}
+#endif
 
 } // namespace detail
 } // namespace hairshadow
