@@ -91,6 +91,18 @@ for placement, defines in (("planar_slices", "#define HS_LAYERS 64\n#define HS_G
         COMPOSITIONS[f"lookup_layers_{tag}_{accumulation}"] = ("vert", defines, base + ["lookup/layers", "reconstruction/interpolation", "lookup/light",
                                                                                              "lookup/interpolation"], LOOKUP_MAIN)
 
+# Unreal Engine's hair-count deep shadows: power_layers (no texel_state file: z0 is the range's nearest)
+# in the layers pass and the compute build, and hair_count's look-up after interpolation's.
+POWER = "#define HS_LAYERS 4\n#define HS_CUMULATIVE\n"
+for accumulation, eight in (("float", ""), ("emulated_8bit", "#define HS_EIGHT_BIT\n")):
+    base = ["accumulation/" + accumulation, "placement/common", "placement/power_layers"]
+    COMPOSITIONS[f"layers_power_{accumulation}"] = ("frag", POWER + "#define HS_LAYER_TARGETS 8\n", ["raster/coverage"] + base + ["passes/layers"], "")
+    COMPOSITIONS[f"lookup_hair_count_{accumulation}"] = ("vert", POWER + "#define HS_OWN_OPTICAL_DEPTH\n", base + [
+        "lookup/layers", "reconstruction/interpolation", "reconstruction/hair_count", "lookup/light", "lookup/interpolation"], LOOKUP_MAIN)
+    COMPOSITIONS[f"compute_layers_power_{accumulation}"] = (
+        "comp", "#define HS_SUBPIXEL_BITS 8\n" + POWER + eight + "#define HS_LAYER_GROUP 4\n#define HS_SUM_SLOTS 4\n#define HS_LAYERS_FORMAT " +
+        ("rgba8" if eight else "rgba32f") + "\n", ["compute/common", "accumulation/" + accumulation, "compute/tile_sums"] + base[1:] + ["compute/layers"], "")
+
 # Approximate deep shadow maps (gl/maps/fibre_density_maps.hpp): the measured density's pass, and both look-ups.
 COMPOSITIONS["fibre_count"] = ("frag", "", ["raster/coverage", "passes/fibre_count"], "")
 for defines, tag in (("", "fixed"), ("#define HS_MEASURED_DENSITY\n", "measured")):

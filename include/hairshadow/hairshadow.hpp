@@ -35,6 +35,7 @@
 
 #include <hairshadow/core/map_queries.hpp>
 
+#include <hairshadow/methods/hair_count_deep_shadows.hpp>
 #include <hairshadow/methods/published.hpp>
 #include <hairshadow/methods/spec.hpp>
 

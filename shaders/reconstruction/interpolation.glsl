@@ -8,3 +8,9 @@ float hs_interpolate(hs_layer_position p) {
     float after = hs_through_layer(p.index);
     return before + p.fraction * (after - before);
 }
+
+// The optical depth the look-up turns into T; a reconstruction built on this one defines its own
+// after this file (HS_OWN_OPTICAL_DEPTH: hair_count).
+#ifndef HS_OWN_OPTICAL_DEPTH
+float hs_optical_depth(hs_layer_position p) { return hs_interpolate(p); }
+#endif

@@ -3718,16 +3718,48 @@ private:
 } // namespace hairshadow
 // ---- end hairshadow/core/map_queries.hpp
 
-// ---- begin hairshadow/methods/published.hpp
+// ---- begin hairshadow/methods/hair_count_deep_shadows.hpp
 /// @file
-/// The published methods as compositions of policies, each in a header of its own with its
-/// registration, and the hybrids that no paper describes.
+/// Unreal Engine's hair-count deep shadows (HairStrands): K layers at power-law depths behind each
+/// texel's first fragment, and T = A^max(0, count - 1). The spec `ue[:K[:ALPHA[:DISTRIBUTION]]]`.
 
-// ---- begin hairshadow/methods/approximate_deep_shadow_maps.hpp
+// ---- begin hairshadow/accumulation/emulated_8bit.hpp
 /// @file
-/// Approximate deep shadow maps, as AMD TressFX ships them, and our variant with each texel's fibre
-/// density measured. The spec `adsm[:SPACING:RADIUS:ALPHA[:MAX]]` or `adsm:auto`.
+/// Emulated 8-bit accumulation (Kim & Neumann 2001, section 2): an RGBA8 target with additive blending.
+/// Each fragment writes b / kappa, which GL converts to 8 bits (round to nearest) before the blend
+/// adds it with saturation; a stored value q stands for the optical depth kappa * q / 255, with
+/// exp(-kappa) = 2^-8 so that a full texel (q = 255) lets 1/256 of the light through.
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <string_view>
+
+namespace hairshadow {
+
+/// Every add quantised to 8 bits and saturated, as additive blending into an RGBA8 target does.
+struct emulated_8bit {
+    using value_type = std::uint8_t;
+    using sum_type = std::int32_t; ///< saturated at 255 after every add, exactly as the blend does
+    static constexpr std::string_view name = "8bit";
+    static constexpr std::string_view summary = "emulated 8-bit accumulation";
+    static constexpr std::string_view glsl_name = "accumulation/emulated_8bit";
+    /// exp(-kappa) = 2^-8: kappa = 8 ln 2, about 5.545 (the paper rounds it to 5.56).
+    static constexpr float kappa = 8.0f * std::numbers::ln2_v<float>;
+
+    /// The 8-bit step a fragment of optical depth b adds: its output b / kappa in unorm8.
+    static std::int32_t quantise(float optical_depth) noexcept {
+        return std::int32_t(std::lround(std::clamp(optical_depth / kappa, 0.0f, 1.0f) * 255.0f));
+    }
+    static sum_type add(sum_type sum, float optical_depth) noexcept { return std::min<sum_type>(sum + quantise(optical_depth), 255); }
+    static constexpr sum_type combine(sum_type a, sum_type b) noexcept { return std::min<sum_type>(a + b, 255); }
+    static constexpr value_type store(sum_type sum) noexcept { return value_type(std::min<sum_type>(sum, 255)); }
+    static constexpr float decode(value_type v) noexcept { return kappa * float(v) / 255.0f; }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/accumulation/emulated_8bit.hpp
 // ---- begin hairshadow/accumulation/float_accumulation.hpp
 /// @file
 /// Float accumulation: optical depths summed in 32-bit floats, as additive blending into RGBA32F does.
@@ -5893,6 +5925,496 @@ private:
 
 } // namespace hairshadow
 // ---- end hairshadow/methods/shadow_method.hpp
+// ---- begin hairshadow/placement/power_layers.hpp
+/// @file
+/// Unreal Engine's deep shadow layers (HairStrands: HairStrandsDeepShadowCommon.ush, ComputeDOMWeights;
+/// HairStrandsTransmittance.cpp, ComputeDeepShadowLayerDepths): a depth pass gives each texel the depth
+/// z0 of its first fragment, and layer boundary k, for k = 1..K, lies at z0 + D (k / (K + 1))^e, with
+/// e = 1 + 5.2 x the layer distribution (0.5 by default: e = 3.6) and D the hair's whole depth along
+/// the light (Unreal's light frustum spans the hair group's bounds; here the map's extent). A fragment
+/// adds to every boundary it is strictly in front of, so the stored layers are cumulative; fragments
+/// behind the last boundary add to none. Queries move back by 0.05 x the first boundary (Unreal's
+/// DepthBiasScale) before they are placed.
+
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace hairshadow {
+
+/// K layers from each texel's first fragment, their depths a power of their index (Unreal Engine's).
+/// @tparam K number of layers (Unreal stores 4, one per channel of an RGBA16F texel)
+template <int K>
+class power_layers {
+    static_assert(K >= 1 && K <= 8, "power_layers takes 1 to 8 layers");
+
+public:
+    static constexpr int layer_count = K;
+    static constexpr bool cumulative = true;
+    /// Each texel's state is its nearest fragment, whatever the order (order_free_maps).
+    static constexpr bool fragment_order_free = true;
+    static constexpr bool contiguous = true;
+    static constexpr std::string_view name = "power_layers";
+    static constexpr std::string_view glsl_name = "placement/power_layers";
+    /// Unreal's r.HairStrands.DeepShadow.DepthBiasScale: queries move back by this share of the first boundary.
+    static constexpr float depth_bias_scale = 0.05f;
+
+    /// The depth map: the texel's first fragment.
+    struct texel_state {
+        float z0 = 0.0f;
+        friend bool operator==(const texel_state&, const texel_state&) = default;
+    };
+
+    /// Layers of Unreal's default distribution, 0.5.
+    power_layers() : power_layers(0.5f) {}
+    /// Layers of `distribution` in [0, 1] (Unreal's r.HairStrands.DeepShadow.LayerDistribution): 0 puts
+    /// the boundaries at even steps of k / (K + 1), 1 crowds them towards the front (exponent 6.2).
+    explicit power_layers(float distribution) : distribution_(distribution) {
+        if (!(distribution >= 0.0f && distribution <= 1.0f)) throw argument_error("power_layers: the layer distribution must be in [0, 1]");
+        const double exponent = 1.0 + 5.2 * double(distribution);
+        for (int k = 1; k <= K; ++k) fractions_[std::size_t(k)] = float(std::pow(double(k) / double(K + 1), exponent));
+    }
+
+    /// Boundary k's depth behind z0, in units of the hair's depth D: (k / (K + 1))^e; 0 for k = 0.
+    float fraction(int k) const noexcept { return fractions_[std::size_t(k)]; }
+    float distribution() const noexcept { return distribution_; }
+
+    /// The boundaries from the map's extent (the GL twin computes the same floats from its own).
+    void prepare(const depth_extent& e) noexcept {
+        const float depth = std::max(e.furthest - e.nearest, 1e-6f);
+        for (int k = 0; k <= K; ++k) boundaries_[std::size_t(k)] = detail::rounded(depth * fractions_[std::size_t(k)]);
+        bias_ = detail::rounded(depth_bias_scale * boundaries_[1]);
+    }
+    /// The depth pass: z0 is the nearest fragment.
+    template <class Fragment>
+    void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
+        if (!fragments.empty()) s.z0 = detail::texel_extent_of(fragments).nearest;
+    }
+    void texel_state_from(float nearest, float, texel_state& s) const noexcept { s.z0 = nearest; }
+
+    /// The layer a fragment starts adding to: the boundaries it is not in front of; -1 behind the last.
+    int assign(const texel_state& s, float depth) const noexcept {
+        const float behind = depth - s.z0;
+        int k = 0;
+        for (int i = 1; i <= K; ++i) k += int(behind >= boundaries_[std::size_t(i)]);
+        return k == K ? -1 : k;
+    }
+    /// A query's place: in front of z0 nothing lies in front of it; otherwise its depth behind z0,
+    /// less the bias (at least 0), among the boundaries.
+    layer_position locate(const texel_state& s, float depth) const noexcept {
+        const float behind = depth - s.z0;
+        if (!(behind >= 0.0f)) return {-1, 0.0f};
+        const float d = std::max(behind - bias_, 0.0f);
+        if (d >= boundaries_[std::size_t(K)]) return {K, 0.0f};
+        int k = 0;
+        for (int i = 1; i < K; ++i) k += int(d >= boundaries_[std::size_t(i)]);
+        return detail::position_in(k, d, boundaries_[std::size_t(k)], boundaries_[std::size_t(k + 1)]);
+    }
+    static constexpr std::size_t global_bytes() noexcept { return sizeof(float) * std::size_t(K + 1); }
+
+    /// The GLSL twin's uniforms (gl/maps/policy_glsl.hpp): the boundaries' fractions, as the CPU rounded them.
+    template <class Set>
+    void glsl_uniforms(Set&& set) const {
+        for (int k = 1; k <= K; ++k) set("hs_power_fraction[" + std::to_string(k) + "]", fractions_[std::size_t(k)]);
+    }
+
+private:
+    float distribution_;
+    std::array<float, std::size_t(K) + 1> fractions_{};
+    std::array<float, std::size_t(K) + 1> boundaries_{};
+    float bias_ = 0.0f;
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/placement/power_layers.hpp
+// ---- begin hairshadow/reconstruction/hair_count.hpp
+/// @file
+/// Reconstruction by hair count, as Unreal Engine's HairStrands deep shadows
+/// (HairStrandsDeepTransmittanceCommon.ush, ComputeTransmittanceFromHairCount): the count of hairs in
+/// front of a point, interpolated linearly between the layers, gives T = A^max(0, count - 1), A being
+/// the transmittance of one hair; the "- 1" removes a hair's shadow on itself.
+///
+/// Unreal counts each fragment by its coverage of the texel and reads A from its fibre-scattering
+/// table. Here a fragment's alpha already is its opacity times its coverage (raster/fragment.hpp), so
+/// one hair is a fragment of alpha `hair_alpha` (A = 1 - hair_alpha), and the count is the optical
+/// depth in front of the point over that hair's: count = tau / b, b = -ln(1 - hair_alpha), and
+/// T = exp(-max(0, tau - b)). The layers therefore hold optical depth, as interpolation's do (the same
+/// build, accumulations and fast paths), and only the look-up differs. Where every fragment has the
+/// hair's alpha, the count is the number of fragments; with the "- 1" left out (`minus_one` false),
+/// T is interpolation's. docs/methods.md measures both against the exact map.
+
+// ---- begin hairshadow/reconstruction/interpolation.hpp
+/// @file
+/// Reconstruction by interpolation: each layer (opacity map, deep opacity layer or density cluster bin)
+/// stores its optical depth, and the optical depth at a query depth rises linearly across the layer it
+/// falls in (Kim & Neumann 2001 section 2; Yuksel & Keyser 2008 section 3; Mertens et al. 2004 section
+/// 3.2: piecewise-constant density, piecewise-linear optical depth).
+
+// ---- begin hairshadow/accumulation/detail/repeated_sums.hpp
+/// @file
+/// The sum of n fragments of one optical depth b, as an accumulation adds them one by one: a pure
+/// function of n, kept in a table. A texel whose fragments all share b (a model of one alpha, the
+/// common case) then sums each layer from its count, with no chain of dependent adds per texel once
+/// the table holds its counts: the same value, bit for bit, as adding them in order, since every add
+/// is the same.
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+
+namespace hairshadow::detail {
+
+/// sums(n) = b added n times to a zero sum by Accumulation::add. The first `tabled` are kept,
+/// filled as counts reach them and started afresh when b changes; larger counts go on adding from the
+/// last. A fixed array: a build that uses it allocates nothing.
+template <class Accumulation>
+class repeated_sums {
+public:
+    using sum_type = typename Accumulation::sum_type;
+    static constexpr std::size_t tabled = 1024;
+
+    /// Uses b (bit for bit) from now on.
+    void use(float b) noexcept {
+        if (filled_ > 0 && std::bit_cast<std::uint32_t>(b) == b_bits_) return;
+        b_ = b, b_bits_ = std::bit_cast<std::uint32_t>(b);
+        sums_[0] = sum_type{};
+        filled_ = 1;
+    }
+    /// n fragments of b, added one by one.
+    sum_type operator()(std::size_t n) noexcept {
+        if (n < filled_) return sums_[n];
+        const std::size_t last = std::min(n, tabled - 1);
+        for (; filled_ <= last; ++filled_) sums_[filled_] = Accumulation::add(sums_[filled_ - 1], b_);
+        sum_type sum = sums_[last];
+        for (std::size_t i = last; i < n; ++i) sum = Accumulation::add(sum, b_);
+        return sum;
+    }
+
+private:
+    std::array<sum_type, tabled> sums_;
+    std::size_t filled_ = 0; ///< sums_[0, filled_) hold the sums for b_
+    float b_ = 0.0f;
+    std::uint32_t b_bits_ = 0;
+};
+
+/// This thread's repeated_sums for Accumulation, set to b. A cache of a pure function, one per thread
+/// so that builds on any number of threads share nothing and give the same sums, and held in the
+/// thread's own storage so that no build allocates for it.
+template <class Accumulation>
+repeated_sums<Accumulation>& repeated_sums_of(float b) noexcept {
+    thread_local repeated_sums<Accumulation> sums;
+    sums.use(b);
+    return sums;
+}
+
+} // namespace hairshadow::detail
+// ---- end hairshadow/accumulation/detail/repeated_sums.hpp
+
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <cmath>
+#include <span>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+namespace hairshadow {
+
+/// Optical depth interpolated linearly inside each layer.
+struct interpolation {
+    static constexpr std::string_view name = "interpolation";
+    static constexpr std::string_view glsl_name = "reconstruction/interpolation";
+
+    /// Any placement's layers can be interpolated.
+    template <class Placement>
+    static constexpr bool accepts = Placement::layer_count >= 1;
+
+    /// A texel's maps depend on its fragments as a set where they share one optical depth: every sum
+    /// then adds the same b, whatever the order (order_free_maps).
+    static constexpr bool fragment_order_free = true;
+
+    /// One value per layer: cumulative (the optical depth in front of the layer's end) when the
+    /// placement's layers are opacity maps, per bin when they are histogram bins.
+    template <class Placement, class Accumulation>
+    struct storage {
+        std::array<typename Accumulation::value_type, std::size_t(Placement::layer_count)> layers{};
+        friend bool operator==(const storage&, const storage&) = default;
+    };
+
+    /// Sums the texel's fragments into its layers; `instructions` (resolved) chooses how the layers
+    /// are found (placement/detail/assign_each.hpp), which changes no bit.
+    template <class Placement, class Accumulation, class Fragment>
+    static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const Fragment> fragments,
+                      storage<Placement, Accumulation>& out, instruction_set instructions = instruction_set::scalar) {
+        constexpr int L = Placement::layer_count;
+        std::array<typename Accumulation::sum_type, std::size_t(L)> sums{};
+        if (!fragments.empty() && one_optical_depth(fragments)) {
+            // Every fragment adds the same b, so a layer's sum is a function of how many it took: counted
+            // (sixteen at a time where the placement can), then read from this thread's repeated_sums,
+            // not added fragment by fragment: the same sums, bit for bit, without a chain of dependent
+            // adds per layer (BENCHMARKS.md, "A texel of one optical depth sums its layers from their
+            // counts").
+            return finish_counted<Placement, Accumulation>(fragment_optical_depth(fragments[0]),
+                                                           detail::layer_counts(placement, state, fragments, instructions), out);
+        }
+        detail::for_each_layer(placement, state, fragments, instructions, [&sums](int k, const Fragment& f) {
+            if constexpr (std::is_same_v<Accumulation, float_accumulation> && L <= 16) {
+                // Every layer's sum takes b or +0 for every fragment: the same sums, bit for bit (x + 0 == x
+                // for the sums, which are never -0), without a store and reload of one layer's sum per
+                // fragment; the layers' adds are independent and vectorise.
+                const float b = fragment_optical_depth(f);
+                for (int j = 0; j < L; ++j) sums[std::size_t(j)] += detail::keep_if(k == j, b);
+            } else {
+                if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], fragment_optical_depth(f));
+            }
+        });
+        finish<Placement, Accumulation>(sums, out);
+    }
+
+#if HAIRSHADOW_AVX512_WALK
+    /// build for a texel whose fragments all have optical depth b, given by their depths alone
+    /// (tile_fragments::group_depths): build's branch for one optical depth, the same maps bit for bit.
+    template <class Placement, class Accumulation>
+        requires requires(const Placement& p, const typename Placement::texel_state& s, std::span<const float> depths,
+                          std::array<std::uint32_t, std::size_t(Placement::layer_count)>& counts) { p.count_texel_avx512(s, depths, counts); }
+    static void build_from_depths(const Placement& placement, const typename Placement::texel_state& state, std::span<const float> depths, float b,
+                                  storage<Placement, Accumulation>& out) {
+        std::array<std::uint32_t, std::size_t(Placement::layer_count)> counts{};
+        placement.count_texel_avx512(state, depths, counts);
+        finish_counted<Placement, Accumulation>(b, counts, out);
+    }
+#endif
+
+    /// Whether every fragment's optical depth is the first one's: their alphas (or optical depths) are,
+    /// bit for bit. Without a branch per fragment, so that the loop vectorises.
+    template <class Fragment>
+    static bool one_optical_depth(std::span<const Fragment> fragments) noexcept {
+        const auto source = [](const Fragment& f) {
+            if constexpr (requires { f.alpha; }) return std::bit_cast<std::uint32_t>(f.alpha);
+            else return std::bit_cast<std::uint32_t>(f.optical_depth);
+        };
+        const std::uint32_t first = source(fragments[0]);
+        std::uint32_t other = 0;
+        for (const auto& f : fragments) other |= source(f) ^ first;
+        return other == 0;
+    }
+
+    /// The maps of a texel whose fragments all add b, counts[k] of them in layer k.
+    template <class Placement, class Accumulation>
+    static void finish_counted(float b, const std::array<std::uint32_t, std::size_t(Placement::layer_count)>& counts,
+                               storage<Placement, Accumulation>& out) {
+        auto& repeats = detail::repeated_sums_of<Accumulation>(b);
+        std::array<typename Accumulation::sum_type, std::size_t(Placement::layer_count)> sums{};
+        for (std::size_t k = 0; k < sums.size(); ++k) sums[k] = repeats(counts[k]);
+        finish<Placement, Accumulation>(sums, out);
+    }
+
+    /// The build in pieces, for a build that meets a texel's fragments among other texels' (in each
+    /// texel's own order all the same): one accumulator per texel, each fragment accumulated into its
+    /// layer k (as assign gives it), then finished. The same maps as build, bit for bit: build's
+    /// branch-free loop adds +0 to the other layers, which changes no sum.
+    template <class Placement, class Accumulation>
+    using accumulator = std::array<typename Accumulation::sum_type, std::size_t(Placement::layer_count)>;
+    template <class Placement, class Accumulation>
+    static void accumulate(accumulator<Placement, Accumulation>& sums, int k, float optical_depth) noexcept {
+        if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], optical_depth);
+    }
+    template <class Placement, class Accumulation>
+    static void finish(const accumulator<Placement, Accumulation>& sums, storage<Placement, Accumulation>& out) noexcept {
+        typename Accumulation::sum_type running{};
+        for (std::size_t k = 0; k < std::size_t(Placement::layer_count); ++k) {
+            if constexpr (Placement::cumulative) {
+                running = Accumulation::combine(running, sums[k]);
+                out.layers[k] = Accumulation::store(running);
+            } else {
+                out.layers[k] = Accumulation::store(sums[k]);
+            }
+        }
+    }
+    /// finish for several texels, the same values: their running sums advance layer by layer side by
+    /// side, so that each texel's chain of dependent adds overlaps the others' (64 opacity maps: a
+    /// chain of 64 adds per texel; BENCHMARKS.md, "Many layers streamed").
+    template <class Placement, class Accumulation, std::size_t N>
+        requires(Placement::cumulative)
+    static void finish_several(const std::array<const accumulator<Placement, Accumulation>*, N>& sums,
+                               const std::array<storage<Placement, Accumulation>*, N>& out) noexcept {
+        std::array<typename Accumulation::sum_type, N> running{};
+        for (std::size_t k = 0; k < std::size_t(Placement::layer_count); ++k)
+            for (std::size_t t = 0; t < N; ++t) {
+                running[t] = Accumulation::combine(running[t], (*sums[t])[k]);
+                out[t]->layers[k] = Accumulation::store(running[t]);
+            }
+    }
+
+    /// Optical depth in front of the end of layer k.
+    template <class Placement, class Accumulation>
+    static float through_layer(const storage<Placement, Accumulation>& in, int k) noexcept {
+        if (k < 0) return 0.0f;
+        if constexpr (Placement::cumulative) {
+            return Accumulation::decode(in.layers[std::size_t(k)]);
+        } else {
+            float sum = 0.0f;
+            for (int i = 0; i <= k; ++i) sum += Accumulation::decode(in.layers[std::size_t(i)]);
+            return sum;
+        }
+    }
+
+    /// Maps a texel stores, for inspection: one per layer.
+    template <class Placement>
+    static constexpr int stored_maps = Placement::layer_count;
+    /// Optical depth stored through map k (the end of layer k).
+    template <class Placement, class Accumulation>
+    static float stored_optical_depth(const storage<Placement, Accumulation>& in, int k) noexcept {
+        return through_layer<Placement, Accumulation>(in, k);
+    }
+
+    template <class Placement, class Accumulation>
+    static float optical_depth(const Placement& placement, const typename Placement::texel_state& state,
+                               const storage<Placement, Accumulation>& in, float depth) noexcept {
+        constexpr int L = Placement::layer_count;
+        const layer_position p = placement.locate(state, depth);
+        if (p.index < 0) return 0.0f;
+        if (p.index >= L) return through_layer<Placement, Accumulation>(in, L - 1);
+        const float before = through_layer<Placement, Accumulation>(in, p.index - 1);
+        const float after = through_layer<Placement, Accumulation>(in, p.index);
+        return before + p.fraction * (after - before);
+    }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/reconstruction/interpolation.hpp
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <string_view>
+
+namespace hairshadow {
+
+/// What one hair is, for hair_count.
+struct hair_count_parameters {
+    /// The alpha of one hair's fragment in the map (its opacity times its coverage of a texel): the
+    /// three test models' fragments at 512x512 have 0.105 (Ratboy), 0.117 (Sintel) and 0.129 (curly).
+    float hair_alpha = 0.12f;
+    /// Unreal's "- 1": the hair the point lies on casts no shadow on it.
+    bool minus_one = true;
+
+    /// -ln(1 - hair_alpha): one hair's optical depth, in double rounded once to float, so that a value
+    /// the compiler folds and one the C library computes at run time agree.
+    float hair_optical_depth() const noexcept { return float(-std::log1p(-double(hair_alpha))); }
+    /// Throws argument_error unless hair_alpha is in (0, 1).
+    void check() const {
+        if (!(hair_alpha > 0.0f && hair_alpha < 1.0f)) throw argument_error("hair count: the hair alpha must be in (0, 1)");
+    }
+    friend bool operator==(const hair_count_parameters&, const hair_count_parameters&) = default;
+};
+
+/// Interpolated optical depth, less one hair's (Unreal Engine's hair count).
+class hair_count : public interpolation {
+public:
+    static constexpr std::string_view name = "hair_count";
+    static constexpr std::string_view glsl_name = "reconstruction/hair_count";
+
+    hair_count() = default;
+    explicit hair_count(const hair_count_parameters& parameters) : parameters_(parameters), hair_(parameters.hair_optical_depth()) { parameters.check(); }
+    const hair_count_parameters& parameters() const noexcept { return parameters_; }
+
+    template <class Placement, class Accumulation>
+    float optical_depth(const Placement& placement, const typename Placement::texel_state& state, const storage<Placement, Accumulation>& in,
+                        float depth) const noexcept {
+        const float tau = interpolation::optical_depth<Placement, Accumulation>(placement, state, in, depth);
+        return parameters_.minus_one ? std::max(tau - hair_, 0.0f) : tau;
+    }
+
+    /// The GLSL twin (shaders/reconstruction/hair_count.glsl, after interpolation's): its switch and
+    /// one hair's optical depth, as the CPU rounded it.
+    static std::string glsl_defines() { return "#define HS_OWN_OPTICAL_DEPTH\n"; }
+    template <class Set>
+    void glsl_uniforms(Set&& set) const {
+        set("hs_hair_optical_depth", parameters_.minus_one ? hair_ : 0.0f);
+    }
+
+private:
+    hair_count_parameters parameters_;
+    float hair_ = hair_count_parameters{}.hair_optical_depth();
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/reconstruction/hair_count.hpp
+
+namespace hairshadow {
+
+/// Unreal Engine's hair-count deep shadows: power_layers (the layers' depths) and hair_count (the
+/// look-up). Unreal ships K = 4, in one RGBA16F texel beside a depth map.
+template <int K = 4, class Accumulation = float_accumulation>
+using hair_count_deep_shadows = shadow_method<power_layers<K>, Accumulation, hair_count>;
+
+/// The registration of hair-count deep shadows (methods/method_family.hpp).
+struct hair_count_deep_shadows_family {
+    static constexpr std::string_view name = "ue";
+    static constexpr std::string_view grammar =
+        "ue[:K[:ALPHA[:DISTRIBUTION]]] (Unreal Engine's hair-count deep shadows: K = 2, 4 or 8 layers, 4 by default; one hair's "
+        "fragment alpha, 0.12 by default; the layer distribution in [0, 1], 0.5 by default) | ue:K:zero (the count from zero, "
+        "without Unreal's - 1)";
+    static constexpr bool takes_accumulation = true;
+    static constexpr auto examples = std::make_tuple(spec_example<hair_count_deep_shadows<4>>{"ue", in_compare | in_bench},
+                                                     spec_example<hair_count_deep_shadows<4>>{"ue:4"},
+                                                     spec_example<hair_count_deep_shadows<8>>{"ue:8", in_compare},
+                                                     spec_example<hair_count_deep_shadows<4, emulated_8bit>>{"ue:4:8bit"});
+    static constexpr auto keywords = std::to_array<std::string_view>({"zero"});
+    using sizes = size_list<2, 4, 8>;
+
+    static void check(const spec_fields& f) {
+        if (f.size() > 3) throw f.bad("ue takes at most K, ALPHA and DISTRIBUTION, or K:zero");
+        if (f.size() >= 1 && !sizes::contains(f.whole(0))) throw f.bad("ue needs K = 2, 4 or 8");
+        if (f.size() == 2 && f[1] == "zero") return;
+        try {
+            parameters(f).check();
+            (void)power_layers<4>(distribution(f));
+        } catch (const spec_error&) {
+            throw;
+        } catch (const argument_error& e) {
+            throw f.bad(e.what());
+        }
+    }
+    template <class Accumulation, class Visit>
+    static bool visit(const spec_fields& f, Visit&& visit) {
+        const int k = f.size() >= 1 ? f.whole(0) : 4;
+        return with_size<sizes>(k, [&](auto size) {
+            visit(hair_count_deep_shadows<size(), Accumulation>(power_layers<size()>(distribution(f)), hair_count(parameters(f))));
+        });
+    }
+
+private:
+    static hair_count_parameters parameters(const spec_fields& f) {
+        hair_count_parameters p;
+        if (f.size() == 2 && f[1] == "zero") p.minus_one = false;
+        else if (f.size() >= 2) p.hair_alpha = f.real(1, "hair alpha");
+        return p;
+    }
+    static float distribution(const spec_fields& f) { return f.size() == 3 ? f.real(2, "layer distribution") : 0.5f; }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/methods/hair_count_deep_shadows.hpp
+// ---- begin hairshadow/methods/published.hpp
+/// @file
+/// The published methods as compositions of policies, each in a header of its own with its
+/// registration, and the hybrids that no paper describes.
+
+// ---- begin hairshadow/methods/approximate_deep_shadow_maps.hpp
+/// @file
+/// Approximate deep shadow maps, as AMD TressFX ships them, and our variant with each texel's fibre
+/// density measured. The spec `adsm[:SPACING:RADIUS:ALPHA[:MAX]]` or `adsm:auto`.
+
 // ---- begin hairshadow/placement/depth_range.hpp
 /// @file
 /// Occupancy maps' per-texel depth range (Sintorn & Assarsson 2009, section 3.1): the nearest and
@@ -6516,286 +7038,6 @@ struct approximate_deep_shadow_maps_family {
 /// Deep opacity maps (Yuksel & Keyser 2008): K layers from each texel's first fragment. The spec
 /// `dom:K`.
 
-// ---- begin hairshadow/accumulation/emulated_8bit.hpp
-/// @file
-/// Emulated 8-bit accumulation (Kim & Neumann 2001, section 2): an RGBA8 target with additive blending.
-/// Each fragment writes b / kappa, which GL converts to 8 bits (round to nearest) before the blend
-/// adds it with saturation; a stored value q stands for the optical depth kappa * q / 255, with
-/// exp(-kappa) = 2^-8 so that a full texel (q = 255) lets 1/256 of the light through.
-
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
-#include <numbers>
-#include <string_view>
-
-namespace hairshadow {
-
-/// Every add quantised to 8 bits and saturated, as additive blending into an RGBA8 target does.
-struct emulated_8bit {
-    using value_type = std::uint8_t;
-    using sum_type = std::int32_t; ///< saturated at 255 after every add, exactly as the blend does
-    static constexpr std::string_view name = "8bit";
-    static constexpr std::string_view summary = "emulated 8-bit accumulation";
-    static constexpr std::string_view glsl_name = "accumulation/emulated_8bit";
-    /// exp(-kappa) = 2^-8: kappa = 8 ln 2, about 5.545 (the paper rounds it to 5.56).
-    static constexpr float kappa = 8.0f * std::numbers::ln2_v<float>;
-
-    /// The 8-bit step a fragment of optical depth b adds: its output b / kappa in unorm8.
-    static std::int32_t quantise(float optical_depth) noexcept {
-        return std::int32_t(std::lround(std::clamp(optical_depth / kappa, 0.0f, 1.0f) * 255.0f));
-    }
-    static sum_type add(sum_type sum, float optical_depth) noexcept { return std::min<sum_type>(sum + quantise(optical_depth), 255); }
-    static constexpr sum_type combine(sum_type a, sum_type b) noexcept { return std::min<sum_type>(a + b, 255); }
-    static constexpr value_type store(sum_type sum) noexcept { return value_type(std::min<sum_type>(sum, 255)); }
-    static constexpr float decode(value_type v) noexcept { return kappa * float(v) / 255.0f; }
-};
-
-} // namespace hairshadow
-// ---- end hairshadow/accumulation/emulated_8bit.hpp
-// ---- begin hairshadow/reconstruction/interpolation.hpp
-/// @file
-/// Reconstruction by interpolation: each layer (opacity map, deep opacity layer or density cluster bin)
-/// stores its optical depth, and the optical depth at a query depth rises linearly across the layer it
-/// falls in (Kim & Neumann 2001 section 2; Yuksel & Keyser 2008 section 3; Mertens et al. 2004 section
-/// 3.2: piecewise-constant density, piecewise-linear optical depth).
-
-// ---- begin hairshadow/accumulation/detail/repeated_sums.hpp
-/// @file
-/// The sum of n fragments of one optical depth b, as an accumulation adds them one by one: a pure
-/// function of n, kept in a table. A texel whose fragments all share b (a model of one alpha, the
-/// common case) then sums each layer from its count, with no chain of dependent adds per texel once
-/// the table holds its counts: the same value, bit for bit, as adding them in order, since every add
-/// is the same.
-
-#include <algorithm>
-#include <array>
-#include <bit>
-#include <cstddef>
-#include <cstdint>
-
-namespace hairshadow::detail {
-
-/// sums(n) = b added n times to a zero sum by Accumulation::add. The first `tabled` are kept,
-/// filled as counts reach them and started afresh when b changes; larger counts go on adding from the
-/// last. A fixed array: a build that uses it allocates nothing.
-template <class Accumulation>
-class repeated_sums {
-public:
-    using sum_type = typename Accumulation::sum_type;
-    static constexpr std::size_t tabled = 1024;
-
-    /// Uses b (bit for bit) from now on.
-    void use(float b) noexcept {
-        if (filled_ > 0 && std::bit_cast<std::uint32_t>(b) == b_bits_) return;
-        b_ = b, b_bits_ = std::bit_cast<std::uint32_t>(b);
-        sums_[0] = sum_type{};
-        filled_ = 1;
-    }
-    /// n fragments of b, added one by one.
-    sum_type operator()(std::size_t n) noexcept {
-        if (n < filled_) return sums_[n];
-        const std::size_t last = std::min(n, tabled - 1);
-        for (; filled_ <= last; ++filled_) sums_[filled_] = Accumulation::add(sums_[filled_ - 1], b_);
-        sum_type sum = sums_[last];
-        for (std::size_t i = last; i < n; ++i) sum = Accumulation::add(sum, b_);
-        return sum;
-    }
-
-private:
-    std::array<sum_type, tabled> sums_;
-    std::size_t filled_ = 0; ///< sums_[0, filled_) hold the sums for b_
-    float b_ = 0.0f;
-    std::uint32_t b_bits_ = 0;
-};
-
-/// This thread's repeated_sums for Accumulation, set to b. A cache of a pure function, one per thread
-/// so that builds on any number of threads share nothing and give the same sums, and held in the
-/// thread's own storage so that no build allocates for it.
-template <class Accumulation>
-repeated_sums<Accumulation>& repeated_sums_of(float b) noexcept {
-    thread_local repeated_sums<Accumulation> sums;
-    sums.use(b);
-    return sums;
-}
-
-} // namespace hairshadow::detail
-// ---- end hairshadow/accumulation/detail/repeated_sums.hpp
-
-#include <array>
-#include <bit>
-#include <cstdint>
-#include <cmath>
-#include <span>
-#include <string_view>
-#include <type_traits>
-#include <vector>
-
-namespace hairshadow {
-
-/// Optical depth interpolated linearly inside each layer.
-struct interpolation {
-    static constexpr std::string_view name = "interpolation";
-    static constexpr std::string_view glsl_name = "reconstruction/interpolation";
-
-    /// Any placement's layers can be interpolated.
-    template <class Placement>
-    static constexpr bool accepts = Placement::layer_count >= 1;
-
-    /// A texel's maps depend on its fragments as a set where they share one optical depth: every sum
-    /// then adds the same b, whatever the order (order_free_maps).
-    static constexpr bool fragment_order_free = true;
-
-    /// One value per layer: cumulative (the optical depth in front of the layer's end) when the
-    /// placement's layers are opacity maps, per bin when they are histogram bins.
-    template <class Placement, class Accumulation>
-    struct storage {
-        std::array<typename Accumulation::value_type, std::size_t(Placement::layer_count)> layers{};
-        friend bool operator==(const storage&, const storage&) = default;
-    };
-
-    /// Sums the texel's fragments into its layers; `instructions` (resolved) chooses how the layers
-    /// are found (placement/detail/assign_each.hpp), which changes no bit.
-    template <class Placement, class Accumulation, class Fragment>
-    static void build(const Placement& placement, const typename Placement::texel_state& state, std::span<const Fragment> fragments,
-                      storage<Placement, Accumulation>& out, instruction_set instructions = instruction_set::scalar) {
-        constexpr int L = Placement::layer_count;
-        std::array<typename Accumulation::sum_type, std::size_t(L)> sums{};
-        if (!fragments.empty() && one_optical_depth(fragments)) {
-            // Every fragment adds the same b, so a layer's sum is a function of how many it took: counted
-            // (sixteen at a time where the placement can), then read from this thread's repeated_sums,
-            // not added fragment by fragment: the same sums, bit for bit, without a chain of dependent
-            // adds per layer (BENCHMARKS.md, "A texel of one optical depth sums its layers from their
-            // counts").
-            return finish_counted<Placement, Accumulation>(fragment_optical_depth(fragments[0]),
-                                                           detail::layer_counts(placement, state, fragments, instructions), out);
-        }
-        detail::for_each_layer(placement, state, fragments, instructions, [&sums](int k, const Fragment& f) {
-            if constexpr (std::is_same_v<Accumulation, float_accumulation> && L <= 16) {
-                // Every layer's sum takes b or +0 for every fragment: the same sums, bit for bit (x + 0 == x
-                // for the sums, which are never -0), without a store and reload of one layer's sum per
-                // fragment; the layers' adds are independent and vectorise.
-                const float b = fragment_optical_depth(f);
-                for (int j = 0; j < L; ++j) sums[std::size_t(j)] += detail::keep_if(k == j, b);
-            } else {
-                if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], fragment_optical_depth(f));
-            }
-        });
-        finish<Placement, Accumulation>(sums, out);
-    }
-
-#if HAIRSHADOW_AVX512_WALK
-    /// build for a texel whose fragments all have optical depth b, given by their depths alone
-    /// (tile_fragments::group_depths): build's branch for one optical depth, the same maps bit for bit.
-    template <class Placement, class Accumulation>
-        requires requires(const Placement& p, const typename Placement::texel_state& s, std::span<const float> depths,
-                          std::array<std::uint32_t, std::size_t(Placement::layer_count)>& counts) { p.count_texel_avx512(s, depths, counts); }
-    static void build_from_depths(const Placement& placement, const typename Placement::texel_state& state, std::span<const float> depths, float b,
-                                  storage<Placement, Accumulation>& out) {
-        std::array<std::uint32_t, std::size_t(Placement::layer_count)> counts{};
-        placement.count_texel_avx512(state, depths, counts);
-        finish_counted<Placement, Accumulation>(b, counts, out);
-    }
-#endif
-
-    /// Whether every fragment's optical depth is the first one's: their alphas (or optical depths) are,
-    /// bit for bit. Without a branch per fragment, so that the loop vectorises.
-    template <class Fragment>
-    static bool one_optical_depth(std::span<const Fragment> fragments) noexcept {
-        const auto source = [](const Fragment& f) {
-            if constexpr (requires { f.alpha; }) return std::bit_cast<std::uint32_t>(f.alpha);
-            else return std::bit_cast<std::uint32_t>(f.optical_depth);
-        };
-        const std::uint32_t first = source(fragments[0]);
-        std::uint32_t other = 0;
-        for (const auto& f : fragments) other |= source(f) ^ first;
-        return other == 0;
-    }
-
-    /// The maps of a texel whose fragments all add b, counts[k] of them in layer k.
-    template <class Placement, class Accumulation>
-    static void finish_counted(float b, const std::array<std::uint32_t, std::size_t(Placement::layer_count)>& counts,
-                               storage<Placement, Accumulation>& out) {
-        auto& repeats = detail::repeated_sums_of<Accumulation>(b);
-        std::array<typename Accumulation::sum_type, std::size_t(Placement::layer_count)> sums{};
-        for (std::size_t k = 0; k < sums.size(); ++k) sums[k] = repeats(counts[k]);
-        finish<Placement, Accumulation>(sums, out);
-    }
-
-    /// The build in pieces, for a build that meets a texel's fragments among other texels' (in each
-    /// texel's own order all the same): one accumulator per texel, each fragment accumulated into its
-    /// layer k (as assign gives it), then finished. The same maps as build, bit for bit: build's
-    /// branch-free loop adds +0 to the other layers, which changes no sum.
-    template <class Placement, class Accumulation>
-    using accumulator = std::array<typename Accumulation::sum_type, std::size_t(Placement::layer_count)>;
-    template <class Placement, class Accumulation>
-    static void accumulate(accumulator<Placement, Accumulation>& sums, int k, float optical_depth) noexcept {
-        if (k >= 0) sums[std::size_t(k)] = Accumulation::add(sums[std::size_t(k)], optical_depth);
-    }
-    template <class Placement, class Accumulation>
-    static void finish(const accumulator<Placement, Accumulation>& sums, storage<Placement, Accumulation>& out) noexcept {
-        typename Accumulation::sum_type running{};
-        for (std::size_t k = 0; k < std::size_t(Placement::layer_count); ++k) {
-            if constexpr (Placement::cumulative) {
-                running = Accumulation::combine(running, sums[k]);
-                out.layers[k] = Accumulation::store(running);
-            } else {
-                out.layers[k] = Accumulation::store(sums[k]);
-            }
-        }
-    }
-    /// finish for several texels, the same values: their running sums advance layer by layer side by
-    /// side, so that each texel's chain of dependent adds overlaps the others' (64 opacity maps: a
-    /// chain of 64 adds per texel; BENCHMARKS.md, "Many layers streamed").
-    template <class Placement, class Accumulation, std::size_t N>
-        requires(Placement::cumulative)
-    static void finish_several(const std::array<const accumulator<Placement, Accumulation>*, N>& sums,
-                               const std::array<storage<Placement, Accumulation>*, N>& out) noexcept {
-        std::array<typename Accumulation::sum_type, N> running{};
-        for (std::size_t k = 0; k < std::size_t(Placement::layer_count); ++k)
-            for (std::size_t t = 0; t < N; ++t) {
-                running[t] = Accumulation::combine(running[t], (*sums[t])[k]);
-                out[t]->layers[k] = Accumulation::store(running[t]);
-            }
-    }
-
-    /// Optical depth in front of the end of layer k.
-    template <class Placement, class Accumulation>
-    static float through_layer(const storage<Placement, Accumulation>& in, int k) noexcept {
-        if (k < 0) return 0.0f;
-        if constexpr (Placement::cumulative) {
-            return Accumulation::decode(in.layers[std::size_t(k)]);
-        } else {
-            float sum = 0.0f;
-            for (int i = 0; i <= k; ++i) sum += Accumulation::decode(in.layers[std::size_t(i)]);
-            return sum;
-        }
-    }
-
-    /// Maps a texel stores, for inspection: one per layer.
-    template <class Placement>
-    static constexpr int stored_maps = Placement::layer_count;
-    /// Optical depth stored through map k (the end of layer k).
-    template <class Placement, class Accumulation>
-    static float stored_optical_depth(const storage<Placement, Accumulation>& in, int k) noexcept {
-        return through_layer<Placement, Accumulation>(in, k);
-    }
-
-    template <class Placement, class Accumulation>
-    static float optical_depth(const Placement& placement, const typename Placement::texel_state& state,
-                               const storage<Placement, Accumulation>& in, float depth) noexcept {
-        constexpr int L = Placement::layer_count;
-        const layer_position p = placement.locate(state, depth);
-        if (p.index < 0) return 0.0f;
-        if (p.index >= L) return through_layer<Placement, Accumulation>(in, L - 1);
-        const float before = through_layer<Placement, Accumulation>(in, p.index - 1);
-        const float after = through_layer<Placement, Accumulation>(in, p.index);
-        return before + p.fraction * (after - before);
-    }
-};
-
-} // namespace hairshadow
-// ---- end hairshadow/reconstruction/interpolation.hpp
 
 namespace hairshadow {
 
@@ -7892,10 +8134,10 @@ struct exact_reference_family {
 namespace hairshadow {
 
 /// Every registered method family, in the order the command line lists them (the papers' years, then
-/// ours, then the exact reference).
+/// the engines', then ours, then the exact reference).
 using registered_families =
     family_list<opacity_shadow_maps_family, density_clustering_family, deep_opacity_maps_family, occupancy_maps_family,
-                approximate_deep_shadow_maps_family, deep_occupancy_maps_family, range_opacity_maps_family, exact_reference_family>;
+                approximate_deep_shadow_maps_family, hair_count_deep_shadows_family, deep_occupancy_maps_family, range_opacity_maps_family, exact_reference_family>;
 
 /// Every registered accumulation; the first is the default.
 using registered_accumulations = accumulation_list<float_accumulation, emulated_8bit>;
@@ -7919,7 +8161,7 @@ inline std::string default_accumulation() {
     return name;
 }
 
-/// The names of the families whose specs take an accumulation: "osm, dc, dom or occ".
+/// The names of the families whose specs take an accumulation: "osm, dc, dom, occ or ue".
 inline std::string accumulating_families() {
     std::vector<std::string_view> names;
     registered_families::any([&]<class F>() {

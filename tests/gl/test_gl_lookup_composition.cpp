@@ -56,7 +56,7 @@ TEST_CASE("two prefixed look-ups of different methods and lights shade in one sh
 
 TEST_CASE("every method's look-up composes with any other's under different prefixes", "[gl][lookup]") {
     test::gl_context();
-    const std::vector<std::string> specs = {"osm:16", "osm:8:gamma", "dom:3", "dom:4:8bit", "dc:4", "occ:128:4", "rosm:16", "adsm", "adsm:auto"};
+    const std::vector<std::string> specs = {"osm:16", "osm:8:gamma", "dom:3", "dom:4:8bit", "dc:4", "occ:128:4", "rosm:16", "adsm", "adsm:auto", "ue", "ue:8:zero"};
     for (const auto& a : specs)
         for (const auto& b : specs) {
             const auto first = gl::make_gl_shadow_map(parse_method_spec(a)), second = gl::make_gl_shadow_map(parse_method_spec(b));

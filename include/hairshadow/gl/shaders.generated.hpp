@@ -884,12 +884,12 @@ float hs_stored(uint64_t sum) {
 
 /// shaders/lookup/interpolation.glsl
 inline constexpr std::string_view lookup_interpolation = R"hs_glsl(// float hs_transmittance(vec3 world_pos) for interpolated methods (opacity shadow maps, deep opacity
-// maps, density clustering, range opacity maps): any user shader can call it.
+// maps, density clustering, range opacity maps, hair count): any user shader can call it.
 float hs_transmittance(vec3 world_pos) {
     float depth;
     vec4 range;
     if (!hs_lookup_locate(world_pos, hs_lookup_texel, depth, range)) return 1.0;
-    return exp(-hs_interpolate(hs_locate_from(hs_lookup_texel, range, depth)));
+    return exp(-hs_optical_depth(hs_locate_from(hs_lookup_texel, range, depth)));
 }
 )hs_glsl";
 
@@ -1436,6 +1436,41 @@ hs_layer_position hs_locate(float depth) {
 int hs_assign(float depth) { return clamp(hs_locate(depth).index, 0, HS_LAYERS - 1); }
 )hs_glsl";
 
+/// shaders/placement/power_layers.glsl
+inline constexpr std::string_view placement_power_layers = R"hs_glsl(// Unreal Engine's deep shadow layers (HairStrands): boundary k, for k = 1..HS_LAYERS, lies at
+// z0 + D hs_power_fraction[k] behind the texel's first fragment z0, D being the map's depth extent
+// and the fractions (k / (K + 1))^e as the CPU rounded them. A fragment starts adding at the first
+// boundary it is not in front of (-1 behind the last); a query moves back by 0.05 of the first
+// boundary. Mirrors hairshadow::power_layers, float for float (precise: no fused products).
+uniform float hs_power_fraction[HS_LAYERS + 1];
+
+float hs_power_boundary(int k) {
+    if (k == 0) return 0.0;
+    vec2 extent = hs_map_extent();
+    precise float depth = max(extent.y - extent.x, 1e-6);
+    precise float boundary = depth * hs_power_fraction[k];
+    return boundary;
+}
+
+int hs_assign_from(ivec2 texel, vec4 range, float depth) {
+    precise float behind = depth - range.x;
+    int k = 0;
+    for (int i = 1; i <= HS_LAYERS; ++i) k += behind >= hs_power_boundary(i) ? 1 : 0;
+    return k == HS_LAYERS ? -1 : k;
+}
+
+hs_layer_position hs_locate_from(ivec2 texel, vec4 range, float depth) {
+    precise float behind = depth - range.x;
+    if (!(behind >= 0.0)) return hs_layer_position(-1, 0.0);
+    precise float bias = 0.05 * hs_power_boundary(1);
+    precise float d = max(behind - bias, 0.0);
+    if (d >= hs_power_boundary(HS_LAYERS)) return hs_layer_position(HS_LAYERS, 0.0);
+    int k = 0;
+    for (int i = 1; i < HS_LAYERS; ++i) k += d >= hs_power_boundary(i) ? 1 : 0;
+    return hs_position_in(k, d, hs_power_boundary(k), hs_power_boundary(k + 1));
+}
+)hs_glsl";
+
 /// shaders/raster/coverage.glsl
 inline constexpr std::string_view raster_coverage = R"hs_glsl(// A fragment's alpha: the strand's opacity times the share of the texel its thickness covers, or a
 // fixed alpha; clamped below 1 (HS_ALPHA_MAX). Mirrors hairshadow::detail::segment_shader::shade.
@@ -1530,6 +1565,16 @@ float hs_transmittance(vec3 world_pos) {
 }
 )hs_glsl";
 
+/// shaders/reconstruction/hair_count.glsl
+inline constexpr std::string_view reconstruction_hair_count = R"hs_glsl(// Reconstruction by hair count (Unreal Engine's HairStrands deep shadows), after interpolation's
+// snippet: T = A^max(0, count - 1) with count = optical depth over one hair's, that is, the
+// interpolated optical depth less one hair's (0 where the count starts from zero). Mirrors
+// hairshadow::hair_count.
+uniform float hs_hair_optical_depth;
+
+float hs_optical_depth(hs_layer_position p) { return max(hs_interpolate(p) - hs_hair_optical_depth, 0.0); }
+)hs_glsl";
+
 /// shaders/reconstruction/interpolation.glsl
 inline constexpr std::string_view reconstruction_interpolation = R"hs_glsl(// Reconstruction by interpolation: linear optical depth inside the layer a depth falls in. The method
 // provides hs_through_layer(k), the optical depth in front of the end of layer k (a prefix sum for
@@ -1541,6 +1586,12 @@ float hs_interpolate(hs_layer_position p) {
     float after = hs_through_layer(p.index);
     return before + p.fraction * (after - before);
 }
+
+// The optical depth the look-up turns into T; a reconstruction built on this one defines its own
+// after this file (HS_OWN_OPTICAL_DEPTH: hair_count).
+#ifndef HS_OWN_OPTICAL_DEPTH
+float hs_optical_depth(hs_layer_position p) { return hs_interpolate(p); }
+#endif
 )hs_glsl";
 
 /// shaders/reconstruction/occupancy_bitcount.glsl
@@ -2001,7 +2052,7 @@ struct entry {
 };
 
 /// Every snippet, sorted by name.
-inline constexpr std::array<entry, 60> all{{
+inline constexpr std::array<entry, 62> all{{
     {"accumulation/emulated_8bit", accumulation_emulated_8bit},
     {"accumulation/float", accumulation_float},
     {"compute/clusters", compute_clusters},
@@ -2036,9 +2087,11 @@ inline constexpr std::array<entry, 60> all{{
     {"placement/depth_range", placement_depth_range},
     {"placement/per_pixel_depth", placement_per_pixel_depth},
     {"placement/planar_slices", placement_planar_slices},
+    {"placement/power_layers", placement_power_layers},
     {"raster/coverage", raster_coverage},
     {"raster/vertex", raster_vertex},
     {"reconstruction/fibre_density", reconstruction_fibre_density},
+    {"reconstruction/hair_count", reconstruction_hair_count},
     {"reconstruction/interpolation", reconstruction_interpolation},
     {"reconstruction/occupancy_bitcount", reconstruction_occupancy_bitcount},
     {"render/hair_colour", render_hair_colour},

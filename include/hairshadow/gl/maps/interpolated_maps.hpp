@@ -123,15 +123,18 @@ private:
 };
 } // namespace detail
 
-/// GL twin of a shadow_method whose reconstruction is `interpolation` (any placement).
+/// GL twin of a shadow_method whose reconstruction is `interpolation` or one built on it, which stores
+/// the same layers and changes only the look-up (hair_count): its GLSL follows interpolation's and
+/// defines hs_optical_depth, with its defines and uniforms (gl/maps/policy_glsl.hpp). Any placement.
 template <class Method>
 class interpolated_maps_gl : public detail::maps_base<typename Method::placement_type> {
     using P = typename Method::placement_type;
     using A = typename Method::accumulation_type;
+    using R = typename Method::reconstruction_type;
     using base = detail::maps_base<P>;
     using state_pass = typename placement_glsl<P>::state_pass;
     using accumulation = accumulation_glsl<A>;
-    static_assert(std::is_same_v<typename Method::reconstruction_type, interpolation>, "interpolated_maps_gl needs the interpolation reconstruction");
+    static_assert(std::is_base_of_v<interpolation, R>, "interpolated_maps_gl needs the interpolation reconstruction or one built on it");
 
 public:
     static constexpr int layers = P::layer_count;
@@ -143,7 +146,7 @@ public:
     static constexpr int texture_units = 2 + state_pass::texture_units;
 
     /// Compiles the passes; throws feature_error if the context lacks GL 4.3 or 8 draw buffers.
-    explicit interpolated_maps_gl(P placement = P()) : base(std::move(placement)) {
+    explicit interpolated_maps_gl(P placement = P(), R reconstruction = R()) : base(std::move(placement)), reconstruction_(std::move(reconstruction)) {
         require_version(4, 3, "interpolated shadow maps on GL");
         GLint draw_buffers = 0;
         glGetIntegerv(GL_MAX_DRAW_BUFFERS, &draw_buffers);
@@ -156,6 +159,8 @@ public:
                                              "passes/layers");
         layers_program_ = link_program({&vs, &layers_fs}, "layers pass");
     }
+    /// The same with `method`'s placement and reconstruction, and their parameters.
+    explicit interpolated_maps_gl(const Method& method) : interpolated_maps_gl(method.placement(), method.reconstruction()) {}
 
     /// GLSL defining float hs_transmittance(vec3 world_pos), with every name under `prefix` (so
     /// "key_" defines key_transmittance): prepend a version line; bind with bind_lookup(program,
@@ -163,7 +168,8 @@ public:
     static std::string lookup_source(std::string_view prefix = default_lookup_prefix) {
         std::string s = defines(1);
         for (auto piece : around_placement<P>({accumulation::source(), shaders::placement_common},
-                                              {shaders::lookup_layers, shaders::reconstruction_interpolation, shaders::lookup_light, shaders::lookup_interpolation}))
+                                              {shaders::lookup_layers, shaders::reconstruction_interpolation, reconstruction_source(), shaders::lookup_light,
+                                               shaders::lookup_interpolation}))
             s += piece;
         return prefix_glsl(s, prefix);
     }
@@ -227,10 +233,11 @@ public:
                texels * (accumulation::texel_bytes * std::size_t(array_layers) + 16 * std::size_t(2 * state_targets));
     }
 
-    /// The maps read back as the CPU method, for CPU queries of maps built on GL.
+    /// The maps read back as the CPU method, for CPU queries of maps built on GL (with the
+    /// reconstruction's parameters: hair_count's hair).
     Method to_cpu() {
         auto texels = read_back();
-        Method cpu;
+        Method cpu(this->placement(), reconstruction_);
         cpu.adopt(this->light_, this->placement(), std::move(texels));
         return cpu;
     }
@@ -269,13 +276,19 @@ public:
         this->bind_light(binder);
         binder.texture("hs_layers_texture", GL_TEXTURE_2D_ARRAY, layers_.get());
         state_.bind(binder);
+        detail::set_policy_uniforms(binder, reconstruction_);
     }
 
 private:
     static std::string defines(int targets) {
         return "#define HS_ALPHA_MAX " + std::to_string(HAIRSHADOW_ALPHA_MAX) + "\n#define HS_LAYERS " + std::to_string(layers) +
                "\n#define HS_LAYER_TARGETS " + std::to_string(targets) + "\n" + (P::cumulative ? "#define HS_CUMULATIVE\n" : "") +
-               accumulation::defines() + placement_glsl<P>::defines();
+               accumulation::defines() + placement_glsl<P>::defines() + detail::policy_defines<R>();
+    }
+    /// A reconstruction built on interpolation brings its look-up's GLSL; interpolation's own is above.
+    static std::string_view reconstruction_source() {
+        if constexpr (std::is_same_v<R, interpolation>) return {};
+        else return detail::policy_source<R>(R::glsl_name);
     }
     void allocate(int res) {
         if (res == allocated_) return;
@@ -316,6 +329,7 @@ private:
         }
     }
 
+    R reconstruction_;
     int allocated_ = 0, targets_per_pass_ = 1;
     state_pass state_;
     program layers_program_, compute_program_;

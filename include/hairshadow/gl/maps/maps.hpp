@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The GL twin of any shadow_method, chosen by its reconstruction: gl::maps<Method> is
-/// interpolated_maps_gl for interpolation, occupancy_maps_gl for occupancy_bitcount and
+/// interpolated_maps_gl for interpolation and the reconstructions built on it (hair_count), occupancy_maps_gl for occupancy_bitcount and
 /// fibre_density_maps_gl for fibre_density. A new reconstruction adds its class and one line here.
 
 #include <hairshadow/gl/maps/fibre_density_maps.hpp>
@@ -17,8 +17,9 @@ template <class Method, class Reconstruction = typename Method::reconstruction_t
 struct maps_of {
     static_assert(sizeof(Method) == 0, "this method's reconstruction has no GL twin");
 };
-template <class Method>
-struct maps_of<Method, interpolation> {
+template <class Method, class Reconstruction>
+    requires std::is_base_of_v<interpolation, Reconstruction> // interpolation, and those built on it (hair_count)
+struct maps_of<Method, Reconstruction> {
     using type = interpolated_maps_gl<Method>;
 };
 template <class Method, int B>

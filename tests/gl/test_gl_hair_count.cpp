@@ -1,0 +1,98 @@
+// Unreal Engine's hair-count deep shadows on GL (interpolated_maps_gl with hair_count's look-up): the
+// compute path's maps against the CPU's tiled build (every texel, as the compute test does for the
+// default parameters, here with others), the GLSL look-up against the CPU query with the parameters
+// reaching it, the maps read back with them, and the look-up behind sheets of strands.
+#include "gl_test_context.hpp"
+
+#include <hairshadow/gl.hpp>
+
+#include "../sheets.hpp"
+#include "../test_support.hpp"
+
+#include <cstring>
+
+using namespace hairshadow;
+
+namespace {
+
+template <class Method>
+void check_hair_count(const Method& parameters, const hair_model& model, const light_space& light, const gl::hair_mesh& mesh, const fragment_buffer& fragments) {
+    Method cpu = parameters;
+    cpu.build(model, light);
+    gl::maps<Method> on_gl(parameters);
+    on_gl.build(mesh, light); // the compute path: the CPU's maps, states bit for bit
+    const auto texels = on_gl.read_back();
+    const int res = light.resolution();
+    long state_off = 0, data_off = 0, occupied = 0;
+    for (int y = 0; y < res; ++y)
+        for (int x = 0; x < res; ++x) {
+            const auto& c = cpu.texel(x, y);
+            const auto& g = texels[std::size_t(y) * std::size_t(res) + std::size_t(x)];
+            occupied += !fragments.texel(x, y).empty();
+            state_off += std::memcmp(&c.placement, &g.placement, sizeof(c.placement)) != 0;
+            for (int k = 0; k < Method::layer_count; ++k) {
+                const float a = cpu.stored_optical_depth(x, y, k), b = Method::reconstruction_type::template stored_optical_depth<
+                                                                   typename Method::placement_type, typename Method::accumulation_type>(g.data, k);
+                data_off += std::abs(a - b) > 1e-6f * std::max(a, 1.0f);
+            }
+        }
+    CHECK(occupied > 1000);
+    CHECK(state_off == 0);
+    CHECK(data_off == 0);
+
+    const auto queries = test::texel_centre_queries(fragments, light, 5);
+    const auto on_gpu = test::gl_lookup(on_gl.lookup_source(), [&](GLuint p) { on_gl.bind_lookup(p); }, queries);
+    std::vector<float> on_cpu(queries.size());
+    cpu.transmittance(queries, on_cpu);
+    float worst = 0;
+    std::size_t shadowed = 0;
+    for (std::size_t i = 0; i < queries.size(); ++i) worst = std::max(worst, std::abs(on_gpu[i] - on_cpu[i])), shadowed += on_cpu[i] < 0.9f;
+    CAPTURE(worst, queries.size(), shadowed);
+    CHECK(queries.size() >= 2000);
+    CHECK(shadowed * 10 > queries.size());
+    CHECK(worst < 1e-4f);
+
+    // The maps read back answer as the CPU's, with the same hair.
+    const Method back = on_gl.to_cpu();
+    CHECK(back.reconstruction().parameters() == parameters.reconstruction().parameters());
+    std::vector<float> from_back(queries.size());
+    back.transmittance(queries, from_back);
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < queries.size(); ++i) differ += std::abs(from_back[i] - on_cpu[i]) > 1e-5f;
+    CHECK(differ == 0);
+}
+
+} // namespace
+
+TEST_CASE("GL hair-count deep shadows equal the CPU maps, and the GLSL look-up the CPU query", "[gl][ue]") {
+    test::gl_context();
+    const auto model = read_tfx(test::sintel_hair());
+    const auto light = light_space::fit(light_spec::directional({0, -1, -1}), model.bounds(), 256);
+    const gl::hair_mesh mesh(model);
+    const auto fragments = rasterize(model, light);
+    SECTION("Unreal's defaults") { check_hair_count(hair_count_deep_shadows<4>(), model, light, mesh, fragments); }
+    SECTION("another hair and distribution, eight layers") {
+        check_hair_count(hair_count_deep_shadows<8>(power_layers<8>(0.2f), hair_count({.hair_alpha = 0.3f})), model, light, mesh, fragments);
+    }
+    SECTION("counted from zero, 8-bit") {
+        check_hair_count(hair_count_deep_shadows<4, emulated_8bit>(power_layers<4>(0.8f), hair_count({.minus_one = false})), model, light, mesh, fragments);
+    }
+}
+
+TEST_CASE("the GL look-up gives Unreal's A^max(0, count - 1) behind sheets of strands", "[gl][ue]") {
+    test::gl_context();
+    const auto scene = test::make_sheets(5, 64);
+    const gl::hair_mesh mesh(scene.model);
+    raster_options options;
+    options.fixed_alpha = 0.3f;
+    const hair_count_deep_shadows<4> parameters(power_layers<4>(), hair_count({.hair_alpha = 0.3f}));
+    gl::maps<hair_count_deep_shadows<4>> on_gl(parameters);
+    on_gl.build(mesh, scene.light, options);
+    const float y = scene.row_y[scene.row_y.size() / 2];
+    const std::vector<glm::vec3> points = {{0.2f, y, 0.9f}, {0.2f, y, 0.45f}, {0.2f, y, -0.9f}, {0.2f, 0.49f, -0.5f}};
+    const auto t = test::gl_lookup(on_gl.lookup_source(), [&](GLuint p) { on_gl.bind_lookup(p); }, points);
+    CHECK(t[0] == 1.0f);
+    CHECK(t[1] == 1.0f);                           // one sheet in front, less the hair's own
+    CHECK(t[2] == Approx(0.7f).epsilon(1e-5));     // two sheets counted (the last three lie behind the last layer), less one
+    CHECK(t[3] == 1.0f);                           // a texel with no hair
+}
