@@ -128,21 +128,8 @@ TEST_CASE("ue maps build tile by tile as from fragments, for any thread count, a
     const auto m = read_tfx(test::sintel_hair());
     const auto light = light_space::fit(light_spec::directional({0.2f, -1, -0.4f}), m.bounds(), 256);
     const auto fb = rasterize(m, light);
-    const auto same_maps = [&](auto method) {
-        auto tiled = method, one = method, three = method;
-        tiled.build(m, light);
-        one.build(fb, light, tiled.map_extent(), execution{1});
-        three.build(fb, light, tiled.map_extent(), execution{3});
-        std::size_t covered = 0;
-        for (int y = 0; y < 256; ++y)
-            for (int x = 0; x < 256; ++x) {
-                if (!(tiled.texel(x, y) == one.texel(x, y)) || !(one.texel(x, y) == three.texel(x, y))) return false;
-                covered += tiled.stored_optical_depth(x, y, 3) > 0.0f;
-            }
-        return covered > 1000;
-    };
-    CHECK(same_maps(hair_count_deep_shadows<4>()));
-    CHECK(same_maps(hair_count_deep_shadows<8, emulated_8bit>(power_layers<8>(0.2f), hair_count())));
+    CHECK(test::same_maps_tiled_and_buffered(hair_count_deep_shadows<4>(), m, fb, light));
+    CHECK(test::same_maps_tiled_and_buffered(hair_count_deep_shadows<8, emulated_8bit>(power_layers<8>(0.2f), hair_count()), m, fb, light));
 
     // The registry makes the method with the spec's parameters.
     const auto map = make_shadow_map("ue:4:0.2:0.3");

@@ -91,4 +91,22 @@ inline hairshadow::hair_model grid_model(int strands, int points) {
     return m;
 }
 
+/// Whether `method` builds the same maps tile by tile from `model` as from `fragments` (rasterised
+/// from it for `light`) on one thread and on three, and covers more than 1,000 texels.
+template <class Method>
+bool same_maps_tiled_and_buffered(Method method, const hairshadow::hair_model& model, const hairshadow::fragment_buffer& fragments,
+                                  const hairshadow::light_space& light) {
+    auto tiled = method, one = method, three = method;
+    tiled.build(model, light);
+    one.build(fragments, light, tiled.map_extent(), hairshadow::execution{1});
+    three.build(fragments, light, tiled.map_extent(), hairshadow::execution{3});
+    std::size_t covered = 0;
+    for (int y = 0; y < light.resolution(); ++y)
+        for (int x = 0; x < light.resolution(); ++x) {
+            if (!(tiled.texel(x, y) == one.texel(x, y)) || !(one.texel(x, y) == three.texel(x, y))) return false;
+            covered += !fragments.texel(x, y).empty();
+        }
+    return covered > 1000;
+}
+
 } // namespace test

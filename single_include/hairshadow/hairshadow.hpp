@@ -3904,6 +3904,19 @@ public:
         }
     }
 
+    /// Runs `check`, which validates parameters made from these fields, and turns the
+    /// argument_error it throws into this spec's spec_error.
+    template <class Check>
+    void checked(Check&& check) const {
+        try {
+            check();
+        } catch (const spec_error&) {
+            throw;
+        } catch (const argument_error& e) {
+            throw bad(e.what());
+        }
+    }
+
 private:
     std::string_view text_;
     std::span<const std::string> fields_;
@@ -6376,14 +6389,10 @@ struct hair_count_deep_shadows_family {
         if (f.size() > 3) throw f.bad("ue takes at most K, ALPHA and DISTRIBUTION, or K:zero");
         if (f.size() >= 1 && !sizes::contains(f.whole(0))) throw f.bad("ue needs K = 2, 4 or 8");
         if (f.size() == 2 && f[1] == "zero") return;
-        try {
+        f.checked([&] {
             parameters(f).check();
             (void)power_layers<4>(distribution(f));
-        } catch (const spec_error&) {
-            throw;
-        } catch (const argument_error& e) {
-            throw f.bad(e.what());
-        }
+        });
     }
     template <class Accumulation, class Visit>
     static bool visit(const spec_fields& f, Visit&& visit) {
@@ -7015,13 +7024,7 @@ struct approximate_deep_shadow_maps_family {
             return;
         }
         if (f.size() != 0 && f.size() != 3 && f.size() != 4) throw f.bad("adsm takes auto or SPACING:RADIUS:ALPHA[:MAX]");
-        try {
-            parameters(f).check();
-        } catch (const spec_error&) {
-            throw;
-        } catch (const argument_error& e) {
-            throw f.bad(e.what());
-        }
+        f.checked([&] { parameters(f).check(); });
     }
     template <class Accumulation, class Visit>
     static bool visit(const spec_fields& f, Visit&& visit) {

@@ -55,4 +55,27 @@ inline std::vector<float> gl_lookup(const std::string& lookup_source, const std:
     return hairshadow::gl::point_queries(lookup_source).run(points, bind);
 }
 
+/// The GLSL look-up of `on_gl` against `cpu`'s query at `queries` (within 1e-4, more than `shadowed_share`
+/// of them below 0.9), and the maps read back (on_gl.to_cpu()) answering as `cpu` (within 1e-5).
+template <class GlMaps, class Method>
+void check_lookup_and_read_back(GlMaps& on_gl, const Method& cpu, const std::vector<glm::vec3>& queries, float shadowed_share) {
+    const auto on_gpu = gl_lookup(on_gl.lookup_source(), [&](GLuint p) { on_gl.bind_lookup(p); }, queries);
+    std::vector<float> on_cpu(queries.size());
+    cpu.transmittance(queries, on_cpu);
+    float worst = 0;
+    std::size_t shadowed = 0;
+    for (std::size_t i = 0; i < queries.size(); ++i) worst = std::max(worst, std::abs(on_gpu[i] - on_cpu[i])), shadowed += on_cpu[i] < 0.9f;
+    CAPTURE(worst, queries.size(), shadowed);
+    CHECK(queries.size() >= 2000);
+    CHECK(float(shadowed) > shadowed_share * float(queries.size()));
+    CHECK(worst < 1e-4f);
+
+    const Method back = on_gl.to_cpu();
+    std::vector<float> from_back(queries.size());
+    back.transmittance(queries, from_back);
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < queries.size(); ++i) differ += std::abs(from_back[i] - on_cpu[i]) > 1e-5f;
+    CHECK(differ == 0);
+}
+
 } // namespace test

@@ -53,13 +53,7 @@ struct approximate_deep_shadow_maps_family {
             return;
         }
         if (f.size() != 0 && f.size() != 3 && f.size() != 4) throw f.bad("adsm takes auto or SPACING:RADIUS:ALPHA[:MAX]");
-        try {
-            parameters(f).check();
-        } catch (const spec_error&) {
-            throw;
-        } catch (const argument_error& e) {
-            throw f.bad(e.what());
-        }
+        f.checked([&] { parameters(f).check(); });
     }
     template <class Accumulation, class Visit>
     static bool visit(const spec_fields& f, Visit&& visit) {

@@ -36,14 +36,10 @@ struct hair_count_deep_shadows_family {
         if (f.size() > 3) throw f.bad("ue takes at most K, ALPHA and DISTRIBUTION, or K:zero");
         if (f.size() >= 1 && !sizes::contains(f.whole(0))) throw f.bad("ue needs K = 2, 4 or 8");
         if (f.size() == 2 && f[1] == "zero") return;
-        try {
+        f.checked([&] {
             parameters(f).check();
             (void)power_layers<4>(distribution(f));
-        } catch (const spec_error&) {
-            throw;
-        } catch (const argument_error& e) {
-            throw f.bad(e.what());
-        }
+        });
     }
     template <class Accumulation, class Visit>
     static bool visit(const spec_fields& f, Visit&& visit) {

@@ -107,6 +107,19 @@ public:
         }
     }
 
+    /// Runs `check`, which validates parameters made from these fields, and turns the
+    /// argument_error it throws into this spec's spec_error.
+    template <class Check>
+    void checked(Check&& check) const {
+        try {
+            check();
+        } catch (const spec_error&) {
+            throw;
+        } catch (const argument_error& e) {
+            throw bad(e.what());
+        }
+    }
+
 private:
     std::string_view text_;
     std::span<const std::string> fields_;
