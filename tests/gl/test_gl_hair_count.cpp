@@ -1,10 +1,12 @@
 // Unreal Engine's hair-count deep shadows on GL (interpolated_maps_gl with hair_count's look-up): the
 // compute path's maps against the CPU's tiled build (every texel, as the compute test does for the
 // default parameters, here with others), the GLSL look-up against the CPU query with the parameters
-// reaching it, the maps read back with them, and the look-up behind sheets of strands.
+// reaching it, the maps read back with them, the raster path against the CPU run on GL's own
+// fragments, and the look-up behind sheets of strands.
 #include "gl_test_context.hpp"
 
 #include <hairshadow/gl.hpp>
+#include <hairshadow/gl/passes/fragment_capture.hpp>
 
 #include "../sheets.hpp"
 #include "../test_support.hpp"
@@ -59,6 +61,31 @@ TEST_CASE("GL hair-count deep shadows equal the CPU maps, and the GLSL look-up t
     SECTION("counted from zero, 8-bit") {
         check_hair_count(hair_count_deep_shadows<4, emulated_8bit>(power_layers<4>(0.8f), hair_count({.minus_one = false})), model, light, mesh, fragments);
     }
+}
+
+TEST_CASE("GL's raster path draws Unreal's layers as the CPU builds them from GL's fragments", "[gl][ue]") {
+    test::gl_context();
+    const auto model = read_tfx(test::sintel_hair());
+    const auto light = light_space::fit(light_spec::directional({0, -1, -1}), model.bounds(), 256);
+    const gl::hair_mesh mesh(model);
+    const auto fragments = gl::capture_fragments(mesh, light, raster_options{});
+    hair_count_deep_shadows<4> cpu;
+    cpu.build(fragments, light);
+    gl::maps<hair_count_deep_shadows<4>> on_gl;
+    on_gl.set_build_path(gl::build_path::raster); // additive blending of each fragment's b into the layers it reaches
+    on_gl.build(mesh, light);
+    const auto texels = on_gl.read_back();
+    long state_off = 0, data_off = 0;
+    for (int y = 0; y < 256; ++y)
+        for (int x = 0; x < 256; ++x) {
+            const auto& c = cpu.texel(x, y);
+            const auto& g = texels[std::size_t(y) * 256 + std::size_t(x)];
+            state_off += std::memcmp(&c.placement, &g.placement, sizeof(c.placement)) != 0; // MIN blending: bit-exact
+            for (std::size_t k = 0; k < 4; ++k) data_off += std::abs(c.data.layers[k] - g.data.layers[k]) > 1e-5f * std::max(c.data.layers[k], 1.0f);
+        }
+    CHECK(state_off == 0);
+    CHECK(data_off == 0);
+    test::check_lookup_and_read_back(on_gl, cpu, test::texel_centre_queries(fragments, light, 5), 0.1f);
 }
 
 TEST_CASE("the GL look-up gives Unreal's A^max(0, count - 1) behind sheets of strands", "[gl][ue]") {
