@@ -104,4 +104,19 @@ TEST_CASE("the GL look-up gives Unreal's A^max(0, count - 1) behind sheets of st
     CHECK(t[1] == 1.0f);                           // one sheet in front, less the hair's own
     CHECK(t[2] == Approx(0.7f).epsilon(1e-5));     // two sheets counted (the last three lie behind the last layer), less one
     CHECK(t[3] == 1.0f);                           // a texel with no hair
+
+    // Counted from zero, just behind the first sheet, inside the first layer (0.003 of the hair's
+    // depth), where the query's bias (0.05 of that layer) moves T by a few hundredths: GL as the CPU.
+    const hair_count_deep_shadows<4> zero(power_layers<4>(), hair_count({.hair_alpha = 0.3f, .minus_one = false}));
+    gl::maps<hair_count_deep_shadows<4>> zero_gl(zero);
+    zero_gl.build(mesh, scene.light, options);
+    auto zero_cpu = zero;
+    zero_cpu.build(scene.model, scene.light, options);
+    const std::vector<glm::vec3> near_front = {{0.2f, y, 0.4997f}, {0.2f, y, 0.4992f}, {0.2f, y, 0.4985f}};
+    const auto g = test::gl_lookup(zero_gl.lookup_source(), [&](GLuint p) { zero_gl.bind_lookup(p); }, near_front);
+    for (std::size_t i = 0; i < near_front.size(); ++i) {
+        CAPTURE(i, g[i]);
+        CHECK(zero_cpu.transmittance(near_front[i]) < 0.99f);
+        CHECK(g[i] == Approx(zero_cpu.transmittance(near_front[i])).epsilon(1e-5));
+    }
 }
