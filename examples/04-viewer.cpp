@@ -4,8 +4,8 @@
 //   04-viewer [MODEL] [--mesh OBJ] [--transparency MODE] [--sway] [--frames N] [--screenshot FILE.png]
 //
 // Drag with the left mouse button (or the arrow keys) to orbit the camera, WASD to move the light,
-// keys 1-8 to switch methods (no hair shadows, OSM, DOM, DC, OCC, deep occupancy, TressFX's approximate
-// deep shadow maps, Unreal Engine's hair-count deep shadows; the exact reference is CPU-only), [ and ] to halve or double the layer count, T to cycle the hair's transparency (opaque,
+// keys 1-9 and 0 to switch methods (no hair shadows, OSM, DOM, DC, OCC, deep occupancy, TressFX's approximate
+// deep shadow maps, Unreal Engine's hair-count deep shadows, Fourier opacity maps, moment shadow maps; the exact reference is CPU-only), [ and ] to halve or double the layer count, T to cycle the hair's transparency (opaque,
 // occupancy-ordered, weighted averages, exact by depth peeling), - and = to change the hair's
 // opacity, M to let the hair sway in the wind (its maps then rebuilt every frame), Esc to quit. The
 // title shows the method, its GL build time, the transparency and the frame rate. --frames N draws N frames and exits (tests run it under Xvfb); --screenshot writes the
@@ -34,7 +34,7 @@ using namespace hairshadow;
 namespace {
 
 struct state {
-    int family = 2; // 1 none, 2 OSM, 3 DOM, 4 DC, 5 OCC, 6 deep occupancy (hybrid), 7 ADSM, 8 Unreal
+    int family = 2; // 1 none, 2 OSM, 3 DOM, 4 DC, 5 OCC, 6 deep occupancy (hybrid), 7 ADSM, 8 Unreal, 9 FOM, 10 MSM
     int layers = 16;
     float azimuth = 25, elevation = 10;
     float light_azimuth = -60, light_elevation = 50;
@@ -55,6 +55,8 @@ std::string spec_of(const state& s) {
     case 6: return "docc:" + std::to_string(std::clamp(s.layers, 32, 256)) + ":4";
     case 7: return "adsm";
     case 8: return "ue:" + std::to_string(s.layers <= 2 ? 2 : s.layers <= 4 ? 4 : 8);
+    case 9: return "fom:" + std::to_string(s.layers <= 2 ? 3 : s.layers <= 4 ? 5 : s.layers <= 8 ? 7 : s.layers <= 16 ? 11 : 15);
+    case 10: return "msm";
     default: return "none";
     }
 }
@@ -68,7 +70,8 @@ void on_key(GLFWwindow* window, int key, int, int action, int) {
     if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
     auto& s = *static_cast<state*>(glfwGetWindowUserPointer(window));
     if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window, 1);
-    if (key >= GLFW_KEY_1 && key <= GLFW_KEY_8) s.family = key - GLFW_KEY_0, s.dirty = true;
+    if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9) s.family = key - GLFW_KEY_0, s.dirty = true;
+    if (key == GLFW_KEY_0) s.family = 10, s.dirty = true;
     if (key == GLFW_KEY_M) s.sway = !s.sway;
     if (key == GLFW_KEY_T) s.hair = transparency((int(s.hair) + 1) % 4);
     if (key == GLFW_KEY_MINUS) s.hair_opacity = std::max(0.05f, s.hair_opacity - 0.05f);

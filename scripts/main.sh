@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The main job: set up what the command line needs, build it alone in Release, and write the
-# comparison figure (figure.png, crops.png, heatmaps.png, rays.svg, compare.md/csv) of the built-in
+# comparison figure (figure.png, crops.png, heatmaps.png, rays.svg, memory.svg, compare.md/csv) of the built-in
 # procedural model on its sphere to out/figure. Any argument goes to `hairshadow figure`, e.g. the
 # Sintel hair on its head:
 #   bash scripts/main.sh --model ../shared/data/sintel/sintel_hair.16points.tfx --mesh ../shared/data/sintel/sintel_head.obj

@@ -109,6 +109,18 @@ for defines, tag in (("", "fixed"), ("#define HS_MEASURED_DENSITY\n", "measured"
     COMPOSITIONS[f"lookup_fibre_density_{tag}"] = ("vert", defines, ["placement/common", "lookup/light", "reconstruction/fibre_density"],
                                                   LOOKUP_MAIN)
 
+# The projected methods (gl/maps/projected_maps.hpp): the raster pass, the compute build and the look-up,
+# each over its reconstruction's snippet.
+PROJECTIONS = {"fourier_series": ("#define HS_HARMONICS 3\n", "#define HS_HARMONICS 7\n"), "power_moments": ("#define HS_MOMENTS 4\n",)}
+for reconstruction, variants in PROJECTIONS.items():
+    for defines in variants:
+        tag = reconstruction + "_" + defines.split()[2]
+        projection = ["placement/common", "reconstruction/depth_projection", "reconstruction/" + reconstruction]
+        COMPOSITIONS[f"projection_pass_{tag}"] = ("frag", defines, ["raster/coverage"] + projection + ["passes/projection"], "")
+        COMPOSITIONS[f"lookup_projection_{tag}"] = ("vert", defines, projection + ["lookup/light", "lookup/projection"], LOOKUP_MAIN)
+        COMPOSITIONS[f"compute_projection_{tag}"] = ("comp", "#define HS_SUBPIXEL_BITS 8\n" + defines + "#define HS_SUM_SLOTS 8\n", [
+            "compute/common", "accumulation/float", "compute/tile_sums"] + projection + ["compute/projection"], "")
+
 # Density clustering's state passes (cluster_state_pass.hpp).
 COMPOSITIONS["fullscreen_vertex"] = ("vert", "", ["passes/fullscreen_vertex"], "")
 for clusters in (4, 6):

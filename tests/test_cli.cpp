@@ -125,6 +125,25 @@ TEST_CASE("compare prints and writes one row per method", "[cli][methods]") {
     CHECK(std::filesystem::exists(dir.file("c/compare.md")));
 }
 
+TEST_CASE("compare --chart draws image error against bytes per texel and picks each family's best within each budget", "[cli][methods]") {
+    test::temp_dir dir("cli_chart");
+    // At 128x128: osm:1 4 bytes a texel, osm:4 16, dom:1 8, dom:3 16 (and 4 bytes of extent), occ:32:1 16, fom:3 20.
+    const auto r = test::run_cli("compare procedural:curly:strands=300:segments=16 --res 128 --methods osm:1,osm:4,dom:1,dom:3,occ:32:1,fom:3 --chart " +
+                                 dir.file("memory.svg"));
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.out, Catch::Contains("| family | 4 B/texel | 8 B/texel | 16 B/texel | 32 B/texel | 64 B/texel |"));
+    CHECK_THAT(r.out, Catch::Contains("| osm | `osm:1` "));                   // only osm:1 fits 4 bytes
+    CHECK_THAT(r.out, Catch::Contains("| dom | - | `dom:1` "));               // nothing of DOM fits 4 bytes, dom:1 fits 8
+    CHECK_THAT(r.out, Catch::Contains("| fom | - | - | - | `fom:3` "));      // 20 bytes: within 32, not 16
+    const auto svg = test::read_text(dir.file("memory.svg"));
+    CHECK_THAT(svg, Catch::StartsWith("<svg") && Catch::Contains("bytes per texel") && Catch::Contains("<title>dom:3</title>"));
+    CHECK(std::count(svg.begin(), svg.end(), '\n') > 20);
+    for (const char* family : {">osm</text>", ">dom</text>", ">occ</text>", ">fom</text>"}) CHECK_THAT(svg, Catch::Contains(family));
+    // An unwritable chart path is an error, not a silent skip.
+    const auto bad = test::run_cli("compare procedural:straight --res 32 --methods osm:1 --chart " + dir.file("no/such/dir/c.svg"));
+    CHECK(bad.status == 1);
+}
+
 TEST_CASE("bench prints one row per method with its rebuild times and memory", "[cli][tiled]") {
     const auto r = test::run_cli("bench procedural:curly:strands=300:segments=16 --res 128 --methods dom:3,occ:128:4,dsm --repeat 3 --threads 2");
     REQUIRE(r.status == 0);
@@ -242,7 +261,7 @@ TEST_CASE("figure writes the panels, crops, heat maps, ray plots and table", "[c
     const auto r = test::run_cli("figure --model procedural:wavy:strands=300:segments=12 --res 128 --size 96 --methods osm:16,occ:128:4 --out " +
                                  dir.file("fig"));
     REQUIRE(r.status == 0);
-    for (const char* name : {"figure.png", "crops.png", "heatmaps.png", "rays.svg", "compare.md", "compare.csv"}) {
+    for (const char* name : {"figure.png", "crops.png", "heatmaps.png", "rays.svg", "memory.svg", "compare.md", "compare.csv"}) {
         CAPTURE(name);
         CHECK(std::filesystem::file_size(dir.file(std::string("fig/") + name)) > 100);
     }

@@ -109,4 +109,17 @@ bool same_maps_tiled_and_buffered(Method method, const hairshadow::hair_model& m
     return covered > 1000;
 }
 
+/// Whether `map` (the registry's, built from `model`) gives `direct`'s (the template's, built the
+/// same) transmittance at every point of `model`, bit for bit, with a quarter of them shadowed.
+template <class Map, class Method>
+bool same_transmittance(const Map& map, const Method& direct, const hairshadow::hair_model& model) {
+    std::size_t shadowed = 0;
+    for (const auto& p : model.points) {
+        const float t = direct.transmittance(p);
+        if (map.transmittance(p) != t) return false;
+        shadowed += t < 0.9f;
+    }
+    return shadowed > model.points.size() / 4;
+}
+
 } // namespace test

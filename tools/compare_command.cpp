@@ -2,6 +2,7 @@
 // texel's ray and in a rendered image, as a Markdown table (and CSV).
 #include "command_line.hpp"
 #include "compare_table.hpp"
+#include "memory_chart.hpp"
 
 #include <cstdio>
 #include <sstream>
@@ -53,7 +54,7 @@ std::string compare_preamble(const map_options& o, const lit_model& s) {
     return preamble.str();
 }
 
-int run_compare(const map_options& o, const std::string& methods, const std::string& out_dir) {
+int run_compare(const map_options& o, const std::string& methods, const std::string& out_dir, const std::string& chart) {
     std::vector<method_spec> specs;
     for (auto part : detail::split(methods, ',')) specs.push_back(parse_method_for(std::string(part), o));
     auto s = prepare_scene(o, true); // the exact reference is built on the CPU for either back end
@@ -77,12 +78,20 @@ int run_compare(const map_options& o, const std::string& methods, const std::str
     const auto [md, csv] = format_table(rows, compare_preamble(o, s));
     std::fputs(md.c_str(), stdout);
     if (!out_dir.empty()) write_table(out_dir, md, csv);
+    if (!chart.empty()) {
+        // Which method for a memory budget: the chart, and each family's best within each budget.
+        write_file(chart, memory_chart_svg(rows, o.resolution, "Image error against memory: " + o.model.substr(o.model.find_last_of('/') + 1) + ", " + std::to_string(o.resolution) + "x" +
+                                                                   std::to_string(o.resolution)));
+        std::fputs(("\nEach family's configuration of least image error within a budget of bytes a texel:\n" + budget_table(rows, o.resolution)).c_str(),
+                   stdout);
+    }
     return 0;
 }
 
 struct compare_args {
     std::string methods = example_spec_list(in_compare); // the registered families' comparison examples
     std::string out_dir;
+    std::string chart;
 };
 } // namespace
 
@@ -95,7 +104,8 @@ command add_compare_command(CLI::App& app, map_options& o) {
     add_backend_options(cmd, o);
     cmd->add_option("--methods", a->methods, "comma-separated method specs")->capture_default_str();
     cmd->add_option("--out", a->out_dir, "also write compare.md and compare.csv into this folder");
-    return {cmd, [&o, a] { return run_compare(o, a->methods, a->out_dir); }};
+    cmd->add_option("--chart", a->chart, "also write a chart of image error against bytes per texel (SVG), and print each family's best within budgets of 4-64 bytes a texel");
+    return {cmd, [&o, a] { return run_compare(o, a->methods, a->out_dir, a->chart); }};
 }
 
 } // namespace cli

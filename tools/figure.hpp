@@ -20,7 +20,7 @@ struct figure_options {
     hairshadow::execution exec;
 };
 
-/// Writes figure.png, crops.png, heatmaps.png, rays.svg, compare.md and compare.csv into options.out.
+/// Writes figure.png, crops.png, heatmaps.png, rays.svg, memory.svg, compare.md and compare.csv into options.out.
 int run_figure(const figure_options& options);
 
 /// Writes transparency.png and transparency.md into options.out: the hair blended exactly (sorted),

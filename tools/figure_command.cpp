@@ -7,6 +7,7 @@
 #include "command_line.hpp"
 
 #include "compare_table.hpp"
+#include "memory_chart.hpp"
 #include "panel_grid.hpp"
 #include "progress.hpp"
 #include "scene_setup.hpp"
@@ -331,6 +332,9 @@ int run_figure(const figure_options& o) {
     auto rows = write_heatmaps(o, f, v, panels, coverage);
     write_file(fs::path(o.out) / "rays.svg", ray_plots(panels, f.fragments, f.credit));
     std::fprintf(stderr, "wrote %s\n", (fs::path(o.out) / "rays.svg").string().c_str());
+    write_file(fs::path(o.out) / "memory.svg", memory_chart_svg(rows, o.resolution, "Image error against memory, " + std::to_string(o.resolution) + "x" +
+                                                                                       std::to_string(o.resolution) + (f.credit.empty() ? "" : ": " + f.credit)));
+    std::fprintf(stderr, "wrote %s\n", (fs::path(o.out) / "memory.svg").string().c_str());
     write_figure_table(o, f, panels, std::move(rows), unshadowed);
     return 0;
 }

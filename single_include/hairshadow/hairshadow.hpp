@@ -3718,48 +3718,11 @@ private:
 } // namespace hairshadow
 // ---- end hairshadow/core/map_queries.hpp
 
-// ---- begin hairshadow/methods/hair_count_deep_shadows.hpp
+// ---- begin hairshadow/methods/fourier_opacity_maps.hpp
 /// @file
-/// Unreal Engine's hair-count deep shadows (HairStrands): K layers at power-law depths behind each
-/// texel's first fragment, and T = A^max(0, count - 1). The spec `ue[:K[:ALPHA[:DISTRIBUTION]]]`.
+/// Fourier opacity maps (Jansen & Bavoil 2010): C Fourier coefficients of each texel's absorption,
+/// over the texel's depth range. The spec `fom[:C[:sigma]]`.
 
-// ---- begin hairshadow/accumulation/emulated_8bit.hpp
-/// @file
-/// Emulated 8-bit accumulation (Kim & Neumann 2001, section 2): an RGBA8 target with additive blending.
-/// Each fragment writes b / kappa, which GL converts to 8 bits (round to nearest) before the blend
-/// adds it with saturation; a stored value q stands for the optical depth kappa * q / 255, with
-/// exp(-kappa) = 2^-8 so that a full texel (q = 255) lets 1/256 of the light through.
-
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
-#include <numbers>
-#include <string_view>
-
-namespace hairshadow {
-
-/// Every add quantised to 8 bits and saturated, as additive blending into an RGBA8 target does.
-struct emulated_8bit {
-    using value_type = std::uint8_t;
-    using sum_type = std::int32_t; ///< saturated at 255 after every add, exactly as the blend does
-    static constexpr std::string_view name = "8bit";
-    static constexpr std::string_view summary = "emulated 8-bit accumulation";
-    static constexpr std::string_view glsl_name = "accumulation/emulated_8bit";
-    /// exp(-kappa) = 2^-8: kappa = 8 ln 2, about 5.545 (the paper rounds it to 5.56).
-    static constexpr float kappa = 8.0f * std::numbers::ln2_v<float>;
-
-    /// The 8-bit step a fragment of optical depth b adds: its output b / kappa in unorm8.
-    static std::int32_t quantise(float optical_depth) noexcept {
-        return std::int32_t(std::lround(std::clamp(optical_depth / kappa, 0.0f, 1.0f) * 255.0f));
-    }
-    static sum_type add(sum_type sum, float optical_depth) noexcept { return std::min<sum_type>(sum + quantise(optical_depth), 255); }
-    static constexpr sum_type combine(sum_type a, sum_type b) noexcept { return std::min<sum_type>(a + b, 255); }
-    static constexpr value_type store(sum_type sum) noexcept { return value_type(std::min<sum_type>(sum, 255)); }
-    static constexpr float decode(value_type v) noexcept { return kappa * float(v) / 255.0f; }
-};
-
-} // namespace hairshadow
-// ---- end hairshadow/accumulation/emulated_8bit.hpp
 // ---- begin hairshadow/accumulation/float_accumulation.hpp
 /// @file
 /// Float accumulation: optical depths summed in 32-bit floats, as additive blending into RGBA32F does.
@@ -5938,6 +5901,663 @@ private:
 
 } // namespace hairshadow
 // ---- end hairshadow/methods/shadow_method.hpp
+// ---- begin hairshadow/placement/depth_range.hpp
+/// @file
+/// Occupancy maps' per-texel depth range (Sintorn & Assarsson 2009, section 3.1): the nearest and
+/// furthest fragment of each texel bound S equal slices, so that every slice lies inside the hair.
+
+// ---- begin hairshadow/placement/detail/slices_avx512.hpp
+/// @file
+/// The placements' layers sixteen fragments at a time, in AVX-512F: each function is one placement's
+/// assign() for fragments of many texels (layers[i] = assign(states[texels[i]], depths[i])), behind
+/// its assign_each_avx512 member (the capability assigns_each_avx512, policies/capabilities.hpp). The
+/// same IEEE subtraction, division and comparisons in every lane as the scalar assign, and the
+/// estimates settled against the same boundaries, so every layer is assign's, bit for bit
+/// (tests/test_placement_steps.cpp). Each is inlined into its member, as it was when it was the
+/// member's body (measured with and without: no difference, BENCHMARKS.md, "Issue 40").
+
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <iterator>
+#include <limits>
+#include <span>
+
+#if HAIRSHADOW_AVX512_WALK
+namespace hairshadow::detail::avx512 {
+
+/// planar_slices<N>::assign, N <= 16: the comparisons with D_1..D_N lane by lane (`boundaries` holds
+/// D_0..D_N).
+template <int N>
+HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline void assign_planar_by_count(const float* boundaries, std::span<const std::uint32_t> texels, std::span<const float> depths,
+                                                     std::int32_t* layers) noexcept {
+    for (std::size_t i = 0; i < texels.size(); i += 16) {
+        const __mmask16 lanes = first_lanes(texels.size() - i);
+        const __m512i reached = boundaries_reached<N>(_mm512_maskz_loadu_ps(lanes, depths.data() + i), boundaries + 1);
+        _mm512_mask_storeu_epi32(layers + i, lanes, _mm512_min_epi32(reached, _mm512_set1_epi32(N - 1)));
+    }
+}
+
+/// planar_slices<N>::assign for 17 to 64 maps, by bisection in registers: assign's min(reached, N - 1)
+/// is the number of D_1..D_{N-1} at or below the depth, and since they never decrease, six halvings
+/// of a table of them (padded with NaN, which no depth reaches) find it, as reached's upper_bound
+/// does. A NaN depth reaches none, as in reached.
+template <int N>
+HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline void assign_planar_by_bisection(const float* boundaries, std::span<const std::uint32_t> texels, std::span<const float> depths,
+                                                         std::int32_t* layers) noexcept {
+    static_assert(N > 16 && N <= 64);
+    alignas(64) float table[64];
+    std::fill(std::begin(table), std::end(table), std::numeric_limits<float>::quiet_NaN());
+    std::copy(boundaries + 1, boundaries + N, table); // D_1 .. D_{N-1}
+    const __m512 t0 = _mm512_load_ps(table), t1 = _mm512_load_ps(table + 16), t2 = _mm512_load_ps(table + 32), t3 = _mm512_load_ps(table + 48);
+    for (std::size_t i = 0; i < texels.size(); i += 16) {
+        const __mmask16 lanes = first_lanes(texels.size() - i);
+        const __m512 depth = _mm512_maskz_loadu_ps(lanes, depths.data() + i);
+        __m512i below = _mm512_setzero_si512(); // table entries known to be at or below the depth
+        for (int step = 32; step >= 1; step /= 2) {
+            const __m512i probe = _mm512_add_epi32(below, _mm512_set1_epi32(step - 1));
+            const __m512 low_half = _mm512_permutex2var_ps(t0, probe, t1), high_half = _mm512_permutex2var_ps(t2, probe, t3);
+            const __m512 entry = _mm512_mask_blend_ps(_mm512_test_epi32_mask(probe, _mm512_set1_epi32(32)), low_half, high_half);
+            below = _mm512_mask_add_epi32(below, _mm512_cmp_ps_mask(entry, depth, _CMP_LE_OQ), below, _mm512_set1_epi32(step));
+        }
+        _mm512_mask_storeu_epi32(layers + i, lanes, below);
+    }
+}
+
+/// per_pixel_depth's locate estimate settled against its relative boundaries d_0..d_K, for K > 8:
+/// the boundaries reached, K beyond the last (rel >= 1), 0 in front and for NaN.
+template <int K, bool Linear>
+HAIRSHADOW_AVX512_TARGET __m512i settled_per_pixel_layer(__m512 rel, __mmask16 lanes, const float* d) noexcept {
+    const __m512 last = _mm512_set1_ps(float(K - 1));
+    const __mmask16 inside = _mm512_mask_cmp_ps_mask(_mm512_mask_cmp_ps_mask(lanes, rel, _mm512_setzero_ps(), _CMP_GE_OQ), rel,
+                                                     _mm512_set1_ps(1.0f), _CMP_LT_OQ);
+    __m512 estimate;
+    if constexpr (Linear) {
+        const __m512 root = _mm512_sqrt_ps(_mm512_add_ps(_mm512_set1_ps(1.0f), _mm512_mul_ps(rel, _mm512_set1_ps(4.0f * float(K * (K + 1))))));
+        estimate = _mm512_mul_ps(_mm512_sub_ps(root, _mm512_set1_ps(1.0f)), _mm512_set1_ps(0.5f));
+    } else {
+        estimate = _mm512_mul_ps(rel, _mm512_set1_ps(float(K)));
+    }
+    const __mmask16 positive = _mm512_mask_cmp_ps_mask(inside, estimate, _mm512_setzero_ps(), _CMP_GT_OQ);
+    __m512i k = _mm512_maskz_cvttps_epi32(positive, _mm512_min_ps(estimate, last));
+    k = settle_layers(k, rel, inside, K - 1, [=](__m512i j, __mmask16 movable) HAIRSHADOW_AVX512_TARGET {
+        return _mm512_mask_i32gather_ps(rel, movable, j, d, 4);
+    });
+    const __mmask16 beyond = _mm512_mask_cmp_ps_mask(lanes, rel, _mm512_set1_ps(1.0f), _CMP_GE_OQ);
+    return _mm512_mask_mov_epi32(_mm512_maskz_mov_epi32(inside, k), beyond, _mm512_set1_epi32(K));
+}
+
+/// per_pixel_depth<K>::assign: z0 (and, where the last layer extends, the stretch after it) gathered
+/// from the texels' states, the same subtraction and division lane by lane, then assign's boundary
+/// count (K <= 8) or locate's estimate settled against the same boundaries. The settled layer does
+/// not depend on the estimate, only on the boundaries, so the estimate need not match locate's to the
+/// bit. `Ignore`: a depth beyond the last layer is dropped (-1), else it joins the last layer.
+template <int K, bool Linear, bool Extend, bool Ignore, class State>
+HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline void assign_per_pixel(const State* states, float extent, const float* relative_boundaries, std::span<const std::uint32_t> texels,
+                                               std::span<const float> depths, std::int32_t* layers) noexcept {
+    constexpr int stride = int(sizeof(State)); // the gathers' scale: 4 or 8 bytes a texel
+    const float* z0s = reinterpret_cast<const float*>(states);
+    const __m512 extent_v = _mm512_set1_ps(extent);
+    for (std::size_t i = 0; i < texels.size(); i += 16) {
+        const __mmask16 lanes = first_lanes(texels.size() - i);
+        const __m512i texel = _mm512_maskz_loadu_epi32(lanes, texels.data() + i);
+        const __m512 depth = _mm512_maskz_loadu_ps(lanes, depths.data() + i);
+        const __m512 z0 = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, texel, z0s, stride);
+        __m512 span = extent_v;
+        if constexpr (Extend) span = _mm512_mul_ps(extent_v, _mm512_mask_i32gather_ps(_mm512_set1_ps(1.0f), lanes, texel, z0s + 1, stride));
+        const __m512 rel = _mm512_div_ps(_mm512_sub_ps(depth, z0), span);
+        __m512i layer; // the boundaries d_1..d_K reached: K beyond the last layer, 0 in front and for NaN
+        if constexpr (K <= 8) layer = boundaries_reached<K>(rel, relative_boundaries + 1);
+        else layer = settled_per_pixel_layer<K, Linear>(rel, lanes, relative_boundaries);
+        if constexpr (Ignore) layer = _mm512_mask_set1_epi32(layer, _mm512_cmpeq_epi32_mask(layer, _mm512_set1_epi32(K)), -1);
+        else layer = _mm512_min_epi32(layer, _mm512_set1_epi32(K - 1));
+        _mm512_mask_storeu_epi32(layers + i, lanes, layer);
+    }
+}
+
+/// depth_range<S>'s boundary k between nearest and nearest + span, as boundary() rounds it.
+template <int S>
+HAIRSHADOW_AVX512_TARGET __m512 depth_range_boundary(__m512 nearest, __m512 span, __m512i k) noexcept {
+    const __m512 fraction = _mm512_div_ps(_mm512_cvtepi32_ps(k), _mm512_set1_ps(float(S)));
+    return _mm512_add_ps(nearest, rounded(_mm512_mul_ps(span, fraction)));
+}
+
+/// depth_range<S>::assign: the same estimate, settled against the same boundaries, lane by lane, one
+/// step at a time while any lane still moves. `states` are {nearest, furthest} pairs of floats.
+template <int S>
+HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline void assign_depth_range(const float* ranges, std::span<const std::uint32_t> texels, std::span<const float> depths,
+                                                 std::int32_t* layers) noexcept {
+    const __m512 slices = _mm512_set1_ps(float(S));
+    for (std::size_t i = 0; i < texels.size(); i += 16) {
+        const __mmask16 lanes = first_lanes(texels.size() - i);
+        const __m512i texel = _mm512_maskz_loadu_epi32(lanes, texels.data() + i);
+        const __m512 depth = _mm512_maskz_loadu_ps(lanes, depths.data() + i);
+        const __m512 nearest = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, texel, ranges, 8);
+        const __m512 furthest = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, texel, ranges + 1, 8);
+        const __m512 span = _mm512_sub_ps(furthest, nearest);
+        const __mmask16 ranged = _mm512_mask_cmp_ps_mask(lanes, furthest, nearest, _CMP_GT_OQ); // else slice 0
+        // settle_layer: the estimate's whole part (0 for NaN and negatives), then down and up.
+        const __m512 estimate = _mm512_mul_ps(_mm512_div_ps(_mm512_sub_ps(depth, nearest), span), slices);
+        const __mmask16 positive = _mm512_mask_cmp_ps_mask(ranged, estimate, _mm512_setzero_ps(), _CMP_GT_OQ);
+        __m512i k = _mm512_maskz_cvttps_epi32(positive, _mm512_min_ps(estimate, slices));
+        k = settle_layers(k, depth, ranged, S, [=](__m512i j, __mmask16) HAIRSHADOW_AVX512_TARGET {
+            return depth_range_boundary<S>(nearest, span, j);
+        });
+        k = _mm512_min_epi32(k, _mm512_set1_epi32(S - 1)); // never negative: it starts at 0 or above and stops there
+        _mm512_mask_storeu_epi32(layers + i, lanes, k);
+    }
+}
+
+} // namespace hairshadow::detail::avx512
+#endif
+// ---- end hairshadow/placement/detail/slices_avx512.hpp
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+namespace hairshadow {
+
+/// S slices between each texel's nearest and furthest fragment.
+/// @tparam S number of slices (128 in the paper)
+template <int S>
+class depth_range {
+    static_assert(S >= 1, "depth_range needs at least one slice");
+
+public:
+    static constexpr int layer_count = S;
+    static constexpr bool cumulative = true; ///< read as opacity slices when interpolated
+    /// Each texel's state depends on its fragments' depths as a set (nearest and furthest), not their
+    /// order (order_free_maps).
+    static constexpr bool fragment_order_free = true;
+    static constexpr bool contiguous = true;
+    static constexpr std::string_view name = "depth_range";
+    static constexpr std::string_view glsl_name = "placement/depth_range";
+    /// The depth-range map (MIN / MAX blending on GL).
+    struct texel_state {
+        float nearest = 0.0f;
+        float furthest = 0.0f;
+        friend bool operator==(const texel_state&, const texel_state&) = default;
+    };
+
+    void prepare(const depth_extent&) const noexcept {}
+    template <class Fragment>
+    void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
+        if (fragments.empty()) return;
+        const auto range = detail::texel_extent_of(fragments);
+        texel_state_from(range.nearest, range.furthest, s);
+    }
+    /// The texel's state from its nearest and furthest fragment (per_pixel_depth::texel_state_from).
+    void texel_state_from(float nearest, float furthest, texel_state& s) const noexcept { s.nearest = nearest, s.furthest = furthest; }
+    /// Depth of slice boundary k in [0, S] (never a fused multiply-add, so that every build, and
+    /// assign_each_avx512, places a boundary on the same float).
+    float boundary(const texel_state& s, int k) const noexcept {
+        return s.nearest + detail::rounded((s.furthest - s.nearest) * (float(k) / float(S)));
+    }
+    /// The slice floor(S (z - near) / (far - near)) of the paper, the furthest fragment in the last.
+    int assign(const texel_state& s, float depth) const noexcept {
+        if (!(s.furthest > s.nearest)) return 0;
+        return std::clamp(slice_of(s, depth), 0, S - 1);
+    }
+#if HAIRSHADOW_AVX512_WALK
+    /// assign() for fragments of many texels, sixteen at a time (placement/detail/slices_avx512.hpp).
+    HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state* states, std::span<const std::uint32_t> texels,
+                                                     std::span<const float> depths, std::int32_t* layers) const noexcept {
+        static_assert(sizeof(texel_state) == 2 * sizeof(float) && offsetof(texel_state, furthest) == sizeof(float));
+        detail::avx512::assign_depth_range<S>(reinterpret_cast<const float*>(states), texels, depths, layers);
+    }
+#endif
+    layer_position locate(const texel_state& s, float depth) const noexcept {
+        if (!(s.furthest > s.nearest)) return depth > s.nearest ? layer_position{S, 0.0f} : layer_position{-1, 0.0f};
+        if (!(depth >= s.nearest)) return {-1, 0.0f};
+        const int k = slice_of(s, depth);
+        if (k >= S) return {S, 0.0f};
+        return detail::position_in(k, depth, boundary(s, k), boundary(s, k + 1));
+    }
+    static constexpr std::size_t global_bytes() noexcept { return 0; }
+
+private:
+    /// The k with boundary(k) <= depth < boundary(k + 1), or S past the furthest boundary, settled
+    /// against the boundaries so that slab boundaries are exact.
+    int slice_of(const texel_state& s, float depth) const noexcept {
+        return detail::settle_layer((depth - s.nearest) / (s.furthest - s.nearest) * float(S), S, depth,
+                                    [&](int i) { return boundary(s, i); });
+    }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/placement/depth_range.hpp
+// ---- begin hairshadow/reconstruction/fourier_series.hpp
+/// @file
+/// Reconstruction by a Fourier series: Fourier opacity maps (Jansen & Bavoil 2010). The absorption
+/// along a texel's ray, a sum of spikes b_i at depths t_i in a period [0, 1], is projected on C
+/// coefficients, a_0 = 2 sum b_i and a_k = 2 sum b_i cos(2 pi k t_i), b_k = 2 sum b_i sin(2 pi k t_i)
+/// for k = 1 .. (C - 1) / 2; the optical depth in front of t is the integral of the truncated series,
+///   tau(t) = a_0 t / 2 + sum_k [a_k sin(2 pi k t) + b_k (1 - cos(2 pi k t))] / (2 pi k),
+/// exact at t = 1 (the texel's total) and ringing between spikes, since a truncated series of a spike
+/// overshoots on both sides (Gibbs). The ringing's usual damping multiplies harmonic k by Lanczos'
+/// sigma factor sinc(k / (n + 1)) (n harmonics): smoother, and blurrier. The harmonics come from
+/// cos and sin of 2 pi t by the angle-sum recurrence, as open implementations do.
+///
+/// Where the period lies (our choice; the paper normalises depth between the light's near and far
+/// planes): the texel's depth range (reconstruction/detail/depth_projection.hpp) maps onto
+/// [1/C, 1 - 1/C]. The series is periodic, so a spike at 1 is one at 0: with the range on the whole
+/// period the nearest and furthest fragments would shadow each other. A spike's truncated series
+/// (a Dirichlet kernel) has its main lobe within 1/C on each side, so the margin keeps the first and
+/// last fragments' lobes from wrapping around. docs/methods.md measures the ringing.
+
+// ---- begin hairshadow/reconstruction/detail/depth_projection.hpp
+/// @file
+/// What Fourier opacity maps and moment shadow maps share: each texel keeps N sums of its fragments'
+/// optical depth b times N functions of the fragment's depth (a Fourier basis, powers of depth), and
+/// the look-up turns the sums into the optical depth in front of a depth. Depths are measured inside
+/// the texel's own depth range (depth_range's nearest and furthest fragment: s = 0 at the nearest,
+/// 1 at the furthest), so that every texel spends its functions where its hair is; the papers use one
+/// interval for the whole map, which is the special case of one range for every texel.
+///
+/// A Derived reconstruction provides `void project(float s, float b, double* terms) const` (adds b
+/// times its N functions at s), `float total_optical_depth(const float* stored) const` and `float
+/// series_optical_depth(const float* stored, float s) const` (the optical depth in front of s, for
+/// 0 <= s <= 1), and their GLSL twins (gl/maps/projected_maps.hpp). Sums are kept in double and stored once as float, so that the order of a texel's fragments
+/// changes no stored bit the GL build's fixed-point sums could not (tests/gl compare within 1e-5 of the
+/// texel's total).
+
+// ---- begin hairshadow/reconstruction/fibre_density.hpp
+/// @file
+/// Reconstruction by an assumed fibre density: approximate deep shadow maps, as AMD TressFX ships them
+/// (TressFXLighting.hlsl, ComputeShadowAttenuation). A texel keeps only its first fragment's depth z0
+/// (per_pixel_depth's depth map); a point d world units behind it lies behind
+/// n = d / (fibre spacing x fibre radius) fibres, at least one once d > 1e-5, and T = (1 - alpha)^n.
+/// TressFX counts every fibre: its settings hold m_HairMaxShadowFibers = 50 and upload it, but
+/// ComputeShadowAttenuation never reads it, so no cap is the default here; a cap is an option
+/// (fibre_density_parameters::max_fibres). The measured variant takes the density from the texel's own
+/// fragments instead: their count over their depth span (depth_range's nearest and furthest).
+
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string>
+#include <string_view>
+#include <type_traits>
+
+namespace hairshadow {
+
+/// Where the fibre density comes from.
+enum class fibre_density_source {
+    fixed,    ///< the parameters' constant density, TressFX's model
+    measured, ///< each texel's fragment count over its depth span, with the fragments' mean opacity
+};
+
+/// TressFX's hair shadow parameters (TressFXSettings.h defaults), in the model's world units.
+struct fibre_density_parameters {
+    float spacing = 0.4f;    ///< fibre spacing, in fibre radii
+    float radius = 0.0021f;  ///< fibre radius, world units
+    float alpha = 0.35f;     ///< opacity of one fibre
+    /// Fibres counted at most: a whole number, or infinity for none (TressFX's shader counts them all;
+    /// its unread m_HairMaxShadowFibers is 50).
+    float max_fibres = std::numeric_limits<float>::infinity();
+
+    /// World depth per fibre along the light.
+    float fibre_step() const noexcept { return spacing * radius; }
+    /// -ln(1 - alpha): one fibre's optical depth.
+    float fibre_optical_depth() const noexcept { return -std::log1p(-alpha); }
+    /// Throws argument_error unless spacing and radius are positive and finite, alpha is in (0, 1)
+    /// and the cap is infinite or a whole number of fibres, at least one.
+    void check() const {
+        const auto positive = [](float v) { return std::isfinite(v) && v > 0.0f; };
+        if (!positive(spacing) || !positive(radius) || !positive(fibre_step()))
+            throw argument_error("fibre density: spacing and radius must be positive and finite, and so must their product");
+        if (!(alpha > 0.0f && alpha < 1.0f)) throw argument_error("fibre density: the fibre alpha must be in (0, 1)");
+        if (!(max_fibres >= 1.0f && (std::isinf(max_fibres) || max_fibres == std::floor(max_fibres))))
+            throw argument_error("fibre density: the cap must be a whole number of fibres, at least one, or none");
+    }
+    friend bool operator==(const fibre_density_parameters&, const fibre_density_parameters&) = default;
+};
+
+namespace detail {
+/// A point this little behind the first fragment is still on it: TressFX's 1e-5 world units, and at
+/// least four float steps of a linear depth near 1, so that rounding never puts a point on the first
+/// fibre behind it (CPU and GL compute depths in their own order).
+inline constexpr float on_first_fibre = 1e-5f;
+inline constexpr float on_first_fibre_depth = 2.5e-7f;
+
+template <class P>
+concept first_fragment_state = requires(const typename P::texel_state& s) { s.z0; } || requires(const typename P::texel_state& s) { s.nearest; };
+template <class P>
+concept fragment_span_state = requires(const typename P::texel_state& s) {
+    s.nearest;
+    s.furthest;
+};
+} // namespace detail
+
+/// Optical depth from an assumed density of fibres behind each texel's first fragment.
+/// @tparam Source the parameters' constant density (TressFX) or each texel's measured one
+template <fibre_density_source Source = fibre_density_source::fixed>
+class fibre_density {
+public:
+    static constexpr std::string_view name = "fibre_density";
+    static constexpr std::string_view glsl_name = "reconstruction/fibre_density";
+
+    /// The fixed density needs the first fragment (per_pixel_depth's z0 or depth_range's nearest); the
+    /// measured one also the last (depth_range).
+    template <class Placement>
+    static constexpr bool accepts =
+        Source == fibre_density_source::fixed ? detail::first_fragment_state<Placement> : detail::fragment_span_state<Placement>;
+
+    struct covered {
+        bool any = false; ///< the texel has a fragment (else it casts no shadow)
+        friend bool operator==(const covered&, const covered&) = default;
+    };
+    template <class Accumulation>
+    struct measured {
+        typename Accumulation::value_type optical_depth{}; ///< sum of the fragments' b
+        std::uint32_t fragments = 0;
+        friend bool operator==(const measured&, const measured&) = default;
+    };
+    /// Fixed density: only whether the texel is covered; measured: the texel's fragments summed.
+    template <class Placement, class Accumulation>
+    using storage = std::conditional_t<Source == fibre_density_source::fixed, covered, measured<Accumulation>>;
+
+    explicit fibre_density(fibre_density_parameters parameters = {}) : parameters_(parameters) { parameters_.check(); }
+
+    /// The light's world depth per unit of linear depth, which turns depths into fibre counts.
+    void prepare(const light_space& light) noexcept { depth_scale_ = light.far_plane() - light.near_plane(); }
+
+    template <class Placement, class Accumulation, class Fragment>
+    static void build(const Placement&, const typename Placement::texel_state&, std::span<const Fragment> fragments,
+                      storage<Placement, Accumulation>& out) {
+        if constexpr (Source == fibre_density_source::fixed) {
+            out.any = !fragments.empty();
+        } else {
+            typename Accumulation::sum_type sum{};
+            for (const auto& f : fragments) sum = Accumulation::add(sum, fragment_optical_depth(f));
+            out.optical_depth = Accumulation::store(sum);
+            out.fragments = std::uint32_t(fragments.size());
+        }
+    }
+
+    /// Fibres in front of linear depth `depth`, and the optical depth each one has.
+    template <class Placement, class Accumulation>
+    float optical_depth(const Placement& placement, const typename Placement::texel_state& state, const storage<Placement, Accumulation>& in,
+                        float depth) const noexcept {
+        const float z0 = placement.boundary(state, 0); // the first fragment
+        const float behind = (depth - z0) * depth_scale_;  // world units behind it
+        if (!(behind > detail::on_first_fibre) || !(depth - z0 > detail::on_first_fibre_depth)) return 0.0f;
+        if constexpr (Source == fibre_density_source::fixed) {
+            if (!in.any) return 0.0f;
+            const float fibres = std::clamp(behind / parameters_.fibre_step(), 1.0f, parameters_.max_fibres);
+            return fibres * parameters_.fibre_optical_depth();
+        } else {
+            if (in.fragments == 0) return 0.0f;
+            // n fragments over the span from first to last: n - 1 gaps, so the k-th fragment behind the
+            // first is reached at k gaps and a point on it has k fibres in front, as the exact map says
+            // for evenly spaced fragments; behind the last all n are in front.
+            const float count = float(in.fragments);
+            const float span = state.furthest - state.nearest;
+            const float fibres = span > 0.0f && depth <= state.furthest ? std::clamp((depth - z0) / span * (count - 1.0f), 1.0f, count) : count;
+            return fibres * (Accumulation::decode(in.optical_depth) / count);
+        }
+    }
+
+    /// Maps a texel stores, for inspection: none for the fixed density, the texel's summed optical
+    /// depth for the measured one.
+    template <class Placement>
+    static constexpr int stored_maps = Source == fibre_density_source::fixed ? 0 : 1;
+    template <class Placement, class Accumulation>
+    static float stored_optical_depth(const storage<Placement, Accumulation>& in, int) noexcept {
+        if constexpr (Source == fibre_density_source::fixed) return 0.0f;
+        else return Accumulation::decode(in.optical_depth);
+    }
+
+    const fibre_density_parameters& parameters() const noexcept { return parameters_; }
+    /// World units per unit of linear depth, from the last prepare().
+    float depth_scale() const noexcept { return depth_scale_; }
+
+private:
+    fibre_density_parameters parameters_;
+    float depth_scale_ = 1.0f;
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/reconstruction/fibre_density.hpp
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <span>
+
+namespace hairshadow {
+
+/// A texel's projected sums: sums[0] is always the texel's total optical depth times a constant.
+template <int N>
+struct projected_sums {
+    std::array<float, std::size_t(N)> sums{};
+    friend bool operator==(const projected_sums&, const projected_sums&) = default;
+};
+
+namespace detail {
+
+/// Where `depth` lies in the texel's range: 0 at the nearest fragment, 1 at the furthest (0 for
+/// every depth where the range is one depth).
+inline float position_in_range(float nearest, float furthest, float depth) noexcept {
+    const float span = furthest - nearest;
+    return span > 0.0f ? std::clamp((depth - nearest) / span, 0.0f, 1.0f) : 0.0f;
+}
+
+/// The reconstruction of a texel's optical depth from its projected sums (see the file's comment).
+template <class Derived, int N>
+class depth_projection {
+public:
+    static constexpr int sums = N;
+    /// Needs the texel's nearest and furthest fragment (depth_range).
+    template <class Placement>
+    static constexpr bool accepts = fragment_span_state<Placement>;
+
+    template <class Placement, class Accumulation>
+    using storage = projected_sums<N>;
+
+    template <class Placement, class Accumulation, class Fragment>
+    void build(const Placement&, const typename Placement::texel_state& state, std::span<const Fragment> fragments,
+               storage<Placement, Accumulation>& out) const {
+        std::array<double, std::size_t(N)> terms{};
+        for (const auto& f : fragments)
+            derived().project(position_in_range(state.nearest, state.furthest, f.depth), fragment_optical_depth(f), terms.data());
+        for (int k = 0; k < N; ++k) out.sums[std::size_t(k)] = float(terms[std::size_t(k)]);
+    }
+
+    /// Nothing in front of the nearest fragment, the whole texel's optical depth behind the furthest
+    /// (the exact map counts the fragments strictly in front), and between them the series, held
+    /// within [0, total] (Derived's series may ring outside it).
+    template <class Placement, class Accumulation>
+    float optical_depth(const Placement&, const typename Placement::texel_state& state, const storage<Placement, Accumulation>& in,
+                        float depth) const noexcept {
+        const float total = derived().total_optical_depth(in.sums.data());
+        if (!(depth > state.nearest) || !(total > 0.0f)) return 0.0f;
+        if (depth > state.furthest) return total;
+        const float tau = derived().series_optical_depth(in.sums.data(), position_in_range(state.nearest, state.furthest, depth));
+        return tau > 0.0f ? std::min(tau, total) : 0.0f; // and a series that came to NaN (a singular moment matrix) casts none
+    }
+
+    /// The stored sums, for inspection.
+    template <class Placement>
+    static constexpr int stored_maps = N;
+    template <class Placement, class Accumulation>
+    static float stored_optical_depth(const storage<Placement, Accumulation>& in, int k) noexcept {
+        return in.sums[std::size_t(k)];
+    }
+
+private:
+    const Derived& derived() const noexcept { return static_cast<const Derived&>(*this); }
+};
+
+} // namespace detail
+} // namespace hairshadow
+// ---- end hairshadow/reconstruction/detail/depth_projection.hpp
+
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <string_view>
+
+namespace hairshadow {
+
+/// Optical depth from C Fourier coefficients of each texel's absorption.
+/// @tparam C coefficients: a_0 and (C - 1) / 2 pairs of a_k and b_k; odd, 3 to 15
+template <int C>
+class fourier_series : public detail::depth_projection<fourier_series<C>, C> {
+    static_assert(C >= 3 && C <= 15 && C % 2 == 1, "fourier_series needs an odd number of coefficients from 3 to 15");
+
+public:
+    static constexpr int coefficients = C;
+    static constexpr int harmonics = (C - 1) / 2;
+    static constexpr std::string_view name = "fourier_series";
+    static constexpr std::string_view glsl_name = "reconstruction/fourier_series";
+    /// Where the texel's range starts in the period, and how much of it the range spans.
+    static constexpr float margin = 1.0f / float(C);
+    static constexpr float span = 1.0f - 2.0f * margin;
+
+    /// Undamped (the paper's series), or each harmonic damped by Lanczos' sigma factor.
+    explicit fourier_series(bool damped = false) : damped_(damped) {
+        for (int k = 1; k <= harmonics; ++k) {
+            // sinc(k / (n + 1)), in double and rounded once, so that CPU and GL take the same floats.
+            const double x = std::numbers::pi * double(k) / double(harmonics + 1);
+            const double sigma = damped ? std::sin(x) / x : 1.0;
+            weight_[std::size_t(k)] = float(sigma / (2.0 * std::numbers::pi * double(k)));
+        }
+    }
+    bool damped() const noexcept { return damped_; }
+
+    /// Adds a spike of optical depth b at position s of the texel's range to the coefficients.
+    void project(float s, float b, double* terms) const noexcept {
+        const float angle = 2.0f * std::numbers::pi_v<float> * (margin + span * s);
+        const float c1 = std::cos(angle), s1 = std::sin(angle);
+        const float a0 = 2.0f * b;
+        terms[0] += double(a0);
+        float ck = c1, sk = s1;
+        for (int k = 1; k <= harmonics; ++k) {
+            terms[2 * k - 1] += double(a0 * ck);
+            terms[2 * k] += double(a0 * sk);
+            const float c = ck * c1 - sk * s1, s2 = sk * c1 + ck * s1;
+            ck = c, sk = s2;
+        }
+    }
+    /// The texel's total optical depth: a_0 / 2.
+    static float total_optical_depth(const float* stored) noexcept { return 0.5f * stored[0]; }
+    /// The integral of the (damped) truncated series from 0 to position s of the texel's range.
+    float series_optical_depth(const float* stored, float s) const noexcept {
+        const float t = margin + span * s;
+        const float angle = 2.0f * std::numbers::pi_v<float> * t;
+        const float c1 = std::cos(angle), s1 = std::sin(angle);
+        float tau = 0.5f * stored[0] * t;
+        float ck = c1, sk = s1;
+        for (int k = 1; k <= harmonics; ++k) {
+            tau += weight_[std::size_t(k)] * (stored[2 * k - 1] * sk + stored[2 * k] * (1.0f - ck));
+            const float c = ck * c1 - sk * s1, s2 = sk * c1 + ck * s1;
+            ck = c, sk = s2;
+        }
+        return tau;
+    }
+
+    /// The GLSL twin (shaders/reconstruction/fourier_series.glsl): the harmonics, and each one's
+    /// weight (sigma factor over 2 pi k) as the CPU rounded it.
+    static std::string glsl_defines() { return "#define HS_HARMONICS " + std::to_string(harmonics) + "\n"; }
+    template <class Set>
+    void glsl_uniforms(Set&& set) const {
+        for (int k = 1; k <= harmonics; ++k) set("hs_fourier_weight[" + std::to_string(k) + "]", weight_[std::size_t(k)]);
+    }
+
+private:
+    bool damped_ = false;
+    std::array<float, std::size_t(harmonics + 1)> weight_{};
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/reconstruction/fourier_series.hpp
+
+namespace hairshadow {
+
+/// Fourier opacity maps: the depth range (depth_range's nearest and furthest fragment, which place
+/// the period) and C coefficients summed in float (signed sums: no 8-bit accumulation).
+template <int C = 7>
+using fourier_opacity_maps = shadow_method<depth_range<1>, float_accumulation, fourier_series<C>>;
+
+/// The registration of Fourier opacity maps (methods/method_family.hpp).
+struct fourier_opacity_maps_family {
+    static constexpr std::string_view name = "fom";
+    static constexpr std::string_view grammar =
+        "fom[:C[:sigma]] (Jansen & Bavoil's Fourier opacity maps: C = 3, 5, 7, 11 or 15 coefficients, 7 by default; sigma damps "
+        "each harmonic by Lanczos' sigma factor)";
+    static constexpr bool takes_accumulation = false;
+    static constexpr auto examples = std::make_tuple(spec_example<fourier_opacity_maps<7>>{"fom", in_compare | in_bench | in_figure},
+                                                     spec_example<fourier_opacity_maps<7>>{"fom:7:sigma", in_compare},
+                                                     spec_example<fourier_opacity_maps<15>>{"fom:15"});
+    static constexpr auto keywords = std::to_array<std::string_view>({"sigma"});
+    using sizes = size_list<3, 5, 7, 11, 15>;
+
+    static void check(const spec_fields& f) {
+        if (f.size() > 2) throw f.bad("fom takes at most C and sigma");
+        if (f.size() >= 1 && !sizes::contains(f.whole(0))) throw f.bad("fom needs C = 3, 5, 7, 11 or 15");
+        if (f.size() == 2 && f[1] != "sigma") throw f.bad("fom's second field can only be sigma");
+    }
+    template <class Accumulation, class Visit>
+    static bool visit(const spec_fields& f, Visit&& visit) {
+        const int c = f.size() >= 1 ? f.whole(0) : 7;
+        const bool damped = f.size() == 2;
+        return with_size<sizes>(c, [&](auto size) { visit(fourier_opacity_maps<size()>(depth_range<1>(), fourier_series<size()>(damped))); });
+    }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/methods/fourier_opacity_maps.hpp
+// ---- begin hairshadow/methods/hair_count_deep_shadows.hpp
+/// @file
+/// Unreal Engine's hair-count deep shadows (HairStrands): K layers at power-law depths behind each
+/// texel's first fragment, and T = A^max(0, count - 1). The spec `ue[:K[:ALPHA[:DISTRIBUTION]]]`.
+
+// ---- begin hairshadow/accumulation/emulated_8bit.hpp
+/// @file
+/// Emulated 8-bit accumulation (Kim & Neumann 2001, section 2): an RGBA8 target with additive blending.
+/// Each fragment writes b / kappa, which GL converts to 8 bits (round to nearest) before the blend
+/// adds it with saturation; a stored value q stands for the optical depth kappa * q / 255, with
+/// exp(-kappa) = 2^-8 so that a full texel (q = 255) lets 1/256 of the light through.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <string_view>
+
+namespace hairshadow {
+
+/// Every add quantised to 8 bits and saturated, as additive blending into an RGBA8 target does.
+struct emulated_8bit {
+    using value_type = std::uint8_t;
+    using sum_type = std::int32_t; ///< saturated at 255 after every add, exactly as the blend does
+    static constexpr std::string_view name = "8bit";
+    static constexpr std::string_view summary = "emulated 8-bit accumulation";
+    static constexpr std::string_view glsl_name = "accumulation/emulated_8bit";
+    /// exp(-kappa) = 2^-8: kappa = 8 ln 2, about 5.545 (the paper rounds it to 5.56).
+    static constexpr float kappa = 8.0f * std::numbers::ln2_v<float>;
+
+    /// The 8-bit step a fragment of optical depth b adds: its output b / kappa in unorm8.
+    static std::int32_t quantise(float optical_depth) noexcept {
+        return std::int32_t(std::lround(std::clamp(optical_depth / kappa, 0.0f, 1.0f) * 255.0f));
+    }
+    static sum_type add(sum_type sum, float optical_depth) noexcept { return std::min<sum_type>(sum + quantise(optical_depth), 255); }
+    static constexpr sum_type combine(sum_type a, sum_type b) noexcept { return std::min<sum_type>(a + b, 255); }
+    static constexpr value_type store(sum_type sum) noexcept { return value_type(std::min<sum_type>(sum, 255)); }
+    static constexpr float decode(value_type v) noexcept { return kappa * float(v) / 255.0f; }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/accumulation/emulated_8bit.hpp
 // ---- begin hairshadow/placement/power_layers.hpp
 /// @file
 /// Unreal Engine's deep shadow layers (HairStrands: HairStrandsDeepShadowCommon.ush, ComputeDOMWeights;
@@ -6414,6 +7034,157 @@ private:
 
 } // namespace hairshadow
 // ---- end hairshadow/methods/hair_count_deep_shadows.hpp
+// ---- begin hairshadow/methods/moment_shadow_maps.hpp
+/// @file
+/// Moment shadow maps for translucent occluders (Peters et al. 2016; Münstermann et al. 2018's
+/// moment-based transparency): the total optical depth and four power moments of depth per texel,
+/// over the texel's depth range. The spec `msm[:4[:OVERESTIMATION]]`.
+
+// ---- begin hairshadow/reconstruction/power_moments.hpp
+/// @file
+/// Reconstruction by power moments: moment shadow maps for translucent occluders (Peters et al. 2016)
+/// as moment-based order-independent transparency computes them (Münstermann et al. 2018). Each
+/// texel keeps its total optical depth b_0 = sum b_i and the optical-depth-weighted power moments
+/// sum b_i z_i^j, j = 1 .. 4, of depth z in [-1, 1] (here the texel's depth range: -1 at its nearest
+/// fragment, 1 at its furthest; reconstruction/detail/depth_projection.hpp). A query at z normalises
+/// the moments by b_0, pulls them toward a fixed vector by a small bias (a singular Hankel matrix
+/// otherwise: two sheets of hair are two depths), and solves for the canonical distribution with one
+/// support point at z (Hamburger 4MSM): the weight of its points in front of z, plus `overestimation`
+/// times the weight at z, is the share of b_0 in front. Overestimation 0 gives the sharpest lower bound
+/// of that share over every distribution with these moments (a bound on the exact optical depth from
+/// below, which the bias loosens a little), 1 the upper bound; MBOIT's 0.25 is the default.
+/// docs/methods.md checks the bound on the test models.
+
+
+#include <cmath>
+#include <string>
+#include <string_view>
+
+namespace hairshadow {
+
+/// What the moment reconstruction takes.
+struct power_moments_parameters {
+    /// The weight the canonical distribution's point at the query depth counts with: 0 the lower
+    /// bound, 1 the upper, MBOIT's 0.25 by default.
+    float overestimation = 0.25f;
+    /// How far the normalised moments are pulled toward (0, 0.375, 0, 0.375): MBOIT's bias vector for 4
+    /// power moments in 32-bit floats, with a bias of 5e-7 (our choice: the smallest we found that no
+    /// texel of the test models turns singular).
+    float bias = 5e-7f;
+    /// Throws argument_error unless both are in [0, 1].
+    void check() const {
+        if (!(overestimation >= 0.0f && overestimation <= 1.0f)) throw argument_error("power moments: the overestimation must be in [0, 1]");
+        if (!(bias >= 0.0f && bias <= 1.0f)) throw argument_error("power moments: the bias must be in [0, 1]");
+    }
+    friend bool operator==(const power_moments_parameters&, const power_moments_parameters&) = default;
+};
+
+/// Optical depth from the total and four power moments of each texel's absorption.
+class power_moments : public detail::depth_projection<power_moments, 5> {
+public:
+    static constexpr int moments = 4;
+    static constexpr std::string_view name = "power_moments";
+    static constexpr std::string_view glsl_name = "reconstruction/power_moments";
+
+    power_moments() = default;
+    explicit power_moments(const power_moments_parameters& parameters) : parameters_(parameters) { parameters.check(); }
+    const power_moments_parameters& parameters() const noexcept { return parameters_; }
+
+    /// Adds b and b z, b z^2, b z^3, b z^4 at z = 2 s - 1.
+    static void project(float s, float b, double* terms) noexcept {
+        const float z = 2.0f * s - 1.0f;
+        float power = b;
+        terms[0] += double(b);
+        for (int j = 1; j <= moments; ++j) {
+            power = power * z;
+            terms[j] += double(power);
+        }
+    }
+    static float total_optical_depth(const float* stored) noexcept { return stored[0]; }
+
+    /// b_0 times the share of it in front of position s (Hamburger 4MSM, in float as the GLSL twin).
+    float series_optical_depth(const float* stored, float s) const noexcept {
+        const float b0 = stored[0], keep = 1.0f - parameters_.bias, pull = parameters_.bias * 0.375f;
+        const float b1 = keep * (stored[1] / b0), b2 = keep * (stored[2] / b0) + pull;
+        const float b3 = keep * (stored[3] / b0), b4 = keep * (stored[4] / b0) + pull;
+        const float z0 = 2.0f * s - 1.0f;
+        // Cholesky factorisation of the Hankel matrix of (1, b1, b2, b3, b4).
+        const float d11 = b2 - b1 * b1;
+        const float l21d11 = b3 - b1 * b2;
+        const float l21 = l21d11 / d11;
+        const float d22 = (b4 - b2 * b2) - l21d11 * l21;
+        // The polynomial c0 + c1 z + c2 z^2 whose roots, with z0, carry the canonical distribution.
+        float c1 = z0 - b1;
+        float c2 = z0 * z0 - b2 - l21 * c1;
+        c1 = c1 / d11;
+        c2 = c2 / d22;
+        c1 = c1 - l21 * c2;
+        const float c0 = 1.0f - (c1 * b1 + c2 * b2);
+        const float p = c1 / c2, q = c0 / c2;
+        const float r = std::sqrt(0.25f * p * p - q);
+        const float z1 = -0.5f * p - r, z2 = -0.5f * p + r;
+        // The interpolating polynomial of the weights (overestimation at z0, 1 in front, 0 behind),
+        // applied to the moments.
+        const float f0 = parameters_.overestimation, f1 = z1 < z0 ? 1.0f : 0.0f, f2 = z2 < z0 ? 1.0f : 0.0f;
+        const float f01 = (f1 - f0) / (z1 - z0), f12 = (f2 - f1) / (z2 - z1), f012 = (f12 - f01) / (z2 - z0);
+        const float q2 = f012, q1 = (f01 - f012 * z1) - q2 * z0;
+        const float q0 = f0 - (f01 - f012 * z1) * z0;
+        return b0 * (q0 + b1 * q1 + b2 * q2);
+    }
+
+    /// The GLSL twin (shaders/reconstruction/power_moments.glsl) and its parameters.
+    static std::string glsl_defines() { return "#define HS_MOMENTS 4\n"; }
+    template <class Set>
+    void glsl_uniforms(Set&& set) const {
+        set("hs_moment_overestimation", parameters_.overestimation);
+        set("hs_moment_bias", parameters_.bias);
+    }
+
+private:
+    power_moments_parameters parameters_;
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/reconstruction/power_moments.hpp
+
+namespace hairshadow {
+
+/// Moment shadow maps: the depth range (depth_range's nearest and furthest fragment, which bound z)
+/// and five sums in float (signed moments: no 8-bit accumulation).
+using moment_shadow_maps = shadow_method<depth_range<1>, float_accumulation, power_moments>;
+
+/// The registration of moment shadow maps (methods/method_family.hpp).
+struct moment_shadow_maps_family {
+    static constexpr std::string_view name = "msm";
+    static constexpr std::string_view grammar =
+        "msm[:4[:OVERESTIMATION]] (moment shadow maps for translucent occluders: 4 power moments; the weight of the query's own "
+        "depth in [0, 1], 0.25 by default as moment-based transparency, 0 for the lower bound)";
+    static constexpr bool takes_accumulation = false;
+    static constexpr auto examples = std::make_tuple(spec_example<moment_shadow_maps>{"msm", in_compare | in_bench | in_figure},
+                                                     spec_example<moment_shadow_maps>{"msm:4:0", in_compare});
+    static constexpr std::array<std::string_view, 0> keywords{};
+
+    static void check(const spec_fields& f) {
+        if (f.size() > 2) throw f.bad("msm takes at most M and OVERESTIMATION");
+        if (f.size() >= 1 && f.whole(0) != 4) throw f.bad("msm needs M = 4 power moments");
+        f.checked([&] { parameters(f).check(); });
+    }
+    template <class Accumulation, class Visit>
+    static bool visit(const spec_fields& f, Visit&& visit) {
+        visit(moment_shadow_maps(depth_range<1>(), power_moments(parameters(f))));
+        return true;
+    }
+
+private:
+    static power_moments_parameters parameters(const spec_fields& f) {
+        power_moments_parameters p;
+        if (f.size() == 2) p.overestimation = f.real(1, "overestimation");
+        return p;
+    }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/methods/moment_shadow_maps.hpp
 // ---- begin hairshadow/methods/published.hpp
 /// @file
 /// The published methods as compositions of policies, each in a header of its own with its
@@ -6424,235 +7195,6 @@ private:
 /// Approximate deep shadow maps, as AMD TressFX ships them, and our variant with each texel's fibre
 /// density measured. The spec `adsm[:SPACING:RADIUS:ALPHA[:MAX]]` or `adsm:auto`.
 
-// ---- begin hairshadow/placement/depth_range.hpp
-/// @file
-/// Occupancy maps' per-texel depth range (Sintorn & Assarsson 2009, section 3.1): the nearest and
-/// furthest fragment of each texel bound S equal slices, so that every slice lies inside the hair.
-
-// ---- begin hairshadow/placement/detail/slices_avx512.hpp
-/// @file
-/// The placements' layers sixteen fragments at a time, in AVX-512F: each function is one placement's
-/// assign() for fragments of many texels (layers[i] = assign(states[texels[i]], depths[i])), behind
-/// its assign_each_avx512 member (the capability assigns_each_avx512, policies/capabilities.hpp). The
-/// same IEEE subtraction, division and comparisons in every lane as the scalar assign, and the
-/// estimates settled against the same boundaries, so every layer is assign's, bit for bit
-/// (tests/test_placement_steps.cpp). Each is inlined into its member, as it was when it was the
-/// member's body (measured with and without: no difference, BENCHMARKS.md, "Issue 40").
-
-
-#include <algorithm>
-#include <cstddef>
-#include <cstdint>
-#include <iterator>
-#include <limits>
-#include <span>
-
-#if HAIRSHADOW_AVX512_WALK
-namespace hairshadow::detail::avx512 {
-
-/// planar_slices<N>::assign, N <= 16: the comparisons with D_1..D_N lane by lane (`boundaries` holds
-/// D_0..D_N).
-template <int N>
-HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline void assign_planar_by_count(const float* boundaries, std::span<const std::uint32_t> texels, std::span<const float> depths,
-                                                     std::int32_t* layers) noexcept {
-    for (std::size_t i = 0; i < texels.size(); i += 16) {
-        const __mmask16 lanes = first_lanes(texels.size() - i);
-        const __m512i reached = boundaries_reached<N>(_mm512_maskz_loadu_ps(lanes, depths.data() + i), boundaries + 1);
-        _mm512_mask_storeu_epi32(layers + i, lanes, _mm512_min_epi32(reached, _mm512_set1_epi32(N - 1)));
-    }
-}
-
-/// planar_slices<N>::assign for 17 to 64 maps, by bisection in registers: assign's min(reached, N - 1)
-/// is the number of D_1..D_{N-1} at or below the depth, and since they never decrease, six halvings
-/// of a table of them (padded with NaN, which no depth reaches) find it, as reached's upper_bound
-/// does. A NaN depth reaches none, as in reached.
-template <int N>
-HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline void assign_planar_by_bisection(const float* boundaries, std::span<const std::uint32_t> texels, std::span<const float> depths,
-                                                         std::int32_t* layers) noexcept {
-    static_assert(N > 16 && N <= 64);
-    alignas(64) float table[64];
-    std::fill(std::begin(table), std::end(table), std::numeric_limits<float>::quiet_NaN());
-    std::copy(boundaries + 1, boundaries + N, table); // D_1 .. D_{N-1}
-    const __m512 t0 = _mm512_load_ps(table), t1 = _mm512_load_ps(table + 16), t2 = _mm512_load_ps(table + 32), t3 = _mm512_load_ps(table + 48);
-    for (std::size_t i = 0; i < texels.size(); i += 16) {
-        const __mmask16 lanes = first_lanes(texels.size() - i);
-        const __m512 depth = _mm512_maskz_loadu_ps(lanes, depths.data() + i);
-        __m512i below = _mm512_setzero_si512(); // table entries known to be at or below the depth
-        for (int step = 32; step >= 1; step /= 2) {
-            const __m512i probe = _mm512_add_epi32(below, _mm512_set1_epi32(step - 1));
-            const __m512 low_half = _mm512_permutex2var_ps(t0, probe, t1), high_half = _mm512_permutex2var_ps(t2, probe, t3);
-            const __m512 entry = _mm512_mask_blend_ps(_mm512_test_epi32_mask(probe, _mm512_set1_epi32(32)), low_half, high_half);
-            below = _mm512_mask_add_epi32(below, _mm512_cmp_ps_mask(entry, depth, _CMP_LE_OQ), below, _mm512_set1_epi32(step));
-        }
-        _mm512_mask_storeu_epi32(layers + i, lanes, below);
-    }
-}
-
-/// per_pixel_depth's locate estimate settled against its relative boundaries d_0..d_K, for K > 8:
-/// the boundaries reached, K beyond the last (rel >= 1), 0 in front and for NaN.
-template <int K, bool Linear>
-HAIRSHADOW_AVX512_TARGET __m512i settled_per_pixel_layer(__m512 rel, __mmask16 lanes, const float* d) noexcept {
-    const __m512 last = _mm512_set1_ps(float(K - 1));
-    const __mmask16 inside = _mm512_mask_cmp_ps_mask(_mm512_mask_cmp_ps_mask(lanes, rel, _mm512_setzero_ps(), _CMP_GE_OQ), rel,
-                                                     _mm512_set1_ps(1.0f), _CMP_LT_OQ);
-    __m512 estimate;
-    if constexpr (Linear) {
-        const __m512 root = _mm512_sqrt_ps(_mm512_add_ps(_mm512_set1_ps(1.0f), _mm512_mul_ps(rel, _mm512_set1_ps(4.0f * float(K * (K + 1))))));
-        estimate = _mm512_mul_ps(_mm512_sub_ps(root, _mm512_set1_ps(1.0f)), _mm512_set1_ps(0.5f));
-    } else {
-        estimate = _mm512_mul_ps(rel, _mm512_set1_ps(float(K)));
-    }
-    const __mmask16 positive = _mm512_mask_cmp_ps_mask(inside, estimate, _mm512_setzero_ps(), _CMP_GT_OQ);
-    __m512i k = _mm512_maskz_cvttps_epi32(positive, _mm512_min_ps(estimate, last));
-    k = settle_layers(k, rel, inside, K - 1, [=](__m512i j, __mmask16 movable) HAIRSHADOW_AVX512_TARGET {
-        return _mm512_mask_i32gather_ps(rel, movable, j, d, 4);
-    });
-    const __mmask16 beyond = _mm512_mask_cmp_ps_mask(lanes, rel, _mm512_set1_ps(1.0f), _CMP_GE_OQ);
-    return _mm512_mask_mov_epi32(_mm512_maskz_mov_epi32(inside, k), beyond, _mm512_set1_epi32(K));
-}
-
-/// per_pixel_depth<K>::assign: z0 (and, where the last layer extends, the stretch after it) gathered
-/// from the texels' states, the same subtraction and division lane by lane, then assign's boundary
-/// count (K <= 8) or locate's estimate settled against the same boundaries. The settled layer does
-/// not depend on the estimate, only on the boundaries, so the estimate need not match locate's to the
-/// bit. `Ignore`: a depth beyond the last layer is dropped (-1), else it joins the last layer.
-template <int K, bool Linear, bool Extend, bool Ignore, class State>
-HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline void assign_per_pixel(const State* states, float extent, const float* relative_boundaries, std::span<const std::uint32_t> texels,
-                                               std::span<const float> depths, std::int32_t* layers) noexcept {
-    constexpr int stride = int(sizeof(State)); // the gathers' scale: 4 or 8 bytes a texel
-    const float* z0s = reinterpret_cast<const float*>(states);
-    const __m512 extent_v = _mm512_set1_ps(extent);
-    for (std::size_t i = 0; i < texels.size(); i += 16) {
-        const __mmask16 lanes = first_lanes(texels.size() - i);
-        const __m512i texel = _mm512_maskz_loadu_epi32(lanes, texels.data() + i);
-        const __m512 depth = _mm512_maskz_loadu_ps(lanes, depths.data() + i);
-        const __m512 z0 = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, texel, z0s, stride);
-        __m512 span = extent_v;
-        if constexpr (Extend) span = _mm512_mul_ps(extent_v, _mm512_mask_i32gather_ps(_mm512_set1_ps(1.0f), lanes, texel, z0s + 1, stride));
-        const __m512 rel = _mm512_div_ps(_mm512_sub_ps(depth, z0), span);
-        __m512i layer; // the boundaries d_1..d_K reached: K beyond the last layer, 0 in front and for NaN
-        if constexpr (K <= 8) layer = boundaries_reached<K>(rel, relative_boundaries + 1);
-        else layer = settled_per_pixel_layer<K, Linear>(rel, lanes, relative_boundaries);
-        if constexpr (Ignore) layer = _mm512_mask_set1_epi32(layer, _mm512_cmpeq_epi32_mask(layer, _mm512_set1_epi32(K)), -1);
-        else layer = _mm512_min_epi32(layer, _mm512_set1_epi32(K - 1));
-        _mm512_mask_storeu_epi32(layers + i, lanes, layer);
-    }
-}
-
-/// depth_range<S>'s boundary k between nearest and nearest + span, as boundary() rounds it.
-template <int S>
-HAIRSHADOW_AVX512_TARGET __m512 depth_range_boundary(__m512 nearest, __m512 span, __m512i k) noexcept {
-    const __m512 fraction = _mm512_div_ps(_mm512_cvtepi32_ps(k), _mm512_set1_ps(float(S)));
-    return _mm512_add_ps(nearest, rounded(_mm512_mul_ps(span, fraction)));
-}
-
-/// depth_range<S>::assign: the same estimate, settled against the same boundaries, lane by lane, one
-/// step at a time while any lane still moves. `states` are {nearest, furthest} pairs of floats.
-template <int S>
-HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline void assign_depth_range(const float* ranges, std::span<const std::uint32_t> texels, std::span<const float> depths,
-                                                 std::int32_t* layers) noexcept {
-    const __m512 slices = _mm512_set1_ps(float(S));
-    for (std::size_t i = 0; i < texels.size(); i += 16) {
-        const __mmask16 lanes = first_lanes(texels.size() - i);
-        const __m512i texel = _mm512_maskz_loadu_epi32(lanes, texels.data() + i);
-        const __m512 depth = _mm512_maskz_loadu_ps(lanes, depths.data() + i);
-        const __m512 nearest = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, texel, ranges, 8);
-        const __m512 furthest = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, texel, ranges + 1, 8);
-        const __m512 span = _mm512_sub_ps(furthest, nearest);
-        const __mmask16 ranged = _mm512_mask_cmp_ps_mask(lanes, furthest, nearest, _CMP_GT_OQ); // else slice 0
-        // settle_layer: the estimate's whole part (0 for NaN and negatives), then down and up.
-        const __m512 estimate = _mm512_mul_ps(_mm512_div_ps(_mm512_sub_ps(depth, nearest), span), slices);
-        const __mmask16 positive = _mm512_mask_cmp_ps_mask(ranged, estimate, _mm512_setzero_ps(), _CMP_GT_OQ);
-        __m512i k = _mm512_maskz_cvttps_epi32(positive, _mm512_min_ps(estimate, slices));
-        k = settle_layers(k, depth, ranged, S, [=](__m512i j, __mmask16) HAIRSHADOW_AVX512_TARGET {
-            return depth_range_boundary<S>(nearest, span, j);
-        });
-        k = _mm512_min_epi32(k, _mm512_set1_epi32(S - 1)); // never negative: it starts at 0 or above and stops there
-        _mm512_mask_storeu_epi32(layers + i, lanes, k);
-    }
-}
-
-} // namespace hairshadow::detail::avx512
-#endif
-// ---- end hairshadow/placement/detail/slices_avx512.hpp
-
-#include <cmath>
-#include <cstddef>
-#include <cstdint>
-#include <span>
-#include <string_view>
-
-namespace hairshadow {
-
-/// S slices between each texel's nearest and furthest fragment.
-/// @tparam S number of slices (128 in the paper)
-template <int S>
-class depth_range {
-    static_assert(S >= 1, "depth_range needs at least one slice");
-
-public:
-    static constexpr int layer_count = S;
-    static constexpr bool cumulative = true; ///< read as opacity slices when interpolated
-    /// Each texel's state depends on its fragments' depths as a set (nearest and furthest), not their
-    /// order (order_free_maps).
-    static constexpr bool fragment_order_free = true;
-    static constexpr bool contiguous = true;
-    static constexpr std::string_view name = "depth_range";
-    static constexpr std::string_view glsl_name = "placement/depth_range";
-    /// The depth-range map (MIN / MAX blending on GL).
-    struct texel_state {
-        float nearest = 0.0f;
-        float furthest = 0.0f;
-        friend bool operator==(const texel_state&, const texel_state&) = default;
-    };
-
-    void prepare(const depth_extent&) const noexcept {}
-    template <class Fragment>
-    void prepare_texel(std::span<const Fragment> fragments, texel_state& s) const noexcept {
-        if (fragments.empty()) return;
-        const auto range = detail::texel_extent_of(fragments);
-        texel_state_from(range.nearest, range.furthest, s);
-    }
-    /// The texel's state from its nearest and furthest fragment (per_pixel_depth::texel_state_from).
-    void texel_state_from(float nearest, float furthest, texel_state& s) const noexcept { s.nearest = nearest, s.furthest = furthest; }
-    /// Depth of slice boundary k in [0, S] (never a fused multiply-add, so that every build, and
-    /// assign_each_avx512, places a boundary on the same float).
-    float boundary(const texel_state& s, int k) const noexcept {
-        return s.nearest + detail::rounded((s.furthest - s.nearest) * (float(k) / float(S)));
-    }
-    /// The slice floor(S (z - near) / (far - near)) of the paper, the furthest fragment in the last.
-    int assign(const texel_state& s, float depth) const noexcept {
-        if (!(s.furthest > s.nearest)) return 0;
-        return std::clamp(slice_of(s, depth), 0, S - 1);
-    }
-#if HAIRSHADOW_AVX512_WALK
-    /// assign() for fragments of many texels, sixteen at a time (placement/detail/slices_avx512.hpp).
-    HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state* states, std::span<const std::uint32_t> texels,
-                                                     std::span<const float> depths, std::int32_t* layers) const noexcept {
-        static_assert(sizeof(texel_state) == 2 * sizeof(float) && offsetof(texel_state, furthest) == sizeof(float));
-        detail::avx512::assign_depth_range<S>(reinterpret_cast<const float*>(states), texels, depths, layers);
-    }
-#endif
-    layer_position locate(const texel_state& s, float depth) const noexcept {
-        if (!(s.furthest > s.nearest)) return depth > s.nearest ? layer_position{S, 0.0f} : layer_position{-1, 0.0f};
-        if (!(depth >= s.nearest)) return {-1, 0.0f};
-        const int k = slice_of(s, depth);
-        if (k >= S) return {S, 0.0f};
-        return detail::position_in(k, depth, boundary(s, k), boundary(s, k + 1));
-    }
-    static constexpr std::size_t global_bytes() noexcept { return 0; }
-
-private:
-    /// The k with boundary(k) <= depth < boundary(k + 1), or S past the furthest boundary, settled
-    /// against the boundaries so that slab boundaries are exact.
-    int slice_of(const texel_state& s, float depth) const noexcept {
-        return detail::settle_layer((depth - s.nearest) / (s.furthest - s.nearest) * float(S), S, depth,
-                                    [&](int i) { return boundary(s, i); });
-    }
-};
-
-} // namespace hairshadow
-// ---- end hairshadow/placement/depth_range.hpp
 // ---- begin hairshadow/placement/per_pixel_depth.hpp
 /// @file
 /// Deep opacity maps' per-pixel layers (Yuksel & Keyser 2008, section 3): a depth pass gives each
@@ -6819,167 +7361,6 @@ private:
 
 } // namespace hairshadow
 // ---- end hairshadow/placement/per_pixel_depth.hpp
-// ---- begin hairshadow/reconstruction/fibre_density.hpp
-/// @file
-/// Reconstruction by an assumed fibre density: approximate deep shadow maps, as AMD TressFX ships them
-/// (TressFXLighting.hlsl, ComputeShadowAttenuation). A texel keeps only its first fragment's depth z0
-/// (per_pixel_depth's depth map); a point d world units behind it lies behind
-/// n = d / (fibre spacing x fibre radius) fibres, at least one once d > 1e-5, and T = (1 - alpha)^n.
-/// TressFX counts every fibre: its settings hold m_HairMaxShadowFibers = 50 and upload it, but
-/// ComputeShadowAttenuation never reads it, so no cap is the default here; a cap is an option
-/// (fibre_density_parameters::max_fibres). The measured variant takes the density from the texel's own
-/// fragments instead: their count over their depth span (depth_range's nearest and furthest).
-
-
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
-#include <limits>
-#include <span>
-#include <string>
-#include <string_view>
-#include <type_traits>
-
-namespace hairshadow {
-
-/// Where the fibre density comes from.
-enum class fibre_density_source {
-    fixed,    ///< the parameters' constant density, TressFX's model
-    measured, ///< each texel's fragment count over its depth span, with the fragments' mean opacity
-};
-
-/// TressFX's hair shadow parameters (TressFXSettings.h defaults), in the model's world units.
-struct fibre_density_parameters {
-    float spacing = 0.4f;    ///< fibre spacing, in fibre radii
-    float radius = 0.0021f;  ///< fibre radius, world units
-    float alpha = 0.35f;     ///< opacity of one fibre
-    /// Fibres counted at most: a whole number, or infinity for none (TressFX's shader counts them all;
-    /// its unread m_HairMaxShadowFibers is 50).
-    float max_fibres = std::numeric_limits<float>::infinity();
-
-    /// World depth per fibre along the light.
-    float fibre_step() const noexcept { return spacing * radius; }
-    /// -ln(1 - alpha): one fibre's optical depth.
-    float fibre_optical_depth() const noexcept { return -std::log1p(-alpha); }
-    /// Throws argument_error unless spacing and radius are positive and finite, alpha is in (0, 1)
-    /// and the cap is infinite or a whole number of fibres, at least one.
-    void check() const {
-        const auto positive = [](float v) { return std::isfinite(v) && v > 0.0f; };
-        if (!positive(spacing) || !positive(radius) || !positive(fibre_step()))
-            throw argument_error("fibre density: spacing and radius must be positive and finite, and so must their product");
-        if (!(alpha > 0.0f && alpha < 1.0f)) throw argument_error("fibre density: the fibre alpha must be in (0, 1)");
-        if (!(max_fibres >= 1.0f && (std::isinf(max_fibres) || max_fibres == std::floor(max_fibres))))
-            throw argument_error("fibre density: the cap must be a whole number of fibres, at least one, or none");
-    }
-    friend bool operator==(const fibre_density_parameters&, const fibre_density_parameters&) = default;
-};
-
-namespace detail {
-/// A point this little behind the first fragment is still on it: TressFX's 1e-5 world units, and at
-/// least four float steps of a linear depth near 1, so that rounding never puts a point on the first
-/// fibre behind it (CPU and GL compute depths in their own order).
-inline constexpr float on_first_fibre = 1e-5f;
-inline constexpr float on_first_fibre_depth = 2.5e-7f;
-
-template <class P>
-concept first_fragment_state = requires(const typename P::texel_state& s) { s.z0; } || requires(const typename P::texel_state& s) { s.nearest; };
-template <class P>
-concept fragment_span_state = requires(const typename P::texel_state& s) {
-    s.nearest;
-    s.furthest;
-};
-} // namespace detail
-
-/// Optical depth from an assumed density of fibres behind each texel's first fragment.
-/// @tparam Source the parameters' constant density (TressFX) or each texel's measured one
-template <fibre_density_source Source = fibre_density_source::fixed>
-class fibre_density {
-public:
-    static constexpr std::string_view name = "fibre_density";
-    static constexpr std::string_view glsl_name = "reconstruction/fibre_density";
-
-    /// The fixed density needs the first fragment (per_pixel_depth's z0 or depth_range's nearest); the
-    /// measured one also the last (depth_range).
-    template <class Placement>
-    static constexpr bool accepts =
-        Source == fibre_density_source::fixed ? detail::first_fragment_state<Placement> : detail::fragment_span_state<Placement>;
-
-    struct covered {
-        bool any = false; ///< the texel has a fragment (else it casts no shadow)
-        friend bool operator==(const covered&, const covered&) = default;
-    };
-    template <class Accumulation>
-    struct measured {
-        typename Accumulation::value_type optical_depth{}; ///< sum of the fragments' b
-        std::uint32_t fragments = 0;
-        friend bool operator==(const measured&, const measured&) = default;
-    };
-    /// Fixed density: only whether the texel is covered; measured: the texel's fragments summed.
-    template <class Placement, class Accumulation>
-    using storage = std::conditional_t<Source == fibre_density_source::fixed, covered, measured<Accumulation>>;
-
-    explicit fibre_density(fibre_density_parameters parameters = {}) : parameters_(parameters) { parameters_.check(); }
-
-    /// The light's world depth per unit of linear depth, which turns depths into fibre counts.
-    void prepare(const light_space& light) noexcept { depth_scale_ = light.far_plane() - light.near_plane(); }
-
-    template <class Placement, class Accumulation, class Fragment>
-    static void build(const Placement&, const typename Placement::texel_state&, std::span<const Fragment> fragments,
-                      storage<Placement, Accumulation>& out) {
-        if constexpr (Source == fibre_density_source::fixed) {
-            out.any = !fragments.empty();
-        } else {
-            typename Accumulation::sum_type sum{};
-            for (const auto& f : fragments) sum = Accumulation::add(sum, fragment_optical_depth(f));
-            out.optical_depth = Accumulation::store(sum);
-            out.fragments = std::uint32_t(fragments.size());
-        }
-    }
-
-    /// Fibres in front of linear depth `depth`, and the optical depth each one has.
-    template <class Placement, class Accumulation>
-    float optical_depth(const Placement& placement, const typename Placement::texel_state& state, const storage<Placement, Accumulation>& in,
-                        float depth) const noexcept {
-        const float z0 = placement.boundary(state, 0); // the first fragment
-        const float behind = (depth - z0) * depth_scale_;  // world units behind it
-        if (!(behind > detail::on_first_fibre) || !(depth - z0 > detail::on_first_fibre_depth)) return 0.0f;
-        if constexpr (Source == fibre_density_source::fixed) {
-            if (!in.any) return 0.0f;
-            const float fibres = std::clamp(behind / parameters_.fibre_step(), 1.0f, parameters_.max_fibres);
-            return fibres * parameters_.fibre_optical_depth();
-        } else {
-            if (in.fragments == 0) return 0.0f;
-            // n fragments over the span from first to last: n - 1 gaps, so the k-th fragment behind the
-            // first is reached at k gaps and a point on it has k fibres in front, as the exact map says
-            // for evenly spaced fragments; behind the last all n are in front.
-            const float count = float(in.fragments);
-            const float span = state.furthest - state.nearest;
-            const float fibres = span > 0.0f && depth <= state.furthest ? std::clamp((depth - z0) / span * (count - 1.0f), 1.0f, count) : count;
-            return fibres * (Accumulation::decode(in.optical_depth) / count);
-        }
-    }
-
-    /// Maps a texel stores, for inspection: none for the fixed density, the texel's summed optical
-    /// depth for the measured one.
-    template <class Placement>
-    static constexpr int stored_maps = Source == fibre_density_source::fixed ? 0 : 1;
-    template <class Placement, class Accumulation>
-    static float stored_optical_depth(const storage<Placement, Accumulation>& in, int) noexcept {
-        if constexpr (Source == fibre_density_source::fixed) return 0.0f;
-        else return Accumulation::decode(in.optical_depth);
-    }
-
-    const fibre_density_parameters& parameters() const noexcept { return parameters_; }
-    /// World units per unit of linear depth, from the last prepare().
-    float depth_scale() const noexcept { return depth_scale_; }
-
-private:
-    fibre_density_parameters parameters_;
-    float depth_scale_ = 1.0f;
-};
-
-} // namespace hairshadow
-// ---- end hairshadow/reconstruction/fibre_density.hpp
 
 namespace hairshadow {
 
@@ -8139,7 +8520,7 @@ namespace hairshadow {
 /// Every registered method family, in the order the command line lists them (the papers' years, then
 /// the engines', then ours, then the exact reference).
 using registered_families =
-    family_list<opacity_shadow_maps_family, density_clustering_family, deep_opacity_maps_family, occupancy_maps_family,
+    family_list<opacity_shadow_maps_family, density_clustering_family, deep_opacity_maps_family, occupancy_maps_family, fourier_opacity_maps_family, moment_shadow_maps_family,
                 approximate_deep_shadow_maps_family, hair_count_deep_shadows_family, deep_occupancy_maps_family, range_opacity_maps_family, exact_reference_family>;
 
 /// Every registered accumulation; the first is the default.

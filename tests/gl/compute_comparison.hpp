@@ -26,6 +26,9 @@ struct map_comparison {
 /// How far a float sum on GL may lie from the CPU's, relative: the compute path sums in fixed point
 /// where the CPU adds floats in order, so the two round differently (docs/policies.md, "GL").
 inline constexpr double float_tolerance = 1e-6;
+/// How far a projected method's sum on GL may lie from the CPU's, relative to the texel's largest sum
+/// (reported in `worst` scaled to float_tolerance).
+inline constexpr double projection_tolerance = 1e-5;
 
 /// Which texels of `light`'s map `model` makes a fragment in, by the CPU's own walk (tile by tile, no
 /// fragment buffer): one byte a texel, row by row.
@@ -78,6 +81,17 @@ map_comparison compare_maps(const Method& cpu, hairshadow::gl::maps<Method>& on_
             } else if constexpr (requires { a.data.bits; }) {
                 c.data_off += a.data.bits != b.data.bits;
                 for (std::size_t k = 0; k < a.data.slabs.size(); ++k) compare_value(c, a.data.slabs[k], b.data.slabs[k]);
+            } else if constexpr (requires { a.data.sums; }) {
+                // Signed sums that may cancel to near zero (a Fourier coefficient, an odd moment), of
+                // terms whose cosines GL and the C library round apart: each within
+                // projection_tolerance of the texel's largest sum.
+                double scale = 1e-3;
+                for (const float v : a.data.sums) scale = std::max(scale, double(std::abs(v)));
+                for (std::size_t k = 0; k < a.data.sums.size(); ++k) {
+                    const double error = std::abs(double(a.data.sums[k]) - double(b.data.sums[k])) / scale;
+                    c.worst = std::max(c.worst, error / (projection_tolerance / float_tolerance));
+                    c.data_off += error > projection_tolerance;
+                }
             } else if constexpr (requires { a.data.fragments; }) {
                 c.data_off += a.data.fragments != b.data.fragments;
                 compare_value(c, a.data.optical_depth, b.data.optical_depth);

@@ -704,6 +704,57 @@ void main() {
 }
 )hs_glsl";
 
+/// shaders/compute/projection.glsl
+inline constexpr std::string_view compute_projection = R"hs_glsl(// Compute build of the projected methods (Fourier opacity maps, moment shadow maps; one work group per
+// tile): every fragment's HS_SUMS terms (the reconstruction's hs_projection_terms at its place in the
+// texel's depth range) summed in fixed point, HS_SUM_SLOTS (a multiple of 4) of them per walk of the tile's segments;
+// then each texel's sums into the sums texture, four to an array layer, where the raster pass blends
+// them.
+layout(local_size_x = 16, local_size_y = 16) in;
+layout(binding = 0, rgba32f) writeonly uniform image2DArray hs_sums_image;
+
+shared vec2 hs_texel_range[256];
+ivec2 hs_origin;
+int hs_group_first;
+
+void hs_emit(int x, int y) {
+    uint texel = uint((y - hs_origin.y) * HS_TILE + (x - hs_origin.x));
+    float depth, b;
+    hs_shade(x, y, depth, b);
+    vec2 range = hs_texel_range[texel];
+    float terms[HS_SUMS];
+    hs_projection_terms(hs_position_in_range(range.x, range.y, depth), b, terms);
+    for (int k = 0; k < HS_SUM_SLOTS && hs_group_first + k < HS_SUMS; ++k) hs_add_sum(texel * uint(HS_SUM_SLOTS) + uint(k), terms[hs_group_first + k]);
+}
+
+void main() {
+    uint tile = gl_WorkGroupID.y * uint(hs_tiles_x) + gl_WorkGroupID.x;
+    hs_origin = hs_tile_rect(tile).xy;
+    uint me = gl_LocalInvocationIndex;
+    ivec2 texel = hs_origin + ivec2(gl_LocalInvocationID.xy);
+    bool inside = texel.x < hs_resolution && texel.y < hs_resolution;
+    vec4 range = inside ? texelFetch(hs_range_map, texel, 0) : vec4(0.0);
+    hs_texel_range[me] = range.xw;
+    for (hs_group_first = 0; hs_group_first < HS_SUMS; hs_group_first += HS_SUM_SLOTS) {
+        hs_clear_sums();
+        barrier();
+        hs_walk_tile(tile);
+        barrier();
+        if (inside) {
+            for (int layer = hs_group_first / 4; layer < (min(hs_group_first + HS_SUM_SLOTS, HS_SUMS) + 3) / 4; ++layer) {
+                vec4 v = vec4(0.0);
+                for (int c = 0; c < 4 && 4 * layer + c < HS_SUMS; ++c) {
+                    int64_t sum = int64_t(hs_sum(me * uint(HS_SUM_SLOTS) + uint(4 * layer + c - hs_group_first)));
+                    v[c] = float(double(sum) / 1099511627776.0lf); // signed: the terms may be negative
+                }
+                imageStore(hs_sums_image, ivec3(texel, layer), v);
+            }
+        }
+        barrier();
+    }
+}
+)hs_glsl";
+
 /// shaders/compute/range.glsl
 inline constexpr std::string_view compute_range = R"hs_glsl(// Compute build, step 4 (one work group per tile): each texel's nearest and furthest fragment, by
 // atomic minimum and maximum in shared memory, written as the light pass's range map (nearest in red,
@@ -965,6 +1016,31 @@ void hs_fetch_occupancy(ivec2 texel, out uint bits[HS_WORDS], out float slabs[HS
 }
 )hs_glsl";
 
+/// shaders/lookup/projection.glsl
+inline constexpr std::string_view lookup_projection = R"hs_glsl(// Look-up of the projected methods (Fourier opacity maps, moment shadow maps), mirroring
+// reconstruction/detail/depth_projection.hpp: no shadow in front of the texel's nearest fragment, its
+// whole optical depth behind the furthest, and between them the reconstruction's series, held within
+// [0, total]. The range map and the light's frustum are lookup/light's.
+uniform sampler2DArray hs_sums_texture;
+
+float hs_transmittance(vec3 world_pos) {
+    ivec2 texel;
+    float depth;
+    vec4 range;
+    if (!hs_lookup_locate(world_pos, texel, depth, range)) return 1.0;
+    float sums[HS_SUMS];
+    for (int layer = 0; layer < (HS_SUMS + 3) / 4; ++layer) {
+        vec4 v = texelFetch(hs_sums_texture, ivec3(texel, layer), 0);
+        for (int c = 0; c < 4 && 4 * layer + c < HS_SUMS; ++c) sums[4 * layer + c] = v[c];
+    }
+    float total = hs_total_optical_depth(sums);
+    if (!(depth > range.x) || !(total > 0.0)) return 1.0;
+    if (depth > range.w) return exp(-total);
+    float tau = hs_series_optical_depth(sums, hs_position_in_range(range.x, range.w, depth));
+    return exp(-(tau > 0.0 ? min(tau, total) : 0.0)); // NaN (a singular moment matrix) casts none, as on the CPU
+}
+)hs_glsl";
+
 /// shaders/passes/capture.glsl
 inline constexpr std::string_view passes_capture = R"hs_glsl(// Fragment capture: every fragment's texel, depth, alpha and segment (gl_PrimitiveID) appended to a
 // buffer, so that CPU maps can be built from exactly the fragments GL rasterised.
@@ -1200,6 +1276,24 @@ void main() {
     vec4 value = vec4(0.0);
     value[slab % 4] = hs_encode(hs_fragment_optical_depth());
     for (int t = 0; t < HS_SLAB_TARGETS; ++t) hs_slabs_out[t] = (slab / 4 == t) ? value : vec4(0.0);
+}
+)hs_glsl";
+
+/// shaders/passes/projection.glsl
+inline constexpr std::string_view passes_projection = R"hs_glsl(// The projected methods' raster pass (Fourier opacity maps, moment shadow maps): each fragment adds its
+// HS_SUMS terms (the reconstruction's hs_projection_terms at its place in the texel's depth range) to
+// its texel, four to a target, by additive blending into RGBA32F layers of a 2D array texture.
+layout(location = 0) out vec4 hs_sums_out[(HS_SUMS + 3) / 4];
+
+void main() {
+    vec4 range = texelFetch(hs_range_map, ivec2(gl_FragCoord.xy), 0);
+    float terms[HS_SUMS];
+    hs_projection_terms(hs_position_in_range(range.x, range.w, hs_fragment_depth()), hs_fragment_optical_depth(), terms);
+    for (int t = 0; t < (HS_SUMS + 3) / 4; ++t) {
+        vec4 v = vec4(0.0);
+        for (int c = 0; c < 4 && 4 * t + c < HS_SUMS; ++c) v[c] = terms[4 * t + c];
+        hs_sums_out[t] = v;
+    }
 }
 )hs_glsl";
 
@@ -1532,6 +1626,18 @@ void main() {
 }
 )hs_glsl";
 
+/// shaders/reconstruction/depth_projection.glsl
+inline constexpr std::string_view reconstruction_depth_projection = R"hs_glsl(// What Fourier opacity maps and moment shadow maps share (mirrors
+// reconstruction/detail/depth_projection.hpp): a fragment's place in its texel's depth range, 0 at the
+// nearest fragment and 1 at the furthest, divided as the CPU divides (a quotient of floats in double,
+// rounded once, is the correctly rounded float quotient).
+float hs_position_in_range(float nearest, float furthest, float depth) {
+    precise float span = furthest - nearest;
+    precise float offset = depth - nearest;
+    return span > 0.0 ? clamp(float(double(offset) / double(span)), 0.0, 1.0) : 0.0;
+}
+)hs_glsl";
+
 /// shaders/reconstruction/fibre_density.glsl
 inline constexpr std::string_view reconstruction_fibre_density = R"hs_glsl(// Approximate deep shadow maps (AMD TressFX, ComputeShadowAttenuation): a point d world units behind
 // its texel's first fragment lies behind n = d / hs_fibre_step fibres, at least 1 once d > 1e-5 and at
@@ -1567,6 +1673,55 @@ float hs_transmittance(vec3 world_pos) {
     vec4 range;
     if (!hs_lookup_locate(world_pos, texel, depth, range)) return 1.0;
     return exp(-hs_fibres_optical_depth(texel, range, depth));
+}
+)hs_glsl";
+
+/// shaders/reconstruction/fourier_series.glsl
+inline constexpr std::string_view reconstruction_fourier_series = R"hs_glsl(// Fourier opacity maps (Jansen & Bavoil 2010), mirroring hairshadow::fourier_series: a fragment of
+// optical depth b at position s of its texel's range is a spike at t = 1/C + (1 - 2/C) s of the period,
+// adding 2b, 2b cos(2 pi k t) and 2b sin(2 pi k t) (k = 1 .. HS_HARMONICS) to the coefficients; the
+// optical depth in front of t integrates the series, each harmonic weighted by hs_fourier_weight[k]
+// (its sigma factor, 1 undamped, over 2 pi k, as the CPU rounded it). Harmonics by the angle-sum
+// recurrence.
+#define HS_SUMS (2 * HS_HARMONICS + 1)
+uniform float hs_fourier_weight[HS_HARMONICS + 1];
+
+float hs_fourier_position(float s) {
+    const float margin = 1.0 / float(HS_SUMS);
+    precise float t = margin + (1.0 - 2.0 * margin) * s;
+    return t;
+}
+
+void hs_projection_terms(float s, float b, out float terms[HS_SUMS]) {
+    float angle = 6.2831855 * hs_fourier_position(s);
+    float c1 = cos(angle), s1 = sin(angle);
+    precise float a0 = 2.0 * b;
+    terms[0] = a0;
+    precise float ck = c1, sk = s1;
+    for (int k = 1; k <= HS_HARMONICS; ++k) {
+        terms[2 * k - 1] = a0 * ck;
+        terms[2 * k] = a0 * sk;
+        precise float c = ck * c1 - sk * s1, s2 = sk * c1 + ck * s1;
+        ck = c;
+        sk = s2;
+    }
+}
+
+float hs_total_optical_depth(float sums[HS_SUMS]) { return 0.5 * sums[0]; }
+
+float hs_series_optical_depth(float sums[HS_SUMS], float s) {
+    precise float t = hs_fourier_position(s);
+    float angle = 6.2831855 * t;
+    float c1 = cos(angle), s1 = sin(angle);
+    precise float tau = 0.5 * sums[0] * t;
+    precise float ck = c1, sk = s1;
+    for (int k = 1; k <= HS_HARMONICS; ++k) {
+        tau += hs_fourier_weight[k] * (sums[2 * k - 1] * sk + sums[2 * k] * (1.0 - ck));
+        precise float c = ck * c1 - sk * s1, s2 = sk * c1 + ck * s1;
+        ck = c;
+        sk = s2;
+    }
+    return tau;
 }
 )hs_glsl";
 
@@ -1645,6 +1800,54 @@ float hs_occupancy_optical_depth_in_front(int k, uint bits[HS_WORDS], float slab
     int set = hs_count_bits(bits, first, first + HS_PER_SLAB);
     if (set == 0) return omega;
     return omega + hs_decode(slabs[slab]) / float(set) * float(hs_count_bits(bits, first, k));
+}
+)hs_glsl";
+
+/// shaders/reconstruction/power_moments.glsl
+inline constexpr std::string_view reconstruction_power_moments = R"hs_glsl(// Moment shadow maps for translucent occluders (Peters et al. 2016; Münstermann et al. 2018), mirroring
+// hairshadow::power_moments: a fragment of optical depth b at z = 2 s - 1 adds b, b z, b z^2, b z^3 and
+// b z^4; a query at z normalises the moments by b_0, pulls them toward (0, 0.375, 0, 0.375) by
+// hs_moment_bias, and takes b_0 times the share of the canonical distribution (Hamburger 4MSM) in front
+// of z, its point at z weighted by hs_moment_overestimation. Float, in the CPU's order of operations.
+#define HS_SUMS (HS_MOMENTS + 1)
+uniform float hs_moment_overestimation;
+uniform float hs_moment_bias;
+
+void hs_projection_terms(float s, float b, out float terms[HS_SUMS]) {
+    precise float z = 2.0 * s - 1.0;
+    precise float power = b;
+    terms[0] = b;
+    for (int j = 1; j <= HS_MOMENTS; ++j) {
+        power = power * z;
+        terms[j] = power;
+    }
+}
+
+float hs_total_optical_depth(float sums[HS_SUMS]) { return sums[0]; }
+
+float hs_series_optical_depth(float sums[HS_SUMS], float s) {
+    precise float b0 = sums[0], keep = 1.0 - hs_moment_bias, pull = hs_moment_bias * 0.375;
+    precise float b1 = keep * (sums[1] / b0), b2 = keep * (sums[2] / b0) + pull;
+    precise float b3 = keep * (sums[3] / b0), b4 = keep * (sums[4] / b0) + pull;
+    precise float z0 = 2.0 * s - 1.0;
+    precise float d11 = b2 - b1 * b1;
+    precise float l21d11 = b3 - b1 * b2;
+    precise float l21 = l21d11 / d11;
+    precise float d22 = (b4 - b2 * b2) - l21d11 * l21;
+    precise float c1 = z0 - b1;
+    precise float c2 = z0 * z0 - b2 - l21 * c1;
+    c1 = c1 / d11;
+    c2 = c2 / d22;
+    c1 = c1 - l21 * c2;
+    precise float c0 = 1.0 - (c1 * b1 + c2 * b2);
+    precise float p = c1 / c2, q = c0 / c2;
+    precise float r = sqrt(0.25 * p * p - q);
+    precise float z1 = -0.5 * p - r, z2 = -0.5 * p + r;
+    float f0 = hs_moment_overestimation, f1 = z1 < z0 ? 1.0 : 0.0, f2 = z2 < z0 ? 1.0 : 0.0;
+    precise float f01 = (f1 - f0) / (z1 - z0), f12 = (f2 - f1) / (z2 - z1), f012 = (f12 - f01) / (z2 - z0);
+    precise float q2 = f012, q1 = (f01 - f012 * z1) - q2 * z0;
+    precise float q0 = f0 - (f01 - f012 * z1) * z0;
+    return b0 * (q0 + b1 * q1 + b2 * q2);
 }
 )hs_glsl";
 
@@ -2057,7 +2260,7 @@ struct entry {
 };
 
 /// Every snippet, sorted by name.
-inline constexpr std::array<entry, 62> all{{
+inline constexpr std::array<entry, 68> all{{
     {"accumulation/emulated_8bit", accumulation_emulated_8bit},
     {"accumulation/float", accumulation_float},
     {"compute/clusters", compute_clusters},
@@ -2066,6 +2269,7 @@ inline constexpr std::array<entry, 62> all{{
     {"compute/layers", compute_layers},
     {"compute/occupancy", compute_occupancy},
     {"compute/prepare", compute_prepare},
+    {"compute/projection", compute_projection},
     {"compute/range", compute_range},
     {"compute/scan", compute_scan},
     {"compute/scatter", compute_scatter},
@@ -2075,6 +2279,7 @@ inline constexpr std::array<entry, 62> all{{
     {"lookup/light", lookup_light},
     {"lookup/occupancy", lookup_occupancy},
     {"lookup/occupancy_texels", lookup_occupancy_texels},
+    {"lookup/projection", lookup_projection},
     {"passes/capture", passes_capture},
     {"passes/cluster_common", passes_cluster_common},
     {"passes/cluster_means", passes_cluster_means},
@@ -2087,6 +2292,7 @@ inline constexpr std::array<entry, 62> all{{
     {"passes/layers", passes_layers},
     {"passes/occupancy_bits", passes_occupancy_bits},
     {"passes/occupancy_slabs", passes_occupancy_slabs},
+    {"passes/projection", passes_projection},
     {"placement/clustered", placement_clustered},
     {"placement/common", placement_common},
     {"placement/depth_range", placement_depth_range},
@@ -2095,10 +2301,13 @@ inline constexpr std::array<entry, 62> all{{
     {"placement/power_layers", placement_power_layers},
     {"raster/coverage", raster_coverage},
     {"raster/vertex", raster_vertex},
+    {"reconstruction/depth_projection", reconstruction_depth_projection},
     {"reconstruction/fibre_density", reconstruction_fibre_density},
+    {"reconstruction/fourier_series", reconstruction_fourier_series},
     {"reconstruction/hair_count", reconstruction_hair_count},
     {"reconstruction/interpolation", reconstruction_interpolation},
     {"reconstruction/occupancy_bitcount", reconstruction_occupancy_bitcount},
+    {"reconstruction/power_moments", reconstruction_power_moments},
     {"render/hair_colour", render_hair_colour},
     {"render/hair_fragment", render_hair_fragment},
     {"render/hair_shading", render_hair_shading},

@@ -1,0 +1,89 @@
+#pragma once
+/// @file
+/// What Fourier opacity maps and moment shadow maps share: each texel keeps N sums of its fragments'
+/// optical depth b times N functions of the fragment's depth (a Fourier basis, powers of depth), and
+/// the look-up turns the sums into the optical depth in front of a depth. Depths are measured inside
+/// the texel's own depth range (depth_range's nearest and furthest fragment: s = 0 at the nearest,
+/// 1 at the furthest), so that every texel spends its functions where its hair is; the papers use one
+/// interval for the whole map, which is the special case of one range for every texel.
+///
+/// A Derived reconstruction provides `void project(float s, float b, double* terms) const` (adds b
+/// times its N functions at s), `float total_optical_depth(const float* stored) const` and `float
+/// series_optical_depth(const float* stored, float s) const` (the optical depth in front of s, for
+/// 0 <= s <= 1), and their GLSL twins (gl/maps/projected_maps.hpp). Sums are kept in double and stored once as float, so that the order of a texel's fragments
+/// changes no stored bit the GL build's fixed-point sums could not (tests/gl compare within 1e-5 of the
+/// texel's total).
+
+#include <hairshadow/reconstruction/fibre_density.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <span>
+
+namespace hairshadow {
+
+/// A texel's projected sums: sums[0] is always the texel's total optical depth times a constant.
+template <int N>
+struct projected_sums {
+    std::array<float, std::size_t(N)> sums{};
+    friend bool operator==(const projected_sums&, const projected_sums&) = default;
+};
+
+namespace detail {
+
+/// Where `depth` lies in the texel's range: 0 at the nearest fragment, 1 at the furthest (0 for
+/// every depth where the range is one depth).
+inline float position_in_range(float nearest, float furthest, float depth) noexcept {
+    const float span = furthest - nearest;
+    return span > 0.0f ? std::clamp((depth - nearest) / span, 0.0f, 1.0f) : 0.0f;
+}
+
+/// The reconstruction of a texel's optical depth from its projected sums (see the file's comment).
+template <class Derived, int N>
+class depth_projection {
+public:
+    static constexpr int sums = N;
+    /// Needs the texel's nearest and furthest fragment (depth_range).
+    template <class Placement>
+    static constexpr bool accepts = fragment_span_state<Placement>;
+
+    template <class Placement, class Accumulation>
+    using storage = projected_sums<N>;
+
+    template <class Placement, class Accumulation, class Fragment>
+    void build(const Placement&, const typename Placement::texel_state& state, std::span<const Fragment> fragments,
+               storage<Placement, Accumulation>& out) const {
+        std::array<double, std::size_t(N)> terms{};
+        for (const auto& f : fragments)
+            derived().project(position_in_range(state.nearest, state.furthest, f.depth), fragment_optical_depth(f), terms.data());
+        for (int k = 0; k < N; ++k) out.sums[std::size_t(k)] = float(terms[std::size_t(k)]);
+    }
+
+    /// Nothing in front of the nearest fragment, the whole texel's optical depth behind the furthest
+    /// (the exact map counts the fragments strictly in front), and between them the series, held
+    /// within [0, total] (Derived's series may ring outside it).
+    template <class Placement, class Accumulation>
+    float optical_depth(const Placement&, const typename Placement::texel_state& state, const storage<Placement, Accumulation>& in,
+                        float depth) const noexcept {
+        const float total = derived().total_optical_depth(in.sums.data());
+        if (!(depth > state.nearest) || !(total > 0.0f)) return 0.0f;
+        if (depth > state.furthest) return total;
+        const float tau = derived().series_optical_depth(in.sums.data(), position_in_range(state.nearest, state.furthest, depth));
+        return tau > 0.0f ? std::min(tau, total) : 0.0f; // and a series that came to NaN (a singular moment matrix) casts none
+    }
+
+    /// The stored sums, for inspection.
+    template <class Placement>
+    static constexpr int stored_maps = N;
+    template <class Placement, class Accumulation>
+    static float stored_optical_depth(const storage<Placement, Accumulation>& in, int k) noexcept {
+        return in.sums[std::size_t(k)];
+    }
+
+private:
+    const Derived& derived() const noexcept { return static_cast<const Derived&>(*this); }
+};
+
+} // namespace detail
+} // namespace hairshadow

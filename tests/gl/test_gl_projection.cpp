@@ -1,0 +1,130 @@
+// The projected methods on GL (projected_maps_gl: Fourier opacity maps, moment shadow maps): the compute path's sums against
+// the CPU's tiled build, every texel (the compute comparison's, within 1e-5 of each texel's largest
+// sum); the raster path against the CPU run on GL's own fragments; the GLSL look-up against the CPU
+// query, with the reconstruction's parameters reaching both; and behind sheets of strands.
+#include "gl_test_context.hpp"
+
+#include <hairshadow/gl.hpp>
+#include <hairshadow/gl/passes/fragment_capture.hpp>
+
+#include "../sheets.hpp"
+#include "../test_support.hpp"
+#include "compute_comparison.hpp"
+
+using namespace hairshadow;
+
+namespace {
+
+template <class Method>
+void check_compute_path(const Method& parameters, const hair_model& model, const light_space& light, const gl::hair_mesh& mesh,
+                        const fragment_buffer& fragments) {
+    Method cpu = parameters;
+    cpu.build(model, light);
+    gl::light_pass pass(gl::build_path::compute);
+    pass.run(mesh, light);
+    gl::maps<Method> on_gl(parameters);
+    on_gl.build(pass);
+    const auto c = test::compare_maps(cpu, on_gl, gl::detail::read_range(*pass.textures()), test::cpu_occupancy(model, light), light.resolution());
+    CAPTURE(c.occupied, c.occupancy_off, c.state_off, c.data_off, c.worst);
+    CHECK(c.occupied > 1000);
+    CHECK(c.exact());
+    test::check_lookup_and_read_back(on_gl, cpu, test::texel_centre_queries(fragments, light, 5), 0.1f);
+}
+
+} // namespace
+
+TEST_CASE("GL Fourier opacity maps equal the CPU maps, and the GLSL look-up the CPU query", "[gl][fom]") {
+    test::gl_context();
+    const auto model = read_tfx(test::sintel_hair());
+    const auto light = light_space::fit(light_spec::directional({0, -1, -1}), model.bounds(), 256);
+    const gl::hair_mesh mesh(model);
+    const auto fragments = rasterize(model, light);
+    SECTION("7 coefficients, undamped") { check_compute_path(fourier_opacity_maps<7>(), model, light, mesh, fragments); }
+    SECTION("15 coefficients, damped: two walks of the tile, 8 sums each") {
+        const fourier_opacity_maps<15> damped{depth_range<1>(), fourier_series<15>(true)};
+        check_compute_path(damped, model, light, mesh, fragments);
+        gl::maps<fourier_opacity_maps<15>> on_gl(damped);
+        on_gl.build(mesh, light);
+        CHECK(on_gl.to_cpu().reconstruction().damped());
+    }
+}
+
+TEST_CASE("GL's raster path blends Fourier coefficients as the CPU sums them from GL's fragments", "[gl][fom]") {
+    test::gl_context();
+    const auto model = read_tfx(test::sintel_hair());
+    const auto light = light_space::fit(light_spec::directional({0, -1, -1}), model.bounds(), 256);
+    const gl::hair_mesh mesh(model);
+    const auto fragments = gl::capture_fragments(mesh, light, raster_options{});
+    fourier_opacity_maps<7> cpu;
+    cpu.build(fragments, light);
+    gl::maps<fourier_opacity_maps<7>> on_gl;
+    on_gl.set_build_path(gl::build_path::raster);
+    on_gl.build(mesh, light);
+    const auto texels = on_gl.read_back();
+    long state_off = 0, data_off = 0;
+    for (int y = 0; y < 256; ++y)
+        for (int x = 0; x < 256; ++x) {
+            const auto& c = cpu.texel(x, y);
+            const auto& g = texels[std::size_t(y) * 256 + std::size_t(x)];
+            state_off += !(c.placement == g.placement); // MIN / MAX blending: bit-exact
+            const float scale = std::max(std::abs(c.data.sums[0]), 1e-3f);
+            for (std::size_t k = 0; k < 7; ++k) data_off += std::abs(c.data.sums[k] - g.data.sums[k]) > 1e-5f * scale;
+        }
+    CHECK(state_off == 0);
+    CHECK(data_off == 0);
+    test::check_lookup_and_read_back(on_gl, cpu, test::texel_centre_queries(fragments, light, 5), 0.1f);
+}
+
+TEST_CASE("the GL look-up gives the Fourier series' transmittance behind sheets of strands", "[gl][fom]") {
+    test::gl_context();
+    const auto scene = test::make_sheets(5, 64);
+    const gl::hair_mesh mesh(scene.model);
+    raster_options options;
+    options.fixed_alpha = 0.3f;
+    for (const bool damped : {false, true}) {
+        const fourier_opacity_maps<7> parameters{depth_range<1>(), fourier_series<7>(damped)};
+        auto cpu = parameters;
+        cpu.build(scene.model, scene.light, options);
+        gl::maps<fourier_opacity_maps<7>> on_gl(parameters);
+        on_gl.build(mesh, scene.light, options);
+        const float y = scene.row_y[scene.row_y.size() / 2];
+        std::vector<glm::vec3> points;
+        for (const float z : {0.9f, 0.5f, 0.4999f, 0.4f, 0.3f, 0.2f, 0.1f, -0.05f, -0.2f, -0.3f, -0.9f}) points.push_back({0.2f, y, z});
+        points.push_back({0.2f, 0.49f, -0.5f}); // a texel with no hair
+        const auto t = test::gl_lookup(on_gl.lookup_source(), [&](GLuint p) { on_gl.bind_lookup(p); }, points);
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            CAPTURE(damped, i, t[i]);
+            CHECK(t[i] == Approx(cpu.transmittance(points[i])).epsilon(1e-5));
+        }
+        CHECK(t.front() == 1.0f);
+        CHECK(t[t.size() - 2] == Approx(std::pow(0.7f, 5.0f)).epsilon(1e-5));
+        CHECK(t.back() == 1.0f);
+    }
+}
+
+TEST_CASE("GL moment shadow maps equal the CPU maps, and the GLSL look-up the CPU query", "[gl][msm]") {
+    test::gl_context();
+    const auto model = read_tfx(test::sintel_hair());
+    const auto light = light_space::fit(light_spec::directional({0, -1, -1}), model.bounds(), 256);
+    const gl::hair_mesh mesh(model);
+    const auto fragments = rasterize(model, light);
+    const moment_shadow_maps lower{depth_range<1>(), power_moments({.overestimation = 0.0f})};
+    check_compute_path(lower, model, light, mesh, fragments);
+    gl::maps<moment_shadow_maps> on_gl(lower);
+    on_gl.build(mesh, light);
+    CHECK(on_gl.to_cpu().reconstruction().parameters() == lower.reconstruction().parameters());
+
+    // Two sheets, between them one sheet's shadow, as on the CPU.
+    const auto scene = test::make_sheets(2, 64);
+    const gl::hair_mesh sheets(scene.model);
+    raster_options options;
+    options.fixed_alpha = 0.3f;
+    gl::maps<moment_shadow_maps> sheets_gl;
+    sheets_gl.build(sheets, scene.light, options);
+    const float y = scene.row_y[scene.row_y.size() / 2];
+    const auto t = test::gl_lookup(sheets_gl.lookup_source(), [&](GLuint p) { sheets_gl.bind_lookup(p); },
+                                   {{0.2f, y, 0.9f}, {0.2f, y, 0.4f}, {0.2f, y, -0.9f}});
+    CHECK(t[0] == 1.0f);
+    CHECK(t[1] == Approx(0.7f).epsilon(1e-3));
+    CHECK(t[2] == Approx(0.49f).epsilon(1e-5));
+}

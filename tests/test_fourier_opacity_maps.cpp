@@ -1,0 +1,147 @@
+// Fourier opacity maps (fom:C): the coefficients and the reconstructed transmittance behind sheets of
+// strands at known depths, worked by hand in double from Jansen & Bavoil's formulas; the ringing
+// between two sheets and what the sigma factors do to it; specs; and the builds every method shares
+// (tiled against buffered, any thread count, the registry).
+#include "sheets.hpp"
+#include "test_support.hpp"
+
+#include <hairshadow/hairshadow.hpp>
+#include <hairshadow/methods/registry.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+using namespace hairshadow;
+
+namespace {
+
+raster_options alpha(float a) {
+    raster_options o;
+    o.fixed_alpha = a;
+    return o;
+}
+
+float depth_at(const test::sheets_scene& scene, float z) { return scene.light.locate(glm::vec3(0.2f, scene.row_y[scene.row_y.size() / 2], z))->depth; }
+
+/// The paper's series by hand, in double: spikes of optical depth b at periods' positions t.
+struct hand_series {
+    int harmonics;
+    bool damped;
+    std::vector<double> a; // a_0, a_1, b_1, a_2, b_2, ...
+
+    hand_series(const std::vector<double>& t, double b, int n, bool sigma) : harmonics(n), damped(sigma) {
+        a.push_back(2.0 * b * double(t.size()));
+        for (int k = 1; k <= n; ++k) {
+            double ak = 0, bk = 0;
+            for (const double ti : t) ak += 2 * b * std::cos(2 * std::numbers::pi * k * ti), bk += 2 * b * std::sin(2 * std::numbers::pi * k * ti);
+            a.push_back(ak);
+            a.push_back(bk);
+        }
+    }
+    double tau(double t) const {
+        double r = a[0] * t / 2;
+        for (int k = 1; k <= harmonics; ++k) {
+            const double x = std::numbers::pi * k / (harmonics + 1), sigma = damped ? std::sin(x) / x : 1.0;
+            r += sigma * (a[std::size_t(2 * k - 1)] * std::sin(2 * std::numbers::pi * k * t) + a[std::size_t(2 * k)] * (1 - std::cos(2 * std::numbers::pi * k * t))) /
+                 (2 * std::numbers::pi * k);
+        }
+        return r;
+    }
+};
+
+} // namespace
+
+TEST_CASE("Fourier opacity maps store the paper's coefficients and give its series' transmittance behind sheets of strands", "[methods][fom]") {
+    // Five sheets at z = 0.5 .. -0.3, every fragment of alpha 0.3: each texel's range runs from the
+    // first sheet to the last, which map onto [1/7, 6/7] of the period.
+    const auto scene = test::make_sheets(5, 64);
+    const double b = -std::log(0.7);
+    const float y = scene.row_y[scene.row_y.size() / 2];
+    for (const bool damped : {false, true}) {
+        CAPTURE(damped);
+        fourier_opacity_maps<7> fom{depth_range<1>(), fourier_series<7>(damped)};
+        fom.build(scene.model, scene.light, alpha(0.3f));
+        const float near = depth_at(scene, 0.5f), far = depth_at(scene, -0.3f);
+        const auto period = [&](float depth) { return 1.0 / 7.0 + 5.0 / 7.0 * (double(depth) - near) / (double(far) - near); };
+        std::vector<double> t;
+        for (const float z : scene.sheet_z) t.push_back(period(depth_at(scene, z)));
+        const hand_series hand(t, b, 3, damped);
+        for (int k = 0; k < 7; ++k) {
+            CAPTURE(k);
+            CHECK(fom.stored_optical_depth(32, 32, k) == Approx(hand.a[std::size_t(k)]).margin(1e-5 * hand.a[0]));
+        }
+        // Nothing in front of the first sheet nor on it; all five behind the last.
+        CHECK(fom.transmittance(glm::vec3(0.2f, y, 0.9f)) == 1.0f);
+        CHECK(fom.transmittance(glm::vec3(0.2f, y, 0.5f)) == 1.0f);
+        CHECK(fom.transmittance(glm::vec3(0.2f, y, -0.9f)) == Approx(std::pow(0.7, 5)).epsilon(1e-5));
+        // Between: exp(-tau(t)), tau held within [0, total].
+        for (const float z : {0.49f, 0.4f, 0.3f, 0.25f, 0.1f, -0.05f, -0.2f, -0.29f}) {
+            CAPTURE(z);
+            const double tau = std::clamp(hand.tau(period(depth_at(scene, z))), 0.0, 5 * b);
+            CHECK(fom.transmittance(glm::vec3(0.2f, y, z)) == Approx(std::exp(-tau)).epsilon(2e-5));
+        }
+        // The series is not the staircase: just behind the first sheet, part of its own shadow (0.41
+        // of it undamped, 0.50 damped: a spike's series spreads to both sides of it), and between
+        // sheets, within half a sheet of the exact.
+        const float just_behind = fom.transmittance(glm::vec3(0.2f, y, 0.4999f));
+        CHECK(just_behind < std::pow(0.7f, 0.35f));
+        CHECK(just_behind > std::pow(0.7f, 0.55f));
+        for (int k = 1; k < 5; ++k) {
+            const float between = 0.5f * (scene.sheet_z[std::size_t(k - 1)] + scene.sheet_z[std::size_t(k)]);
+            CHECK(std::abs(std::log(fom.transmittance(glm::vec3(0.2f, y, between))) / std::log(0.7) - k) < 0.5);
+        }
+    }
+}
+
+TEST_CASE("Fourier opacity maps ring between two sheets, and the sigma factors damp the ringing", "[methods][fom]") {
+    // Two sheets, spikes at 1/7 and 6/7: the undamped series falls back by 0.28 of a sheet's optical
+    // depth on its way from one to the other (the Gibbs overshoot), the damped one by 0.03.
+    const auto scene = test::make_sheets(2, 64);
+    const float y = scene.row_y[scene.row_y.size() / 2];
+    const auto largest_fall = [&](bool damped) {
+        fourier_opacity_maps<7> fom{depth_range<1>(), fourier_series<7>(damped)};
+        fom.build(scene.model, scene.light, alpha(0.3f));
+        double highest = 0, fall = 0;
+        for (int i = 1; i < 200; ++i) {
+            const float z = 0.5f - 0.2f * float(i) / 200.0f;
+            const double tau = -std::log(double(fom.transmittance(glm::vec3(0.2f, y, z)))) / -std::log(0.7);
+            highest = std::max(highest, tau);
+            fall = std::max(fall, highest - tau);
+        }
+        return fall;
+    };
+    CHECK(largest_fall(false) == Approx(0.277).margin(0.01));
+    CHECK(largest_fall(true) == Approx(0.031).margin(0.01));
+}
+
+TEST_CASE("fom specs parse C and sigma, and refuse bad ones", "[methods][fom][spec]") {
+    const auto map = make_shadow_map("fom:7:sigma");
+    const auto* made = map->method_if<fourier_opacity_maps<7>>();
+    REQUIRE(made != nullptr);
+    CHECK(made->reconstruction().damped());
+    CHECK_FALSE(make_shadow_map("fom")->method_if<fourier_opacity_maps<7>>()->reconstruction().damped());
+    CHECK(make_shadow_map("fom:15")->method_if<fourier_opacity_maps<15>>() != nullptr);
+    CHECK(make_shadow_map("fom:3")->method_if<fourier_opacity_maps<3>>() != nullptr);
+    for (const char* bad : {"fom:", "fom:4", "fom:9", "fom:07", "fom:7:damped", "fom:7:sigma:1", "fom:sigma", "fom:7:8bit", "fom:17"}) {
+        CAPTURE(bad);
+        CHECK_THROWS_AS(parse_method_spec(bad), spec_error);
+    }
+}
+
+TEST_CASE("fom maps build tile by tile as from fragments, for any thread count, and through the registry", "[methods][fom][determinism]") {
+    const auto m = read_tfx(test::sintel_hair());
+    const auto light = light_space::fit(light_spec::directional({0.2f, -1, -0.4f}), m.bounds(), 256);
+    const auto fb = rasterize(m, light);
+    CHECK(test::same_maps_tiled_and_buffered(fourier_opacity_maps<7>(), m, fb, light));
+    CHECK(test::same_maps_tiled_and_buffered(fourier_opacity_maps<15>(depth_range<1>(), fourier_series<15>(true)), m, fb, light));
+
+    const auto map = make_shadow_map("fom:11:sigma");
+    map->build(m, light);
+    fourier_opacity_maps<11> direct(depth_range<1>(), fourier_series<11>(true));
+    direct.build(m, light);
+    CHECK(test::same_transmittance(*map, direct, m));
+}
