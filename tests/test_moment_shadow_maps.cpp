@@ -102,6 +102,10 @@ TEST_CASE("msm specs parse the overestimation, and refuse bad ones", "[methods][
     REQUIRE(made != nullptr);
     CHECK(made->reconstruction().parameters().overestimation == 0.0f);
     CHECK(make_shadow_map("msm")->method_if<moment_shadow_maps>()->reconstruction().parameters() == power_moments_parameters{});
+    // No bias, or too little: a texel of two depths would leave the moments' matrix singular.
+    CHECK_THROWS_AS(power_moments({.bias = 0.0f}), argument_error);
+    CHECK_THROWS_AS(power_moments({.bias = 1e-9f}), argument_error);
+    CHECK_THROWS_AS(power_moments({.overestimation = std::nanf("")}), argument_error);
     for (const char* bad : {"msm:", "msm:6", "msm:04", "msm:4:1.5", "msm:4:-0.1", "msm:4:nan", "msm:4:0:1", "msm:4:8bit", "msm:x"}) {
         CAPTURE(bad);
         CHECK_THROWS_AS(parse_method_spec(bad), spec_error);

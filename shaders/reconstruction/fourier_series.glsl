@@ -1,15 +1,16 @@
 // Fourier opacity maps (Jansen & Bavoil 2010), mirroring hairshadow::fourier_series: a fragment of
-// optical depth b at position s of its texel's range is a spike at t = 1/C + (1 - 2/C) s of the period,
+// optical depth b at position s of its texel's range is a spike at t = m + (1 - 2m) s of the period,
 // adding 2b, 2b cos(2 pi k t) and 2b sin(2 pi k t) (k = 1 .. HS_HARMONICS) to the coefficients; the
 // optical depth in front of t integrates the series, each harmonic weighted by hs_fourier_weight[k]
 // (its sigma factor, 1 undamped, over 2 pi k, as the CPU rounded it). Harmonics by the angle-sum
 // recurrence.
 #define HS_SUMS (2 * HS_HARMONICS + 1)
 uniform float hs_fourier_weight[HS_HARMONICS + 1];
+uniform float hs_fourier_margin; // where the texel's range starts in the period: 1/C, damped 1/C + 1/(C + 1)
+uniform float hs_fourier_span;   // 1 - 2 margin
 
 float hs_fourier_position(float s) {
-    const float margin = 1.0 / float(HS_SUMS);
-    precise float t = margin + (1.0 - 2.0 * margin) * s;
+    precise float t = hs_fourier_margin + hs_fourier_span * s;
     return t;
 }
 

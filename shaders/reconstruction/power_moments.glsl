@@ -41,5 +41,6 @@ float hs_series_optical_depth(float sums[HS_SUMS], float s) {
     precise float f01 = (f1 - f0) / (z1 - z0), f12 = (f2 - f1) / (z2 - z1), f012 = (f12 - f01) / (z2 - z0);
     precise float q2 = f012, q1 = (f01 - f012 * z1) - q2 * z0;
     precise float q0 = f0 - (f01 - f012 * z1) * z0;
-    return b0 * (q0 + b1 * q1 + b2 * q2);
+    precise float share = q0 + b1 * q1 + b2 * q2;
+    return b0 * (isnan(share) || isinf(share) ? f0 : share); // no solution: the query's own weight, as on the CPU
 }

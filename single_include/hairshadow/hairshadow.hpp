@@ -6144,10 +6144,11 @@ private:
 ///
 /// Where the period lies (our choice; the paper normalises depth between the light's near and far
 /// planes): the texel's depth range (reconstruction/detail/depth_projection.hpp) maps onto
-/// [1/C, 1 - 1/C]. The series is periodic, so a spike at 1 is one at 0: with the range on the whole
+/// [m, 1 - m]. The series is periodic, so a spike at 1 is one at 0: with the range on the whole
 /// period the nearest and furthest fragments would shadow each other. A spike's truncated series
-/// (a Dirichlet kernel) has its main lobe within 1/C on each side, so the margin keeps the first and
-/// last fragments' lobes from wrapping around. docs/methods.md measures the ringing.
+/// (a Dirichlet kernel) has its main lobe within 1/C on each side; the sigma factors smooth it by a
+/// box 1/(n + 1) = 2/(C + 1) wide, to 1/C + 1/(C + 1). m is that lobe, so the first and last
+/// fragments' lobes never wrap around. docs/methods.md measures the ringing.
 
 // ---- begin hairshadow/reconstruction/detail/depth_projection.hpp
 /// @file
@@ -6419,12 +6420,10 @@ public:
     static constexpr int harmonics = (C - 1) / 2;
     static constexpr std::string_view name = "fourier_series";
     static constexpr std::string_view glsl_name = "reconstruction/fourier_series";
-    /// Where the texel's range starts in the period, and how much of it the range spans.
-    static constexpr float margin = 1.0f / float(C);
-    static constexpr float span = 1.0f - 2.0f * margin;
 
     /// Undamped (the paper's series), or each harmonic damped by Lanczos' sigma factor.
-    explicit fourier_series(bool damped = false) : damped_(damped) {
+    explicit fourier_series(bool damped = false)
+        : damped_(damped), margin_(float(1.0 / C + (damped ? 1.0 / (C + 1) : 0.0))), span_(1.0f - 2.0f * margin_) {
         for (int k = 1; k <= harmonics; ++k) {
             // sinc(k / (n + 1)), in double and rounded once, so that CPU and GL take the same floats.
             const double x = std::numbers::pi * double(k) / double(harmonics + 1);
@@ -6433,10 +6432,12 @@ public:
         }
     }
     bool damped() const noexcept { return damped_; }
+    /// Where the texel's range starts in the period (its main lobe: 1/C, damped 1/C + 1/(C + 1)).
+    float margin() const noexcept { return margin_; }
 
     /// Adds a spike of optical depth b at position s of the texel's range to the coefficients.
     void project(float s, float b, double* terms) const noexcept {
-        const float angle = 2.0f * std::numbers::pi_v<float> * (margin + span * s);
+        const float angle = 2.0f * std::numbers::pi_v<float> * (margin_ + span_ * s);
         const float c1 = std::cos(angle), s1 = std::sin(angle);
         const float a0 = 2.0f * b;
         terms[0] += double(a0);
@@ -6452,7 +6453,7 @@ public:
     static float total_optical_depth(const float* stored) noexcept { return 0.5f * stored[0]; }
     /// The integral of the (damped) truncated series from 0 to position s of the texel's range.
     float series_optical_depth(const float* stored, float s) const noexcept {
-        const float t = margin + span * s;
+        const float t = margin_ + span_ * s;
         const float angle = 2.0f * std::numbers::pi_v<float> * t;
         const float c1 = std::cos(angle), s1 = std::sin(angle);
         float tau = 0.5f * stored[0] * t;
@@ -6470,11 +6471,14 @@ public:
     static std::string glsl_defines() { return "#define HS_HARMONICS " + std::to_string(harmonics) + "\n"; }
     template <class Set>
     void glsl_uniforms(Set&& set) const {
+        set("hs_fourier_margin", margin_);
+        set("hs_fourier_span", span_);
         for (int k = 1; k <= harmonics; ++k) set("hs_fourier_weight[" + std::to_string(k) + "]", weight_[std::size_t(k)]);
     }
 
 private:
     bool damped_ = false;
+    float margin_, span_;
     std::array<float, std::size_t(harmonics + 1)> weight_{};
 };
 
@@ -7071,10 +7075,11 @@ struct power_moments_parameters {
     /// power moments in 32-bit floats, with a bias of 5e-7 (our choice: the smallest we found that no
     /// texel of the test models turns singular).
     float bias = 5e-7f;
-    /// Throws argument_error unless both are in [0, 1].
+    /// Throws argument_error unless the overestimation is in [0, 1] and the bias in [1e-7, 1]: with
+    /// less, a texel of two depths (its range's ends, z = -1 and 1) leaves the Hankel matrix singular.
     void check() const {
         if (!(overestimation >= 0.0f && overestimation <= 1.0f)) throw argument_error("power moments: the overestimation must be in [0, 1]");
-        if (!(bias >= 0.0f && bias <= 1.0f)) throw argument_error("power moments: the bias must be in [0, 1]");
+        if (!(bias >= 1e-7f && bias <= 1.0f)) throw argument_error("power moments: the bias must be in [1e-7, 1]");
     }
     friend bool operator==(const power_moments_parameters&, const power_moments_parameters&) = default;
 };
@@ -7129,7 +7134,10 @@ public:
         const float f01 = (f1 - f0) / (z1 - z0), f12 = (f2 - f1) / (z2 - z1), f012 = (f12 - f01) / (z2 - z0);
         const float q2 = f012, q1 = (f01 - f012 * z1) - q2 * z0;
         const float q0 = f0 - (f01 - f012 * z1) * z0;
-        return b0 * (q0 + b1 * q1 + b2 * q2);
+        const float share = q0 + b1 * q1 + b2 * q2;
+        // Where rounding still leaves no solution (a root on the query), the share the weights give
+        // every point at the query: 0 for the lower bound, 1 for the upper, so a bound stays one.
+        return b0 * (std::isfinite(share) ? share : f0);
     }
 
     /// The GLSL twin (shaders/reconstruction/power_moments.glsl) and its parameters.

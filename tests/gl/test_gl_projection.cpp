@@ -49,30 +49,41 @@ TEST_CASE("GL Fourier opacity maps equal the CPU maps, and the GLSL look-up the 
     }
 }
 
-TEST_CASE("GL's raster path blends Fourier coefficients as the CPU sums them from GL's fragments", "[gl][fom]") {
-    test::gl_context();
-    const auto model = read_tfx(test::sintel_hair());
-    const auto light = light_space::fit(light_spec::directional({0, -1, -1}), model.bounds(), 256);
-    const gl::hair_mesh mesh(model);
+/// The raster path's sums against the CPU's from GL's own fragments (the blending order is GL's), and
+/// the look-up against the CPU query.
+template <class Method>
+void check_raster_path(const Method& parameters, const light_space& light, const gl::hair_mesh& mesh) {
     const auto fragments = gl::capture_fragments(mesh, light, raster_options{});
-    fourier_opacity_maps<7> cpu;
+    Method cpu = parameters;
     cpu.build(fragments, light);
-    gl::maps<fourier_opacity_maps<7>> on_gl;
+    gl::maps<Method> on_gl(parameters);
     on_gl.set_build_path(gl::build_path::raster);
     on_gl.build(mesh, light);
     const auto texels = on_gl.read_back();
+    const int res = light.resolution();
     long state_off = 0, data_off = 0;
-    for (int y = 0; y < 256; ++y)
-        for (int x = 0; x < 256; ++x) {
+    for (int y = 0; y < res; ++y)
+        for (int x = 0; x < res; ++x) {
             const auto& c = cpu.texel(x, y);
-            const auto& g = texels[std::size_t(y) * 256 + std::size_t(x)];
+            const auto& g = texels[std::size_t(y) * std::size_t(res) + std::size_t(x)];
             state_off += !(c.placement == g.placement); // MIN / MAX blending: bit-exact
-            const float scale = std::max(std::abs(c.data.sums[0]), 1e-3f);
-            for (std::size_t k = 0; k < 7; ++k) data_off += std::abs(c.data.sums[k] - g.data.sums[k]) > 1e-5f * scale;
+            float scale = 1e-3f;
+            for (const float v : c.data.sums) scale = std::max(scale, std::abs(v));
+            for (std::size_t k = 0; k < c.data.sums.size(); ++k) data_off += std::abs(c.data.sums[k] - g.data.sums[k]) > 1e-5f * scale;
         }
     CHECK(state_off == 0);
     CHECK(data_off == 0);
     test::check_lookup_and_read_back(on_gl, cpu, test::texel_centre_queries(fragments, light, 5), 0.1f);
+}
+
+TEST_CASE("GL's raster path blends the projected sums as the CPU sums them from GL's fragments", "[gl][fom][msm]") {
+    test::gl_context();
+    const auto model = read_tfx(test::sintel_hair());
+    const auto light = light_space::fit(light_spec::directional({0, -1, -1}), model.bounds(), 256);
+    const gl::hair_mesh mesh(model);
+    SECTION("fom:7, two targets") { check_raster_path(fourier_opacity_maps<7>(), light, mesh); }
+    SECTION("fom:15 damped, four targets") { check_raster_path(fourier_opacity_maps<15>{depth_range<1>(), fourier_series<15>(true)}, light, mesh); }
+    SECTION("msm, two targets") { check_raster_path(moment_shadow_maps{depth_range<1>(), power_moments({.overestimation = 0.6f})}, light, mesh); }
 }
 
 TEST_CASE("the GL look-up gives the Fourier series' transmittance behind sheets of strands", "[gl][fom]") {
@@ -108,11 +119,12 @@ TEST_CASE("GL moment shadow maps equal the CPU maps, and the GLSL look-up the CP
     const auto light = light_space::fit(light_spec::directional({0, -1, -1}), model.bounds(), 256);
     const gl::hair_mesh mesh(model);
     const auto fragments = rasterize(model, light);
-    const moment_shadow_maps lower{depth_range<1>(), power_moments({.overestimation = 0.0f})};
-    check_compute_path(lower, model, light, mesh, fragments);
-    gl::maps<moment_shadow_maps> on_gl(lower);
+    // The upper bound (overestimation 1): a look-up that lost its uniform would read 0 and differ.
+    const moment_shadow_maps upper{depth_range<1>(), power_moments({.overestimation = 1.0f})};
+    check_compute_path(upper, model, light, mesh, fragments);
+    gl::maps<moment_shadow_maps> on_gl(upper);
     on_gl.build(mesh, light);
-    CHECK(on_gl.to_cpu().reconstruction().parameters() == lower.reconstruction().parameters());
+    CHECK(on_gl.to_cpu().reconstruction().parameters() == upper.reconstruction().parameters());
 
     // Two sheets, between them one sheet's shadow, as on the CPU.
     const auto scene = test::make_sheets(2, 64);

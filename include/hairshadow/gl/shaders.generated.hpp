@@ -1678,17 +1678,18 @@ float hs_transmittance(vec3 world_pos) {
 
 /// shaders/reconstruction/fourier_series.glsl
 inline constexpr std::string_view reconstruction_fourier_series = R"hs_glsl(// Fourier opacity maps (Jansen & Bavoil 2010), mirroring hairshadow::fourier_series: a fragment of
-// optical depth b at position s of its texel's range is a spike at t = 1/C + (1 - 2/C) s of the period,
+// optical depth b at position s of its texel's range is a spike at t = m + (1 - 2m) s of the period,
 // adding 2b, 2b cos(2 pi k t) and 2b sin(2 pi k t) (k = 1 .. HS_HARMONICS) to the coefficients; the
 // optical depth in front of t integrates the series, each harmonic weighted by hs_fourier_weight[k]
 // (its sigma factor, 1 undamped, over 2 pi k, as the CPU rounded it). Harmonics by the angle-sum
 // recurrence.
 #define HS_SUMS (2 * HS_HARMONICS + 1)
 uniform float hs_fourier_weight[HS_HARMONICS + 1];
+uniform float hs_fourier_margin; // where the texel's range starts in the period: 1/C, damped 1/C + 1/(C + 1)
+uniform float hs_fourier_span;   // 1 - 2 margin
 
 float hs_fourier_position(float s) {
-    const float margin = 1.0 / float(HS_SUMS);
-    precise float t = margin + (1.0 - 2.0 * margin) * s;
+    precise float t = hs_fourier_margin + hs_fourier_span * s;
     return t;
 }
 
@@ -1847,7 +1848,8 @@ float hs_series_optical_depth(float sums[HS_SUMS], float s) {
     precise float f01 = (f1 - f0) / (z1 - z0), f12 = (f2 - f1) / (z2 - z1), f012 = (f12 - f01) / (z2 - z0);
     precise float q2 = f012, q1 = (f01 - f012 * z1) - q2 * z0;
     precise float q0 = f0 - (f01 - f012 * z1) * z0;
-    return b0 * (q0 + b1 * q1 + b2 * q2);
+    precise float share = q0 + b1 * q1 + b2 * q2;
+    return b0 * (isnan(share) || isinf(share) ? f0 : share); // no solution: the query's own weight, as on the CPU
 }
 )hs_glsl";
 

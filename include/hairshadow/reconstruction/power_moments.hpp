@@ -31,10 +31,11 @@ struct power_moments_parameters {
     /// power moments in 32-bit floats, with a bias of 5e-7 (our choice: the smallest we found that no
     /// texel of the test models turns singular).
     float bias = 5e-7f;
-    /// Throws argument_error unless both are in [0, 1].
+    /// Throws argument_error unless the overestimation is in [0, 1] and the bias in [1e-7, 1]: with
+    /// less, a texel of two depths (its range's ends, z = -1 and 1) leaves the Hankel matrix singular.
     void check() const {
         if (!(overestimation >= 0.0f && overestimation <= 1.0f)) throw argument_error("power moments: the overestimation must be in [0, 1]");
-        if (!(bias >= 0.0f && bias <= 1.0f)) throw argument_error("power moments: the bias must be in [0, 1]");
+        if (!(bias >= 1e-7f && bias <= 1.0f)) throw argument_error("power moments: the bias must be in [1e-7, 1]");
     }
     friend bool operator==(const power_moments_parameters&, const power_moments_parameters&) = default;
 };
@@ -89,7 +90,10 @@ public:
         const float f01 = (f1 - f0) / (z1 - z0), f12 = (f2 - f1) / (z2 - z1), f012 = (f12 - f01) / (z2 - z0);
         const float q2 = f012, q1 = (f01 - f012 * z1) - q2 * z0;
         const float q0 = f0 - (f01 - f012 * z1) * z0;
-        return b0 * (q0 + b1 * q1 + b2 * q2);
+        const float share = q0 + b1 * q1 + b2 * q2;
+        // Where rounding still leaves no solution (a root on the query), the share the weights give
+        // every point at the query: 0 for the lower bound, 1 for the upper, so a bound stays one.
+        return b0 * (std::isfinite(share) ? share : f0);
     }
 
     /// The GLSL twin (shaders/reconstruction/power_moments.glsl) and its parameters.
