@@ -10,9 +10,9 @@
 /// A Derived reconstruction provides `void project(float s, float b, double* terms) const` (adds b
 /// times its N functions at s), `float total_optical_depth(const float* stored) const` and `float
 /// series_optical_depth(const float* stored, float s) const` (the optical depth in front of s, for
-/// 0 <= s <= 1), and their GLSL twins (gl/maps/projected_maps.hpp). Sums are kept in double and stored once as float, so that the order of a texel's fragments
-/// changes no stored bit the GL build's fixed-point sums could not (tests/gl compare within 1e-5 of the
-/// texel's total).
+/// 0 <= s <= 1), and their GLSL twins (gl/maps/projected_maps.hpp). Sums are kept in double and
+/// stored once as float, close to the GL compute build's exact fixed-point sums (tests/gl compare
+/// them within 1e-5 of the texel's largest sum).
 
 #include <hairshadow/reconstruction/fibre_density.hpp>
 
