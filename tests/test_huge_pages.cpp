@@ -20,6 +20,20 @@ namespace {
 
 constexpr std::size_t mib = std::size_t(1) << 20;
 
+/// Whether AddressSanitizer instruments this build: its shadow of a block (a byte for every eight)
+/// is memory of its own, which the kernel may back with a huge page too.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool address_sanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool address_sanitizer = true;
+#else
+constexpr bool address_sanitizer = false;
+#endif
+#else
+constexpr bool address_sanitizer = false;
+#endif
+
 /// Resident bytes of this process (/proc/self/statm), or nothing where it cannot be read.
 std::optional<std::size_t> resident_bytes() {
     std::ifstream statm("/proc/self/statm");
@@ -72,7 +86,9 @@ TEST_CASE("huge_page_allocator: a block holds no more resident memory than it us
     // byte for every eight, which memset touches there) and a little for the test's own. Advising
     // the last huge page whole makes it 8 MiB, more than this.
     CHECK(*resident_after - *resident_before <= bytes + bytes / 8 + 512 * 1024);
-    if (huge_before && huge_after) CHECK(*huge_after - *huge_before <= 6 * mib);
+    // The huge pages the process gained: the block's three. Under AddressSanitizer the shadow's own
+    // may add one (8 MiB, seen once in CI at a224e18), so there only the resident check above holds.
+    if (huge_before && huge_after && !address_sanitizer) CHECK(*huge_after - *huge_before <= 6 * mib);
 }
 
 TEST_CASE("huge_page_allocator refuses blocks beyond the largest object", "[memory][hostile]") {
