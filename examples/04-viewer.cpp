@@ -5,7 +5,8 @@
 //
 // Drag with the left mouse button (or the arrow keys) to orbit the camera, WASD to move the light,
 // keys 1-9 and 0 to switch methods (no hair shadows, OSM, DOM, DC, OCC, deep occupancy, TressFX's approximate
-// deep shadow maps, Unreal Engine's hair-count deep shadows, Fourier opacity maps, moment shadow maps; the exact reference is CPU-only), [ and ] to halve or double the layer count, T to cycle the hair's transparency (opaque,
+// deep shadow maps, Unreal Engine's hair-count deep shadows, Fourier opacity maps, moment shadow maps; V for adaptive volumetric
+// shadow maps; the exact reference is CPU-only), [ and ] to halve or double the layer count, T to cycle the hair's transparency (opaque,
 // occupancy-ordered, weighted averages, exact by depth peeling), - and = to change the hair's
 // opacity, M to let the hair sway in the wind (its maps then rebuilt every frame), Esc to quit. The
 // title shows the method, its GL build time, the transparency and the frame rate. --frames N draws N frames and exits (tests run it under Xvfb); --screenshot writes the
@@ -34,7 +35,7 @@ using namespace hairshadow;
 namespace {
 
 struct state {
-    int family = 2; // 1 none, 2 OSM, 3 DOM, 4 DC, 5 OCC, 6 deep occupancy (hybrid), 7 ADSM, 8 Unreal, 9 FOM, 10 MSM
+    int family = 2; // 1 none, 2 OSM, 3 DOM, 4 DC, 5 OCC, 6 deep occupancy (hybrid), 7 ADSM, 8 Unreal, 9 FOM, 10 MSM, 11 AVSM
     int layers = 16;
     float azimuth = 25, elevation = 10;
     float light_azimuth = -60, light_elevation = 50;
@@ -57,6 +58,7 @@ std::string spec_of(const state& s) {
     case 8: return "ue:" + std::to_string(s.layers <= 2 ? 2 : s.layers <= 4 ? 4 : 8);
     case 9: return "fom:" + std::to_string(s.layers <= 2 ? 3 : s.layers <= 4 ? 5 : s.layers <= 8 ? 7 : s.layers <= 16 ? 11 : 15);
     case 10: return "msm";
+    case 11: return "avsm:" + std::to_string(s.layers <= 4 ? 4 : s.layers <= 8 ? 8 : 16);
     default: return "none";
     }
 }
@@ -72,6 +74,7 @@ void on_key(GLFWwindow* window, int key, int, int action, int) {
     if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window, 1);
     if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9) s.family = key - GLFW_KEY_0, s.dirty = true;
     if (key == GLFW_KEY_0) s.family = 10, s.dirty = true;
+    if (key == GLFW_KEY_V) s.family = 11, s.dirty = true;
     if (key == GLFW_KEY_M) s.sway = !s.sway;
     if (key == GLFW_KEY_T) s.hair = transparency((int(s.hair) + 1) % 4);
     if (key == GLFW_KEY_MINUS) s.hair_opacity = std::max(0.05f, s.hair_opacity - 0.05f);

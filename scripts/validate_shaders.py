@@ -121,6 +121,16 @@ for reconstruction, variants in PROJECTIONS.items():
         COMPOSITIONS[f"compute_projection_{tag}"] = ("comp", "#define HS_SUBPIXEL_BITS 8\n" + defines + "#define HS_SUM_SLOTS 8\n", [
             "compute/common", "accumulation/float", "compute/tile_sums"] + projection + ["compute/projection"], "")
 
+# Adaptive volumetric shadow maps (gl/maps/node_maps.hpp): the raster and compute list passes, the resolve
+# and the look-up, at 4 and 16 nodes.
+COMPOSITIONS["list_raster"] = ("frag", "", ["raster/coverage", "passes/fragment_lists", "passes/list_raster"], "")
+COMPOSITIONS["compute_fragment_lists"] = ("comp", "#define HS_SUBPIXEL_BITS 8\n", ["compute/common", "passes/fragment_lists", "compute/fragment_lists"], "")
+for nodes in (4, 16):
+    defines = f"#define HS_NODES {nodes}\n"
+    COMPOSITIONS[f"resolve_nodes_{nodes}"] = ("comp", defines, ["passes/fragment_lists", "reconstruction/adaptive_nodes", "compute/resolve_nodes"], "")
+    COMPOSITIONS[f"lookup_nodes_{nodes}"] = ("vert", defines, ["placement/common", "reconstruction/adaptive_nodes", "lookup/light", "lookup/nodes"],
+                                             LOOKUP_MAIN)
+
 # Density clustering's state passes (cluster_state_pass.hpp).
 COMPOSITIONS["fullscreen_vertex"] = ("vert", "", ["passes/fullscreen_vertex"], "")
 for clusters in (4, 6):

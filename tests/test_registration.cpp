@@ -50,8 +50,8 @@ TEST_CASE("the grammar, the command line's lists and the fuzz dictionary come fr
     CHECK(has("128"));         // occ:128:4's fields
     CHECK_THAT(grammar, Catch::Contains("append :8bit (emulated 8-bit accumulation) to osm, dc, dom, occ or ue"));
     // The command line's default lists: the papers' methods in every one, in the registry's order.
-    CHECK(example_spec_list(in_figure) == "osm:16,osm:256,dc:4,dom:3,occ:128:4,fom,msm,adsm,ue");
-    CHECK(example_spec_list(in_animate) == "osm:16,dc:4,dom:3,occ:128:4");
+    CHECK(example_spec_list(in_figure) == "osm:16,osm:256,dc:4,dom:3,occ:128:4,fom,msm,avsm,adsm,ue");
+    CHECK(example_spec_list(in_animate) == "osm:16,dc:4,dom:3,occ:128:4,fom,msm,avsm,ue");
     for (const auto& spec : example_specs(in_compare)) CHECK_NOTHROW(parse_method_spec(spec));
     const auto compare = test::run_cli("compare --help");
     CHECK_THAT(compare.out + compare.err, Catch::Contains(example_spec_list(in_compare)));

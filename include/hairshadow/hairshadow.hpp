@@ -35,6 +35,7 @@
 
 #include <hairshadow/core/map_queries.hpp>
 
+#include <hairshadow/methods/adaptive_volumetric_shadow_maps.hpp>
 #include <hairshadow/methods/fourier_opacity_maps.hpp>
 #include <hairshadow/methods/hair_count_deep_shadows.hpp>
 #include <hairshadow/methods/moment_shadow_maps.hpp>

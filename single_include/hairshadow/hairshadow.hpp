@@ -3718,10 +3718,10 @@ private:
 } // namespace hairshadow
 // ---- end hairshadow/core/map_queries.hpp
 
-// ---- begin hairshadow/methods/fourier_opacity_maps.hpp
+// ---- begin hairshadow/methods/adaptive_volumetric_shadow_maps.hpp
 /// @file
-/// Fourier opacity maps (Jansen & Bavoil 2010): C Fourier coefficients of each texel's absorption,
-/// over the texel's depth range. The spec `fom[:C[:sigma]]`.
+/// Adaptive volumetric shadow maps (Salvi et al. 2010): at most N nodes of a piecewise-linear
+/// transmittance per texel, a lossy deep shadow map. The spec `avsm[:N]`.
 
 // ---- begin hairshadow/accumulation/float_accumulation.hpp
 /// @file
@@ -5901,10 +5901,12 @@ private:
 
 } // namespace hairshadow
 // ---- end hairshadow/methods/shadow_method.hpp
-// ---- begin hairshadow/placement/depth_range.hpp
+// ---- begin hairshadow/placement/planar_slices.hpp
 /// @file
-/// Occupancy maps' per-texel depth range (Sintorn & Assarsson 2009, section 3.1): the nearest and
-/// furthest fragment of each texel bound S equal slices, so that every slice lies inside the hair.
+/// Opacity shadow maps' planar slices (Kim & Neumann 2001, section 2): N maps at depths D_1..D_N
+/// between the nearest fragment D_0 and the furthest, the same for every texel. A fragment adds to the
+/// map of its slice and to every later one (each map holds the opacity in front of its depth); a query
+/// interpolates linearly in depth between the maps that enclose it.
 
 // ---- begin hairshadow/placement/detail/slices_avx512.hpp
 /// @file
@@ -6052,6 +6054,374 @@ HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline void assign_depth_range
 } // namespace hairshadow::detail::avx512
 #endif
 // ---- end hairshadow/placement/detail/slices_avx512.hpp
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <iterator>
+#include <limits>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace hairshadow {
+
+/// Slices of equal thickness (Kim & Neumann Fig. 3a).
+struct uniform_spacing {
+    static constexpr std::string_view name = "uniform";
+    static constexpr float boundary(float t) noexcept { return t; }
+    static float inverse(float u) noexcept { return u; }
+};
+
+/// Slices growing with depth, denser near the light, "analogous to gamma correction" (Kim & Neumann
+/// Fig. 3c). The paper gives no formula; we use D_i = D_0 + (D_N - D_0) (i / N)^2.
+struct gamma_spacing {
+    static constexpr std::string_view name = "gamma";
+    static constexpr float gamma = 2.0f;
+    static constexpr float boundary(float t) noexcept { return t * t; }
+    static float inverse(float u) noexcept { return std::sqrt(u); }
+};
+
+/// N planar slices between the nearest and furthest fragment of the whole map.
+/// @tparam N number of opacity maps
+/// @tparam Spacing uniform_spacing or gamma_spacing
+template <int N, class Spacing = uniform_spacing>
+class planar_slices {
+    static_assert(N >= 1, "planar_slices needs at least one slice");
+
+public:
+    static constexpr int layer_count = N;
+    static constexpr bool cumulative = true; ///< each map holds the opacity in front of its depth
+    /// Each texel's state depends on nothing of its fragments, in any order (order_free_maps).
+    static constexpr bool fragment_order_free = true;
+    static constexpr bool contiguous = true; ///< the slices tile [D_0, D_N) without gaps
+    static constexpr std::string_view name = Spacing::name;
+    static constexpr std::string_view glsl_name = "placement/planar_slices";
+    /// The GLSL twin's configuration (gl/maps/policy_glsl.hpp); D_0 and D_N come from the map's extent.
+    static std::string glsl_defines() { return Spacing::name == gamma_spacing::name ? "#define HS_GAMMA_SPACING\n" : ""; }
+    struct texel_state {
+        friend bool operator==(const texel_state&, const texel_state&) = default;
+    };
+
+    /// Global pre-pass: D_0 is the nearest fragment, D_N just beyond the furthest.
+    /// The same from the map's depth extent (the GL back end reduces it from its depth-range map).
+    void prepare(const depth_extent& e) noexcept {
+        near_ = e.nearest;
+        far_ = detail::just_above(e.furthest);
+        for (int i = 0; i < N; ++i) boundaries_[std::size_t(i)] = near_ + (far_ - near_) * Spacing::boundary(float(i) / float(N));
+        boundaries_[std::size_t(N)] = far_;
+    }
+    template <class Fragment>
+    void prepare_texel(std::span<const Fragment>, texel_state&) const noexcept {}
+    /// No per-texel state (per_pixel_depth::texel_state_from).
+    void texel_state_from(float, float, texel_state&) const noexcept {}
+
+    /// Depth of map i, i in [0, N] (D_0 .. D_N): D_0 + (D_N - D_0) spacing(i / N), computed once per build.
+    float boundary(const texel_state&, int i) const noexcept { return boundaries_[std::size_t(std::clamp(i, 0, N))]; }
+    /// The slice a fragment at `depth` falls in: D_k <= depth < D_{k+1}.
+    int assign(const texel_state&, float depth) const noexcept { return std::min(reached(depth), N - 1); }
+#if HAIRSHADOW_AVX512_WALK
+    /// assign() for fragments of many texels, sixteen at a time (placement/detail/slices_avx512.hpp):
+    /// by counting boundaries up to 16 maps, by bisection in registers from 17 to 64.
+    HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state*, std::span<const std::uint32_t> texels, std::span<const float> depths,
+                                                     std::int32_t* layers) const noexcept
+        requires(N <= 64)
+    {
+        if constexpr (N <= 16) detail::avx512::assign_planar_by_count<N>(boundaries_.data(), texels, depths, layers);
+        else detail::avx512::assign_planar_by_bisection<N>(boundaries_.data(), texels, depths, layers);
+    }
+#endif
+    layer_position locate(const texel_state&, float depth) const noexcept {
+        if (!(depth >= near_)) return {-1, 0.0f};
+        if (depth >= far_) return {N, 0.0f};
+        const int k = reached(depth);
+        return detail::position_in(k, depth, boundaries_[std::size_t(k)], boundaries_[std::size_t(k + 1)]);
+    }
+    /// Bytes of global state the maps need besides their texels (D_0 .. D_N, and D_0 and D_N apart).
+    static constexpr std::size_t global_bytes() noexcept { return (std::size_t(N) + 3) * sizeof(float); }
+    float nearest() const noexcept { return near_; }
+    float furthest() const noexcept { return far_; }
+
+private:
+    /// How many of D_1..D_N lie at or before `depth` (0 for NaN): the k with D_k <= depth < D_k+1 where
+    /// depth is in [D_0, D_N), since the boundaries never decrease. Without a branch for a few maps
+    /// (the build calls this for every fragment), by bisection for many.
+    int reached(float depth) const noexcept {
+        if constexpr (N <= 16) {
+            int k = 0;
+            for (int i = 1; i <= N; ++i) k += int(boundaries_[std::size_t(i)] <= depth);
+            return k;
+        } else {
+            if (!(depth >= near_)) return 0; // NaN too
+            return int(std::upper_bound(boundaries_.begin() + 1, boundaries_.end(), depth) - (boundaries_.begin() + 1));
+        }
+    }
+
+    float near_ = 0.0f, far_ = 0.0f;
+    std::array<float, std::size_t(N) + 1> boundaries_{};
+};
+
+/// Uniformly spaced opacity maps (Kim & Neumann Fig. 3a).
+template <int N>
+using uniform_slices = planar_slices<N, uniform_spacing>;
+/// Opacity maps spaced like gamma correction (Kim & Neumann Fig. 3c).
+template <int N>
+using gamma_slices = planar_slices<N, gamma_spacing>;
+
+} // namespace hairshadow
+// ---- end hairshadow/placement/planar_slices.hpp
+// ---- begin hairshadow/reconstruction/adaptive_nodes.hpp
+/// @file
+/// Reconstruction by adaptive nodes: adaptive volumetric shadow maps (Salvi et al. 2010). Each texel
+/// keeps a transmittance function of at most N nodes (depth, transmittance), linear between nodes,
+/// 1 in front of the first and the last node's behind the last. Occluders are inserted one at a
+/// time; whenever the function has more than N nodes, the node whose removal changes the area under
+/// it least goes (the paper's section 3.2: the area of the triangle the node makes with its two
+/// neighbours).
+///
+/// Choices the paper leaves open, documented and tested (tests/test_adaptive_volumetric_shadow_maps.cpp):
+/// - Order. The paper inserts in arrival order, so its maps depend on it. Here a texel's fragments are
+///   inserted in depth order, ties by optical depth: an order of the fragments' values alone, so the
+///   maps are the same for any thread count and segment order, and GL's lists give the CPU's maps.
+/// - A hair's fragment is a segment of no thickness (the paper's insertion with its entry and exit at
+///   one depth): a vertical step of two nodes, (z, T before) and (z, T after), the first left out
+///   where the function's last node already is it.
+/// - The first node (where the shadow starts) and the last (the texel's whole optical depth) are
+///   never removed; among the others the first of the smallest areas goes.
+/// - Nodes keep the optical depth Omega in front of them, and T = exp(-Omega) is computed by
+///   detail::transmittance_of, whose float operations the GLSL twin repeats, so that the areas and
+///   the choice of node are the same bits on GL. A texel's unused nodes repeat its last, and a texel
+///   with no fragment is all zero: Omega = 0, no shadow.
+
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace hairshadow {
+
+/// One node of an adaptive transmittance function: a depth and the optical depth in front of it.
+struct transmittance_node {
+    float depth;
+    float optical_depth;
+    friend bool operator==(const transmittance_node&, const transmittance_node&) = default;
+};
+
+/// A texel's nodes, sorted by depth; unused ones repeat the last.
+template <int N>
+struct adaptive_node_list {
+    std::array<transmittance_node, std::size_t(N)> nodes{};
+    friend bool operator==(const adaptive_node_list&, const adaptive_node_list&) = default;
+};
+
+namespace detail {
+
+/// exp(-omega) for omega >= 0, in float operations that IEEE rounds exactly (no fused multiply-adds),
+/// which shaders/reconstruction/adaptive_nodes.glsl repeats operation for operation: omega = k ln 2 +
+/// r with |r| <= ln 2 / 2 (ln 2 in two parts, k ln2_hi exact for k < 128), then 2^-k times a degree-7
+/// Taylor polynomial of exp(-r) (its first term left out below 3e-9 relative). Within 3e-7 relative
+/// of std::exp; 0 at or beyond 87.3 (below the smallest normal float), 1 for NaN or below 0.
+inline float transmittance_of(float omega) noexcept {
+    if (!(omega > 0.0f)) return 1.0f;
+    if (!(omega < 87.3f)) return 0.0f;
+    const float k = std::floor(rounded(omega * 1.44269502f) + 0.5f);
+    const float r = (omega - rounded(k * 0.693145752f)) - rounded(k * 1.42860677e-6f);
+    // 1/5040, 1/720, 1/120, 1/24, 1/6 rounded to float, written out so that no compiler folds them differently.
+    float p = -0.000198412701f;
+    for (const float c : {0.00138888892f, -0.00833333377f, 0.0416666679f, -0.166666672f, 0.5f, -1.0f, 1.0f}) p = c + rounded(r * p);
+    return rounded(p * std::bit_cast<float>(std::uint32_t(127 - int(k)) << 23));
+}
+
+/// The area of the triangle a node makes with its neighbours in the (depth, T) plane, twice over:
+/// what removing it changes the area under the function by. In the GLSL twin's order of operations.
+inline float removal_area(float d0, float t0, float d1, float t1, float d2, float t2) noexcept {
+    return std::abs(rounded(rounded(d1 - d0) * rounded(t2 - t0)) - rounded(rounded(d2 - d0) * rounded(t1 - t0)));
+}
+
+/// Salvi et al.'s streaming compression, a texel's fragments inserted in depth order (see the file's
+/// comment): at most N nodes. Each inner node keeps its removal area, which changes only when a
+/// neighbour does (a node pushed behind it, or one removed beside it), so a removal scans N areas
+/// rather than computing them: the same areas, so the same nodes, as recomputing each time (the
+/// GLSL twin recomputes).
+template <int N>
+class adaptive_node_builder {
+public:
+    /// Inserts a fragment of optical depth b > 0 at `depth`, behind every fragment inserted so far.
+    void insert(float depth, float b) noexcept {
+        // The step's top node has the last node's optical depth, so its transmittance too.
+        if (count_ == 0) push(depth, total_, 1.0f);
+        else if (nodes_[count_ - 1].depth != depth || nodes_[count_ - 1].omega != total_) push(depth, total_, nodes_[count_ - 1].t);
+        total_ = total_ + b;
+        push(depth, total_, transmittance_of(total_));
+        while (count_ > N) remove(least_area());
+    }
+    /// The nodes, the last repeated into the unused ones.
+    void finish(adaptive_node_list<N>& out) const noexcept {
+        for (int i = 0; i < N; ++i) {
+            const auto& n = nodes_[std::size_t(std::min(i, count_ - 1))];
+            out.nodes[std::size_t(i)] = {n.depth, n.omega};
+        }
+    }
+    int count() const noexcept { return count_; }
+
+private:
+    struct node {
+        float depth, omega, t, area;
+    };
+    void push(float depth, float omega, float t) noexcept {
+        nodes_[std::size_t(count_)] = {depth, omega, t, 0.0f};
+        ++count_;
+        if (count_ >= 3) update_area(count_ - 2);
+    }
+    void update_area(int i) noexcept {
+        const auto &a = nodes_[std::size_t(i - 1)], &b = nodes_[std::size_t(i)], &c = nodes_[std::size_t(i + 1)];
+        nodes_[std::size_t(i)].area = removal_area(a.depth, a.t, b.depth, b.t, c.depth, c.t);
+    }
+    int least_area() const noexcept {
+        int best = 1;
+        for (int i = 2; i < count_ - 1; ++i)
+            if (nodes_[std::size_t(i)].area < nodes_[std::size_t(best)].area) best = i;
+        return best;
+    }
+    void remove(int i) noexcept {
+        for (int j = i; j < count_ - 1; ++j) nodes_[std::size_t(j)] = nodes_[std::size_t(j + 1)];
+        --count_;
+        if (i - 1 >= 1) update_area(i - 1);
+        if (i <= count_ - 2) update_area(i);
+    }
+
+    std::array<node, std::size_t(N + 2)> nodes_{};
+    float total_ = 0.0f;
+    int count_ = 0;
+};
+
+} // namespace detail
+
+/// Optical depth from at most N adaptive nodes per texel (adaptive volumetric shadow maps).
+template <int N>
+class adaptive_nodes {
+    static_assert(N >= 3, "adaptive nodes keep the first and last node and remove among the others");
+
+public:
+    static constexpr int node_count = N;
+    static constexpr std::string_view name = "adaptive_nodes";
+    static constexpr std::string_view glsl_name = "reconstruction/adaptive_nodes";
+    /// Any placement: the nodes need no layers (the method uses one uniform slice and ignores it).
+    template <class Placement>
+    static constexpr bool accepts = true;
+
+    template <class Placement, class Accumulation>
+    using storage = adaptive_node_list<N>;
+
+    /// Sorts the texel's fragments by (depth, optical depth) and inserts them in that order.
+    template <class Placement, class Accumulation, class Fragment>
+    void build(const Placement&, const typename Placement::texel_state&, std::span<const Fragment> fragments,
+               storage<Placement, Accumulation>& out) const {
+        thread_local std::vector<std::pair<float, float>> order;
+        order.clear();
+        for (const auto& f : fragments) {
+            // A fragment of no optical depth, or of no finite depth, changes nothing; -0 sorts as 0.
+            const float b = fragment_optical_depth(f);
+            if (b > 0.0f && std::isfinite(f.depth)) order.emplace_back(f.depth == 0.0f ? 0.0f : f.depth, b);
+        }
+        if (order.empty()) return;
+        std::sort(order.begin(), order.end());
+        detail::adaptive_node_builder<N> builder;
+        for (const auto& [depth, b] : order) builder.insert(depth, b);
+        builder.finish(out);
+    }
+
+    /// The optical depth in front of `depth`: 0 up to the first node (the exact map counts the
+    /// fragments strictly in front), T linear between nodes, the last node's behind the last.
+    template <class Placement, class Accumulation>
+    float optical_depth(const Placement&, const typename Placement::texel_state&, const storage<Placement, Accumulation>& in,
+                        float depth) const noexcept {
+        return optical_depth_of_nodes(in, depth);
+    }
+    static float optical_depth_of_nodes(const adaptive_node_list<N>& in, float depth) noexcept {
+        const auto& n = in.nodes;
+        if (!(depth > n[0].depth)) return 0.0f;
+        int i = 1;
+        while (i < N && !(n[std::size_t(i)].depth >= depth)) ++i;
+        if (i == N) return n[N - 1].optical_depth;
+        const auto& a = n[std::size_t(i - 1)];
+        const auto& b = n[std::size_t(i)];
+        if (a.optical_depth == b.optical_depth) return a.optical_depth;
+        const float ta = detail::transmittance_of(a.optical_depth), tb = detail::transmittance_of(b.optical_depth);
+        const float t = (depth - a.depth) / (b.depth - a.depth);
+        const float transmittance = ta + t * (tb - ta);
+        return transmittance > 0.0f ? std::min(-std::log(transmittance), b.optical_depth) : b.optical_depth;
+    }
+
+    /// The nodes' optical depths, for inspection.
+    template <class Placement>
+    static constexpr int stored_maps = N;
+    template <class Placement, class Accumulation>
+    static float stored_optical_depth(const storage<Placement, Accumulation>& in, int k) noexcept {
+        return in.nodes[std::size_t(k)].optical_depth;
+    }
+
+    /// The GLSL twin (shaders/reconstruction/adaptive_nodes.glsl) takes N.
+    static std::string glsl_defines() { return "#define HS_NODES " + std::to_string(N) + "\n"; }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/reconstruction/adaptive_nodes.hpp
+
+namespace hairshadow {
+
+/// Adaptive volumetric shadow maps: N nodes (depth, optical depth) per texel, 8 bytes each. The nodes
+/// need no layers: the placement is one uniform slice with no per-texel state, which the
+/// reconstruction ignores, and the sums are the nodes' own (float: no 8-bit accumulation).
+template <int N = 8>
+using adaptive_volumetric_shadow_maps = shadow_method<uniform_slices<1>, float_accumulation, adaptive_nodes<N>>;
+
+/// The registration of adaptive volumetric shadow maps (methods/method_family.hpp).
+struct adaptive_volumetric_shadow_maps_family {
+    static constexpr std::string_view name = "avsm";
+    static constexpr std::string_view grammar =
+        "avsm[:N] (adaptive volumetric shadow maps: at most N = 4, 8 or 16 nodes of transmittance a texel, 8 by default, "
+        "fragments inserted in depth order)";
+    static constexpr bool takes_accumulation = false;
+    static constexpr auto examples = std::make_tuple(spec_example<adaptive_volumetric_shadow_maps<8>>{"avsm", in_compare | in_bench | in_figure | in_animate},
+                                                     spec_example<adaptive_volumetric_shadow_maps<4>>{"avsm:4", in_compare},
+                                                     spec_example<adaptive_volumetric_shadow_maps<16>>{"avsm:16", in_compare});
+    static constexpr std::array<std::string_view, 0> keywords{};
+    using sizes = size_list<4, 8, 16>;
+
+    static void check(const spec_fields& f) {
+        if (f.size() > 1) throw f.bad("avsm takes at most N");
+        if (f.size() == 1 && !sizes::contains(f.whole(0))) throw f.bad("avsm needs N = 4, 8 or 16 nodes");
+    }
+    template <class Accumulation, class Visit>
+    static bool visit(const spec_fields& f, Visit&& visit) {
+        const int n = f.size() == 1 ? f.whole(0) : 8;
+        return with_size<sizes>(n, [&](auto size) { visit(adaptive_volumetric_shadow_maps<size()>()); });
+    }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/methods/adaptive_volumetric_shadow_maps.hpp
+// ---- begin hairshadow/methods/fourier_opacity_maps.hpp
+/// @file
+/// Fourier opacity maps (Jansen & Bavoil 2010): C Fourier coefficients of each texel's absorption,
+/// over the texel's depth range. The spec `fom[:C[:sigma]]`.
+
+// ---- begin hairshadow/placement/depth_range.hpp
+/// @file
+/// Occupancy maps' per-texel depth range (Sintorn & Assarsson 2009, section 3.1): the nearest and
+/// furthest fragment of each texel bound S equal slices, so that every slice lies inside the hair.
+
 
 #include <cmath>
 #include <cstddef>
@@ -6499,7 +6869,7 @@ struct fourier_opacity_maps_family {
         "fom[:C[:sigma]] (Jansen & Bavoil's Fourier opacity maps: C = 3, 5, 7, 11 or 15 coefficients, 7 by default; sigma damps "
         "each harmonic by Lanczos' sigma factor)";
     static constexpr bool takes_accumulation = false;
-    static constexpr auto examples = std::make_tuple(spec_example<fourier_opacity_maps<7>>{"fom", in_compare | in_bench | in_figure},
+    static constexpr auto examples = std::make_tuple(spec_example<fourier_opacity_maps<7>>{"fom", in_compare | in_bench | in_figure | in_animate},
                                                      spec_example<fourier_opacity_maps<7>>{"fom:7:sigma", in_compare},
                                                      spec_example<fourier_opacity_maps<15>>{"fom:15"});
     static constexpr auto keywords = std::to_array<std::string_view>({"sigma"});
@@ -7002,7 +7372,7 @@ struct hair_count_deep_shadows_family {
         "fragment alpha, 0.12 by default; the layer distribution in [0, 1], 0.5 by default) | ue:K:zero (the count from zero, "
         "without Unreal's - 1)";
     static constexpr bool takes_accumulation = true;
-    static constexpr auto examples = std::make_tuple(spec_example<hair_count_deep_shadows<4>>{"ue", in_compare | in_bench | in_figure},
+    static constexpr auto examples = std::make_tuple(spec_example<hair_count_deep_shadows<4>>{"ue", in_compare | in_bench | in_figure | in_animate},
                                                      spec_example<hair_count_deep_shadows<4>>{"ue:4"},
                                                      spec_example<hair_count_deep_shadows<8>>{"ue:8", in_compare},
                                                      spec_example<hair_count_deep_shadows<4, emulated_8bit>>{"ue:4:8bit"});
@@ -7168,7 +7538,7 @@ struct moment_shadow_maps_family {
         "msm[:4[:OVERESTIMATION]] (moment shadow maps for translucent occluders: 4 power moments; the weight of the query's own "
         "depth in [0, 1], 0.25 by default as moment-based transparency, 0 for the lower bound)";
     static constexpr bool takes_accumulation = false;
-    static constexpr auto examples = std::make_tuple(spec_example<moment_shadow_maps>{"msm", in_compare | in_bench | in_figure},
+    static constexpr auto examples = std::make_tuple(spec_example<moment_shadow_maps>{"msm", in_compare | in_bench | in_figure | in_animate},
                                                      spec_example<moment_shadow_maps>{"msm:4:0", in_compare});
     static constexpr std::array<std::string_view, 0> keywords{};
 
@@ -8313,131 +8683,6 @@ struct range_opacity_maps_family {
 /// Opacity shadow maps (Kim & Neumann 2001): N planar slices, summed, interpolated linearly. The spec
 /// `osm:N[:uniform|gamma]`.
 
-// ---- begin hairshadow/placement/planar_slices.hpp
-/// @file
-/// Opacity shadow maps' planar slices (Kim & Neumann 2001, section 2): N maps at depths D_1..D_N
-/// between the nearest fragment D_0 and the furthest, the same for every texel. A fragment adds to the
-/// map of its slice and to every later one (each map holds the opacity in front of its depth); a query
-/// interpolates linearly in depth between the maps that enclose it.
-
-
-#include <algorithm>
-#include <array>
-#include <cmath>
-#include <cstddef>
-#include <cstdint>
-#include <iterator>
-#include <limits>
-#include <span>
-#include <string>
-#include <string_view>
-
-namespace hairshadow {
-
-/// Slices of equal thickness (Kim & Neumann Fig. 3a).
-struct uniform_spacing {
-    static constexpr std::string_view name = "uniform";
-    static constexpr float boundary(float t) noexcept { return t; }
-    static float inverse(float u) noexcept { return u; }
-};
-
-/// Slices growing with depth, denser near the light, "analogous to gamma correction" (Kim & Neumann
-/// Fig. 3c). The paper gives no formula; we use D_i = D_0 + (D_N - D_0) (i / N)^2.
-struct gamma_spacing {
-    static constexpr std::string_view name = "gamma";
-    static constexpr float gamma = 2.0f;
-    static constexpr float boundary(float t) noexcept { return t * t; }
-    static float inverse(float u) noexcept { return std::sqrt(u); }
-};
-
-/// N planar slices between the nearest and furthest fragment of the whole map.
-/// @tparam N number of opacity maps
-/// @tparam Spacing uniform_spacing or gamma_spacing
-template <int N, class Spacing = uniform_spacing>
-class planar_slices {
-    static_assert(N >= 1, "planar_slices needs at least one slice");
-
-public:
-    static constexpr int layer_count = N;
-    static constexpr bool cumulative = true; ///< each map holds the opacity in front of its depth
-    /// Each texel's state depends on nothing of its fragments, in any order (order_free_maps).
-    static constexpr bool fragment_order_free = true;
-    static constexpr bool contiguous = true; ///< the slices tile [D_0, D_N) without gaps
-    static constexpr std::string_view name = Spacing::name;
-    static constexpr std::string_view glsl_name = "placement/planar_slices";
-    /// The GLSL twin's configuration (gl/maps/policy_glsl.hpp); D_0 and D_N come from the map's extent.
-    static std::string glsl_defines() { return Spacing::name == gamma_spacing::name ? "#define HS_GAMMA_SPACING\n" : ""; }
-    struct texel_state {
-        friend bool operator==(const texel_state&, const texel_state&) = default;
-    };
-
-    /// Global pre-pass: D_0 is the nearest fragment, D_N just beyond the furthest.
-    /// The same from the map's depth extent (the GL back end reduces it from its depth-range map).
-    void prepare(const depth_extent& e) noexcept {
-        near_ = e.nearest;
-        far_ = detail::just_above(e.furthest);
-        for (int i = 0; i < N; ++i) boundaries_[std::size_t(i)] = near_ + (far_ - near_) * Spacing::boundary(float(i) / float(N));
-        boundaries_[std::size_t(N)] = far_;
-    }
-    template <class Fragment>
-    void prepare_texel(std::span<const Fragment>, texel_state&) const noexcept {}
-    /// No per-texel state (per_pixel_depth::texel_state_from).
-    void texel_state_from(float, float, texel_state&) const noexcept {}
-
-    /// Depth of map i, i in [0, N] (D_0 .. D_N): D_0 + (D_N - D_0) spacing(i / N), computed once per build.
-    float boundary(const texel_state&, int i) const noexcept { return boundaries_[std::size_t(std::clamp(i, 0, N))]; }
-    /// The slice a fragment at `depth` falls in: D_k <= depth < D_{k+1}.
-    int assign(const texel_state&, float depth) const noexcept { return std::min(reached(depth), N - 1); }
-#if HAIRSHADOW_AVX512_WALK
-    /// assign() for fragments of many texels, sixteen at a time (placement/detail/slices_avx512.hpp):
-    /// by counting boundaries up to 16 maps, by bisection in registers from 17 to 64.
-    HAIRSHADOW_AVX512_TARGET void assign_each_avx512(const texel_state*, std::span<const std::uint32_t> texels, std::span<const float> depths,
-                                                     std::int32_t* layers) const noexcept
-        requires(N <= 64)
-    {
-        if constexpr (N <= 16) detail::avx512::assign_planar_by_count<N>(boundaries_.data(), texels, depths, layers);
-        else detail::avx512::assign_planar_by_bisection<N>(boundaries_.data(), texels, depths, layers);
-    }
-#endif
-    layer_position locate(const texel_state&, float depth) const noexcept {
-        if (!(depth >= near_)) return {-1, 0.0f};
-        if (depth >= far_) return {N, 0.0f};
-        const int k = reached(depth);
-        return detail::position_in(k, depth, boundaries_[std::size_t(k)], boundaries_[std::size_t(k + 1)]);
-    }
-    /// Bytes of global state the maps need besides their texels (D_0 .. D_N, and D_0 and D_N apart).
-    static constexpr std::size_t global_bytes() noexcept { return (std::size_t(N) + 3) * sizeof(float); }
-    float nearest() const noexcept { return near_; }
-    float furthest() const noexcept { return far_; }
-
-private:
-    /// How many of D_1..D_N lie at or before `depth` (0 for NaN): the k with D_k <= depth < D_k+1 where
-    /// depth is in [D_0, D_N), since the boundaries never decrease. Without a branch for a few maps
-    /// (the build calls this for every fragment), by bisection for many.
-    int reached(float depth) const noexcept {
-        if constexpr (N <= 16) {
-            int k = 0;
-            for (int i = 1; i <= N; ++i) k += int(boundaries_[std::size_t(i)] <= depth);
-            return k;
-        } else {
-            if (!(depth >= near_)) return 0; // NaN too
-            return int(std::upper_bound(boundaries_.begin() + 1, boundaries_.end(), depth) - (boundaries_.begin() + 1));
-        }
-    }
-
-    float near_ = 0.0f, far_ = 0.0f;
-    std::array<float, std::size_t(N) + 1> boundaries_{};
-};
-
-/// Uniformly spaced opacity maps (Kim & Neumann Fig. 3a).
-template <int N>
-using uniform_slices = planar_slices<N, uniform_spacing>;
-/// Opacity maps spaced like gamma correction (Kim & Neumann Fig. 3c).
-template <int N>
-using gamma_slices = planar_slices<N, gamma_spacing>;
-
-} // namespace hairshadow
-// ---- end hairshadow/placement/planar_slices.hpp
 
 namespace hairshadow {
 
@@ -8528,8 +8773,9 @@ namespace hairshadow {
 /// Every registered method family, in the order the command line lists them (the papers' years, then
 /// the engines', then ours, then the exact reference).
 using registered_families =
-    family_list<opacity_shadow_maps_family, density_clustering_family, deep_opacity_maps_family, occupancy_maps_family, fourier_opacity_maps_family, moment_shadow_maps_family,
-                approximate_deep_shadow_maps_family, hair_count_deep_shadows_family, deep_occupancy_maps_family, range_opacity_maps_family, exact_reference_family>;
+    family_list<opacity_shadow_maps_family, density_clustering_family, deep_opacity_maps_family, occupancy_maps_family, fourier_opacity_maps_family,
+                moment_shadow_maps_family, adaptive_volumetric_shadow_maps_family, approximate_deep_shadow_maps_family, hair_count_deep_shadows_family,
+                deep_occupancy_maps_family, range_opacity_maps_family, exact_reference_family>;
 
 /// Every registered accumulation; the first is the default.
 using registered_accumulations = accumulation_list<float_accumulation, emulated_8bit>;
@@ -8808,6 +9054,30 @@ inline void compress_function(std::span<const transmittance_vertex> in, float ep
     }
     if (reach > origin.depth) close_segment();
 }
+/// The exact transmittance function of one texel as vertices: T steps down at each fragment's depth
+/// (`depths` sorted, `optical_depths` the optical depth behind each), two vertices a step.
+inline void exact_steps(std::span<const float> depths, std::span<const float> optical_depths, std::vector<transmittance_vertex>& out) {
+    out.clear();
+    out.reserve(2 * depths.size());
+    float before = 1.0f;
+    for (std::size_t i = 0; i < depths.size(); ++i) {
+        const float after = std::exp(-optical_depths[i]);
+        out.push_back({depths[i], before});
+        out.push_back({depths[i], after});
+        before = after;
+    }
+}
+
+/// A piecewise-linear function's value at `depth`: 1 up to its first vertex (continuous from the
+/// left at steps, as the exact map is), linear between vertices, the last one's beyond.
+inline float transmittance_at(std::span<const transmittance_vertex> v, float depth) noexcept {
+    const auto after = std::lower_bound(v.begin(), v.end(), depth, [](const transmittance_vertex& a, float d) { return a.depth < d; });
+    if (after == v.begin()) return 1.0f;
+    const auto& a = *(after - 1);
+    if (after == v.end()) return a.transmittance;
+    const float t = (depth - a.depth) / (after->depth - a.depth);
+    return a.transmittance + t * (after->transmittance - a.transmittance);
+}
 } // namespace detail
 
 /// A deep shadow map compressed to piecewise-linear transmittance functions within a tolerance.
@@ -8824,17 +9094,8 @@ public:
             const int x = int(t % std::size_t(res)), y = int(t / std::size_t(res));
             const auto depths = exact.depths(x, y);
             if (depths.empty()) return;
-            const auto omegas = exact.optical_depths(x, y);
-            // The exact function as vertices: T steps down at each fragment's depth.
             std::vector<transmittance_vertex> steps;
-            steps.reserve(2 * depths.size());
-            float before = 1.0f;
-            for (std::size_t i = 0; i < depths.size(); ++i) {
-                const float after = std::exp(-omegas[i]);
-                steps.push_back({depths[i], before});
-                steps.push_back({depths[i], after});
-                before = after;
-            }
+            detail::exact_steps(depths, exact.optical_depths(x, y), steps);
             detail::compress_function(steps, tolerance, per_texel[t]);
         }, 1024);
         offsets_.assign(texels + 1, 0);
@@ -8851,15 +9112,7 @@ public:
         return {vertices_.data() + offsets_[t], std::size_t(offsets_[t + 1] - offsets_[t])};
     }
     /// Transmittance at `depth` in texel (x, y), continuous from the left at steps as the exact map is.
-    float transmittance(int x, int y, float depth) const noexcept {
-        const auto v = vertices(x, y);
-        const auto after = std::lower_bound(v.begin(), v.end(), depth, [](const transmittance_vertex& a, float d) { return a.depth < d; });
-        if (after == v.begin()) return 1.0f;
-        const auto& a = *(after - 1);
-        if (after == v.end()) return a.transmittance;
-        const float t = (depth - a.depth) / (after->depth - a.depth);
-        return a.transmittance + t * (after->transmittance - a.transmittance);
-    }
+    float transmittance(int x, int y, float depth) const noexcept { return detail::transmittance_at(vertices(x, y), depth); }
     /// -ln of the compressed transmittance, so that queries filter it like every other map.
     float optical_depth(int x, int y, float depth) const noexcept { return -std::log(std::max(transmittance(x, y, depth), 1e-30f)); }
     using map_queries<compressed_deep_shadow_map>::transmittance;

@@ -92,6 +92,8 @@ map_comparison compare_maps(const Method& cpu, hairshadow::gl::maps<Method>& on_
                     c.worst = std::max(c.worst, error / (projection_tolerance / float_tolerance));
                     c.data_off += error > projection_tolerance;
                 }
+            } else if constexpr (requires { a.data.nodes; }) {
+                c.data_off += !(a.data == b.data); // adaptive nodes: chosen from the same bits, so the same bits
             } else if constexpr (requires { a.data.fragments; }) {
                 c.data_off += a.data.fragments != b.data.fragments;
                 compare_value(c, a.data.optical_depth, b.data.optical_depth);

@@ -434,6 +434,20 @@ void main() {
 }
 )hs_glsl";
 
+/// shaders/compute/fragment_lists.glsl
+inline constexpr std::string_view compute_fragment_lists = R"hs_glsl(// The compute path's list pass (one work group per tile): every fragment of the tile's segments, as the
+// CPU's tiled build makes it, appended to its texel's list (passes/fragment_lists).
+layout(local_size_x = 16, local_size_y = 16) in;
+
+void hs_emit(int x, int y) {
+    float depth, b;
+    hs_shade(x, y, depth, b);
+    hs_append_fragment(uint(y) * uint(hs_resolution) + uint(x), depth, b);
+}
+
+void main() { hs_walk_tile(gl_WorkGroupID.y * uint(hs_tiles_x) + gl_WorkGroupID.x); }
+)hs_glsl";
+
 /// shaders/compute/layers.glsl
 inline constexpr std::string_view compute_layers = R"hs_glsl(// Compute build of interpolated methods (one work group per tile): every fragment's optical depth
 // into the slot of its layer, HS_LAYER_GROUP layers per walk of the tile's segments; then each texel's
@@ -788,6 +802,77 @@ void main() {
 }
 )hs_glsl";
 
+/// shaders/compute/resolve_nodes.glsl
+inline constexpr std::string_view compute_resolve_nodes = R"hs_glsl(// The lists resolved into adaptive nodes (one invocation per texel): the texel's list sorted in place
+// by (depth, optical depth), a bottom-up merge sort of its links (n log n steps, no copy, so no limit
+// on a texel's fragments), then inserted into the nodes (reconstruction/adaptive_nodes), written two to
+// an RGBA32F array layer, the unused ones repeating the last, all zero where the list is empty. A
+// texel that inserted fewer fragments than it listed sets hs_list_status: a GL implementation that
+// stops long loops (Mesa's llvmpipe ends a shader's loops after 65535 steps) cut it short, and the
+// build throws rather than return wrong maps.
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0, rgba32f) writeonly uniform image2DArray hs_nodes_image;
+uniform int hs_resolution;
+
+bool hs_listed_before(uint a, uint b) {
+    return hs_listed[a].depth < hs_listed[b].depth || (hs_listed[a].depth == hs_listed[b].depth && hs_listed[a].b <= hs_listed[b].b);
+}
+// Cuts the list at `from` after `count` records; returns the record after the cut (or the end).
+uint hs_cut_list(uint from, uint count) {
+    for (uint k = 1u; k < count && from != HS_LIST_END; ++k) from = hs_listed[from].next;
+    if (from == HS_LIST_END) return HS_LIST_END;
+    uint rest = hs_listed[from].next;
+    hs_listed[from].next = HS_LIST_END;
+    return rest;
+}
+uint hs_sort_list(uint head, uint n) {
+    for (uint width = 1u; width < n; width *= 2u) {
+        uint rest = head, tail = HS_LIST_END;
+        head = HS_LIST_END;
+        while (rest != HS_LIST_END) {
+            uint a = rest, b = hs_cut_list(a, width);
+            rest = hs_cut_list(b, width);
+            while (a != HS_LIST_END || b != HS_LIST_END) {
+                uint taken;
+                if (b == HS_LIST_END || (a != HS_LIST_END && hs_listed_before(a, b))) {
+                    taken = a;
+                    a = hs_listed[a].next;
+                } else {
+                    taken = b;
+                    b = hs_listed[b].next;
+                }
+                if (tail == HS_LIST_END) head = taken;
+                else hs_listed[tail].next = taken;
+                tail = taken;
+            }
+            hs_listed[tail].next = HS_LIST_END;
+        }
+    }
+    return head;
+}
+
+void main() {
+    ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+    if (texel.x >= hs_resolution || texel.y >= hs_resolution) return;
+    uint t = uint(texel.y) * uint(hs_resolution) + uint(texel.x);
+    uint listed = hs_list_heads[2u * t + 1u];
+    uint inserted = 0u;
+    for (uint i = hs_sort_list(hs_list_heads[2u * t], listed); i != HS_LIST_END && inserted < listed; i = hs_listed[i].next) {
+        hs_insert_fragment(hs_listed[i].depth, hs_listed[i].b);
+        ++inserted;
+    }
+    if (inserted != listed) atomicOr(hs_list_status, 1u);
+    for (int layer = 0; layer < (HS_NODES + 1) / 2; ++layer) {
+        vec4 v = vec4(0.0);
+        if (hs_node_count > 0) {
+            int first = min(2 * layer, hs_node_count - 1), second = min(2 * layer + 1, hs_node_count - 1);
+            v = vec4(hs_node_depth[first], hs_node_omega[first], hs_node_depth[second], hs_node_omega[second]);
+        }
+        imageStore(hs_nodes_image, ivec3(texel, layer), v);
+    }
+}
+)hs_glsl";
+
 /// shaders/compute/scan.glsl
 inline constexpr std::string_view compute_scan = R"hs_glsl(// Compute build, step 2 (one work group): the tiles' segment counts to offsets (an exclusive prefix
 // sum), the counts back to zero as the scatter's cursors, the number of segment-tile pairs, and the
@@ -986,6 +1071,29 @@ bool hs_lookup_locate(vec3 world_pos, out ivec2 texel, out float depth, out vec4
     depth = (-(hs_lookup_view * vec4(world_pos, 1.0)).z - hs_lookup_near) / (hs_lookup_far - hs_lookup_near);
     range = texelFetch(hs_range_map, texel, 0);
     return range.x <= range.w;
+}
+)hs_glsl";
+
+/// shaders/lookup/nodes.glsl
+inline constexpr std::string_view lookup_nodes = R"hs_glsl(// Look-up of adaptive volumetric shadow maps: the texel's nodes, two to an array layer, and T from
+// reconstruction/adaptive_nodes. The light's frustum and the range map (which says where a texel holds
+// no fragment) are lookup/light's.
+uniform sampler2DArray hs_nodes_texture;
+
+float hs_transmittance(vec3 world_pos) {
+    ivec2 texel;
+    float depth;
+    vec4 range;
+    if (!hs_lookup_locate(world_pos, texel, depth, range)) return 1.0;
+    float depths[HS_NODES], omegas[HS_NODES];
+    for (int layer = 0; layer < HS_NODES / 2; ++layer) {
+        vec4 v = texelFetch(hs_nodes_texture, ivec3(texel, layer), 0);
+        depths[2 * layer] = v.x;
+        omegas[2 * layer] = v.y;
+        depths[2 * layer + 1] = v.z;
+        omegas[2 * layer + 1] = v.w;
+    }
+    return hs_nodes_transmittance(depths, omegas, depth);
 }
 )hs_glsl";
 
@@ -1213,6 +1321,37 @@ layout(location = 0) out vec2 hs_density_out;
 void main() { hs_density_out = vec2(hs_fragment_optical_depth(), 1.0); }
 )hs_glsl";
 
+/// shaders/passes/fragment_lists.glsl
+inline constexpr std::string_view passes_fragment_lists = R"hs_glsl(// Per-texel lists of fragments (depth, optical depth), as the AVSM paper gathers its occluders: each
+// fragment takes the next record of one buffer and links itself in front of its texel's list, whose
+// length it counts. A record past the buffer's end is counted but not written: the build reads the
+// count back, grows the buffer and walks again. Fragments of no optical depth, or of no finite depth,
+// change no map and are left out; a depth of -0 is stored as 0, as the CPU sorts it.
+struct hs_listed_fragment {
+    float depth;
+    float b;
+    uint next;
+};
+// Per texel: its list's first record, then its length.
+layout(std430, binding = 4) buffer hs_list_head_buffer { uint hs_list_heads[]; };
+layout(std430, binding = 5) buffer hs_list_buffer {
+    uint hs_listed_count;
+    uint hs_list_status; // 1: a texel's list was not taken whole (see compute/resolve_nodes)
+    hs_listed_fragment hs_listed[];
+};
+const uint HS_LIST_END = 0xffffffffu;
+
+void hs_append_fragment(uint texel, float depth, float b) {
+    if (!(b > 0.0) || isnan(depth) || isinf(depth)) return;
+    uint index = atomicAdd(hs_listed_count, 1u);
+    if (index >= uint(hs_listed.length())) return;
+    hs_listed[index].depth = depth == 0.0 ? 0.0 : depth;
+    hs_listed[index].b = b;
+    hs_listed[index].next = atomicExchange(hs_list_heads[2u * texel], index);
+    atomicAdd(hs_list_heads[2u * texel + 1u], 1u);
+}
+)hs_glsl";
+
 /// shaders/passes/fullscreen_vertex.glsl
 inline constexpr std::string_view passes_fullscreen_vertex = R"hs_glsl(// One triangle covering the viewport, from gl_VertexID alone (draw 3 vertices, no attributes).
 void main() {
@@ -1246,6 +1385,14 @@ void main() {
         hs_layers_out[t] = v;
     }
 }
+)hs_glsl";
+
+/// shaders/passes/list_raster.glsl
+inline constexpr std::string_view passes_list_raster = R"hs_glsl(// The raster path's list pass: every fragment GL rasterises appended to its texel's list
+// (passes/fragment_lists), with no colour written.
+uniform int hs_resolution;
+
+void main() { hs_append_fragment(uint(gl_FragCoord.y) * uint(hs_resolution) + uint(gl_FragCoord.x), hs_fragment_depth(), hs_fragment_optical_depth()); }
 )hs_glsl";
 
 /// shaders/passes/occupancy_bits.glsl
@@ -1623,6 +1770,97 @@ void main() {
     hs_v_depth = (distance_from_light - hs_near) / (hs_far - hs_near);
     hs_v_thickness = hs_thickness;
     hs_v_opacity = hs_opacity;
+}
+)hs_glsl";
+
+/// shaders/reconstruction/adaptive_nodes.glsl
+inline constexpr std::string_view reconstruction_adaptive_nodes = R"hs_glsl(// Adaptive volumetric shadow maps (Salvi et al. 2010), mirroring hairshadow::adaptive_nodes
+// (reconstruction/adaptive_nodes.hpp): a texel's fragments inserted in (depth, optical depth) order,
+// each a vertical step of two nodes, and while more than HS_NODES nodes remain, the inner node whose
+// removal changes the area under T least removed. exp(-omega) and the areas in the CPU's float
+// operations (precise: no fused multiply-adds), so that GL chooses the same nodes, bit for bit.
+
+float hs_transmittance_of(float omega) {
+    if (!(omega > 0.0)) return 1.0;
+    if (!(omega < 87.3)) return 0.0;
+    precise float scaled = omega * 1.44269502;
+    float k = floor(scaled + 0.5);
+    precise float r = (omega - k * 0.693145752) - k * 1.42860677e-6;
+    precise float p = -0.000198412701;
+    const float c[7] = float[7](0.00138888892, -0.00833333377, 0.0416666679, -0.166666672, 0.5, -1.0, 1.0);
+    for (int i = 0; i < 7; ++i) p = c[i] + r * p;
+    precise float t = p * uintBitsToFloat(uint(127 - int(k)) << 23);
+    return t;
+}
+
+float hs_removal_area(float d0, float t0, float d1, float t1, float d2, float t2) {
+    precise float a = (d1 - d0) * (t2 - t0);
+    precise float b = (d2 - d0) * (t1 - t0);
+    precise float difference = a - b;
+    return abs(difference);
+}
+
+// The builder's nodes: depth, optical depth in front, transmittance.
+const int HS_NODE_CAPACITY = HS_NODES + 2;
+float hs_node_depth[HS_NODE_CAPACITY];
+float hs_node_omega[HS_NODE_CAPACITY];
+float hs_node_t[HS_NODE_CAPACITY];
+int hs_node_count = 0;
+float hs_node_total = 0.0;
+
+void hs_push_node(float depth, float omega) {
+    hs_node_depth[hs_node_count] = depth;
+    hs_node_omega[hs_node_count] = omega;
+    hs_node_t[hs_node_count] = hs_transmittance_of(omega);
+    ++hs_node_count;
+}
+// The loops run to the arrays' size, not the node count, so that compilers unroll them (and GL
+// implementations that bound a shader's loop steps count none of them).
+int hs_least_area() {
+    int best = 1;
+    float best_area = hs_removal_area(hs_node_depth[0], hs_node_t[0], hs_node_depth[1], hs_node_t[1], hs_node_depth[2], hs_node_t[2]);
+    for (int i = 2; i < HS_NODE_CAPACITY - 1; ++i) {
+        if (i >= hs_node_count - 1) break;
+        float a = hs_removal_area(hs_node_depth[i - 1], hs_node_t[i - 1], hs_node_depth[i], hs_node_t[i], hs_node_depth[i + 1], hs_node_t[i + 1]);
+        if (a < best_area) {
+            best = i;
+            best_area = a;
+        }
+    }
+    return best;
+}
+void hs_remove_node(int removed) {
+    for (int i = 1; i < HS_NODE_CAPACITY - 1; ++i) {
+        if (i >= removed && i < hs_node_count - 1) {
+            hs_node_depth[i] = hs_node_depth[i + 1];
+            hs_node_omega[i] = hs_node_omega[i + 1];
+            hs_node_t[i] = hs_node_t[i + 1];
+        }
+    }
+    --hs_node_count;
+}
+// Inserts a fragment of optical depth b > 0 behind every one inserted so far.
+void hs_insert_fragment(float depth, float b) {
+    if (hs_node_count == 0 || hs_node_depth[hs_node_count - 1] != depth || hs_node_omega[hs_node_count - 1] != hs_node_total)
+        hs_push_node(depth, hs_node_total);
+    precise float total = hs_node_total + b;
+    hs_node_total = total;
+    hs_push_node(depth, total);
+    for (int r = 0; r < 2; ++r) // at most two nodes over
+        if (hs_node_count > HS_NODES) hs_remove_node(hs_least_area());
+}
+
+// The look-up: T at `depth` from a texel's nodes (unused ones repeat the last): 1 up to the first
+// node, linear between nodes, the last node's behind the last.
+float hs_nodes_transmittance(float depths[HS_NODES], float omegas[HS_NODES], float depth) {
+    if (!(depth > depths[0])) return 1.0;
+    int i = 1;
+    while (i < HS_NODES && !(depths[i] >= depth)) ++i;
+    if (i == HS_NODES) return exp(-omegas[HS_NODES - 1]);
+    if (omegas[i - 1] == omegas[i]) return exp(-omegas[i]);
+    float ta = hs_transmittance_of(omegas[i - 1]), tb = hs_transmittance_of(omegas[i]);
+    float t = (depth - depths[i - 1]) / (depths[i] - depths[i - 1]);
+    return max(ta + t * (tb - ta), exp(-omegas[i]));
 }
 )hs_glsl";
 
@@ -2262,23 +2500,26 @@ struct entry {
 };
 
 /// Every snippet, sorted by name.
-inline constexpr std::array<entry, 68> all{{
+inline constexpr std::array<entry, 74> all{{
     {"accumulation/emulated_8bit", accumulation_emulated_8bit},
     {"accumulation/float", accumulation_float},
     {"compute/clusters", compute_clusters},
     {"compute/common", compute_common},
     {"compute/fibre_count", compute_fibre_count},
+    {"compute/fragment_lists", compute_fragment_lists},
     {"compute/layers", compute_layers},
     {"compute/occupancy", compute_occupancy},
     {"compute/prepare", compute_prepare},
     {"compute/projection", compute_projection},
     {"compute/range", compute_range},
+    {"compute/resolve_nodes", compute_resolve_nodes},
     {"compute/scan", compute_scan},
     {"compute/scatter", compute_scatter},
     {"compute/tile_sums", compute_tile_sums},
     {"lookup/interpolation", lookup_interpolation},
     {"lookup/layers", lookup_layers},
     {"lookup/light", lookup_light},
+    {"lookup/nodes", lookup_nodes},
     {"lookup/occupancy", lookup_occupancy},
     {"lookup/occupancy_texels", lookup_occupancy_texels},
     {"lookup/projection", lookup_projection},
@@ -2290,8 +2531,10 @@ inline constexpr std::array<entry, 68> all{{
     {"passes/depth_extent", passes_depth_extent},
     {"passes/depth_range", passes_depth_range},
     {"passes/fibre_count", passes_fibre_count},
+    {"passes/fragment_lists", passes_fragment_lists},
     {"passes/fullscreen_vertex", passes_fullscreen_vertex},
     {"passes/layers", passes_layers},
+    {"passes/list_raster", passes_list_raster},
     {"passes/occupancy_bits", passes_occupancy_bits},
     {"passes/occupancy_slabs", passes_occupancy_slabs},
     {"passes/projection", passes_projection},
@@ -2303,6 +2546,7 @@ inline constexpr std::array<entry, 68> all{{
     {"placement/power_layers", placement_power_layers},
     {"raster/coverage", raster_coverage},
     {"raster/vertex", raster_vertex},
+    {"reconstruction/adaptive_nodes", reconstruction_adaptive_nodes},
     {"reconstruction/depth_projection", reconstruction_depth_projection},
     {"reconstruction/fibre_density", reconstruction_fibre_density},
     {"reconstruction/fourier_series", reconstruction_fourier_series},

@@ -23,7 +23,7 @@ struct fourier_opacity_maps_family {
         "fom[:C[:sigma]] (Jansen & Bavoil's Fourier opacity maps: C = 3, 5, 7, 11 or 15 coefficients, 7 by default; sigma damps "
         "each harmonic by Lanczos' sigma factor)";
     static constexpr bool takes_accumulation = false;
-    static constexpr auto examples = std::make_tuple(spec_example<fourier_opacity_maps<7>>{"fom", in_compare | in_bench | in_figure},
+    static constexpr auto examples = std::make_tuple(spec_example<fourier_opacity_maps<7>>{"fom", in_compare | in_bench | in_figure | in_animate},
                                                      spec_example<fourier_opacity_maps<7>>{"fom:7:sigma", in_compare},
                                                      spec_example<fourier_opacity_maps<15>>{"fom:15"});
     static constexpr auto keywords = std::to_array<std::string_view>({"sigma"});

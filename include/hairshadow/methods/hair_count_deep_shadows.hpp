@@ -25,7 +25,7 @@ struct hair_count_deep_shadows_family {
         "fragment alpha, 0.12 by default; the layer distribution in [0, 1], 0.5 by default) | ue:K:zero (the count from zero, "
         "without Unreal's - 1)";
     static constexpr bool takes_accumulation = true;
-    static constexpr auto examples = std::make_tuple(spec_example<hair_count_deep_shadows<4>>{"ue", in_compare | in_bench | in_figure},
+    static constexpr auto examples = std::make_tuple(spec_example<hair_count_deep_shadows<4>>{"ue", in_compare | in_bench | in_figure | in_animate},
                                                      spec_example<hair_count_deep_shadows<4>>{"ue:4"},
                                                      spec_example<hair_count_deep_shadows<8>>{"ue:8", in_compare},
                                                      spec_example<hair_count_deep_shadows<4, emulated_8bit>>{"ue:4:8bit"});

@@ -23,7 +23,7 @@ struct moment_shadow_maps_family {
         "msm[:4[:OVERESTIMATION]] (moment shadow maps for translucent occluders: 4 power moments; the weight of the query's own "
         "depth in [0, 1], 0.25 by default as moment-based transparency, 0 for the lower bound)";
     static constexpr bool takes_accumulation = false;
-    static constexpr auto examples = std::make_tuple(spec_example<moment_shadow_maps>{"msm", in_compare | in_bench | in_figure},
+    static constexpr auto examples = std::make_tuple(spec_example<moment_shadow_maps>{"msm", in_compare | in_bench | in_figure | in_animate},
                                                      spec_example<moment_shadow_maps>{"msm:4:0", in_compare});
     static constexpr std::array<std::string_view, 0> keywords{};
 

@@ -53,6 +53,30 @@ inline void compress_function(std::span<const transmittance_vertex> in, float ep
     }
     if (reach > origin.depth) close_segment();
 }
+/// The exact transmittance function of one texel as vertices: T steps down at each fragment's depth
+/// (`depths` sorted, `optical_depths` the optical depth behind each), two vertices a step.
+inline void exact_steps(std::span<const float> depths, std::span<const float> optical_depths, std::vector<transmittance_vertex>& out) {
+    out.clear();
+    out.reserve(2 * depths.size());
+    float before = 1.0f;
+    for (std::size_t i = 0; i < depths.size(); ++i) {
+        const float after = std::exp(-optical_depths[i]);
+        out.push_back({depths[i], before});
+        out.push_back({depths[i], after});
+        before = after;
+    }
+}
+
+/// A piecewise-linear function's value at `depth`: 1 up to its first vertex (continuous from the
+/// left at steps, as the exact map is), linear between vertices, the last one's beyond.
+inline float transmittance_at(std::span<const transmittance_vertex> v, float depth) noexcept {
+    const auto after = std::lower_bound(v.begin(), v.end(), depth, [](const transmittance_vertex& a, float d) { return a.depth < d; });
+    if (after == v.begin()) return 1.0f;
+    const auto& a = *(after - 1);
+    if (after == v.end()) return a.transmittance;
+    const float t = (depth - a.depth) / (after->depth - a.depth);
+    return a.transmittance + t * (after->transmittance - a.transmittance);
+}
 } // namespace detail
 
 /// A deep shadow map compressed to piecewise-linear transmittance functions within a tolerance.
@@ -69,17 +93,8 @@ public:
             const int x = int(t % std::size_t(res)), y = int(t / std::size_t(res));
             const auto depths = exact.depths(x, y);
             if (depths.empty()) return;
-            const auto omegas = exact.optical_depths(x, y);
-            // The exact function as vertices: T steps down at each fragment's depth.
             std::vector<transmittance_vertex> steps;
-            steps.reserve(2 * depths.size());
-            float before = 1.0f;
-            for (std::size_t i = 0; i < depths.size(); ++i) {
-                const float after = std::exp(-omegas[i]);
-                steps.push_back({depths[i], before});
-                steps.push_back({depths[i], after});
-                before = after;
-            }
+            detail::exact_steps(depths, exact.optical_depths(x, y), steps);
             detail::compress_function(steps, tolerance, per_texel[t]);
         }, 1024);
         offsets_.assign(texels + 1, 0);
@@ -96,15 +111,7 @@ public:
         return {vertices_.data() + offsets_[t], std::size_t(offsets_[t + 1] - offsets_[t])};
     }
     /// Transmittance at `depth` in texel (x, y), continuous from the left at steps as the exact map is.
-    float transmittance(int x, int y, float depth) const noexcept {
-        const auto v = vertices(x, y);
-        const auto after = std::lower_bound(v.begin(), v.end(), depth, [](const transmittance_vertex& a, float d) { return a.depth < d; });
-        if (after == v.begin()) return 1.0f;
-        const auto& a = *(after - 1);
-        if (after == v.end()) return a.transmittance;
-        const float t = (depth - a.depth) / (after->depth - a.depth);
-        return a.transmittance + t * (after->transmittance - a.transmittance);
-    }
+    float transmittance(int x, int y, float depth) const noexcept { return detail::transmittance_at(vertices(x, y), depth); }
     /// -ln of the compressed transmittance, so that queries filter it like every other map.
     float optical_depth(int x, int y, float depth) const noexcept { return -std::log(std::max(transmittance(x, y, depth), 1e-30f)); }
     using map_queries<compressed_deep_shadow_map>::transmittance;

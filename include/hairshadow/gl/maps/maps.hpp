@@ -2,10 +2,11 @@
 /// @file
 /// The GL twin of any shadow_method, chosen by its reconstruction: gl::maps<Method> is
 /// interpolated_maps_gl for interpolation and the reconstructions built on it (hair_count), occupancy_maps_gl for occupancy_bitcount,
-/// projected_maps_gl for those built on depth_projection (fourier_series, power_moments) and fibre_density_maps_gl for fibre_density. A new reconstruction adds its class and one line here.
+/// projected_maps_gl for those built on depth_projection (fourier_series, power_moments), node_maps_gl for adaptive_nodes and fibre_density_maps_gl for fibre_density. A new reconstruction adds its class and one line here.
 
 #include <hairshadow/gl/maps/fibre_density_maps.hpp>
 #include <hairshadow/gl/maps/interpolated_maps.hpp>
+#include <hairshadow/gl/maps/node_maps.hpp>
 #include <hairshadow/gl/maps/occupancy_maps.hpp>
 #include <hairshadow/gl/maps/projected_maps.hpp>
 
@@ -31,6 +32,10 @@ template <class Method, class Reconstruction>
     requires std::is_base_of_v<hairshadow::detail::depth_projection<Reconstruction, Reconstruction::sums>, Reconstruction> // fourier_series, power_moments
 struct maps_of<Method, Reconstruction> {
     using type = projected_maps_gl<Method>;
+};
+template <class Method, int N>
+struct maps_of<Method, adaptive_nodes<N>> {
+    using type = node_maps_gl<Method>;
 };
 template <class Method, fibre_density_source Source>
 struct maps_of<Method, fibre_density<Source>> {
