@@ -233,3 +233,16 @@ TEST_CASE("avsm against Lokovic and Veach's compression of the exact map at the 
     CHECK(worst_lv < worst_avsm);
     CHECK(mean_avsm < mean_lv);
 }
+
+TEST_CASE("avsm stores a depth of -0 as 0, so that the maps do not depend on which zero came first", "[methods][avsm]") {
+    const light_space light = light_space::fit(light_spec::directional({0, 0, -1}), aabb{{-1, -1, -1}, {1, 1, 1}}, 1);
+    for (const float first : {-0.0f, 0.0f}) {
+        const fragment_buffer fragments(1, {0, 3}, {{first, 0.3f}, {-first, 0.3f}, {0.5f, 0.2f}});
+        adaptive_volumetric_shadow_maps<4> avsm;
+        avsm.build(fragments, light);
+        const auto& nodes = avsm.texel(0, 0).data.nodes;
+        CHECK(std::bit_cast<std::uint32_t>(nodes[0].depth) == 0u);
+        CHECK(std::bit_cast<std::uint32_t>(nodes[1].depth) == 0u);
+        CHECK(nodes[3].depth == 0.5f);
+    }
+}

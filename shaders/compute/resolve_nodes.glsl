@@ -2,12 +2,14 @@
 // by (depth, optical depth), a bottom-up merge sort of its links (n log n steps, no copy, so no limit
 // on a texel's fragments), then inserted into the nodes (reconstruction/adaptive_nodes), written two to
 // an RGBA32F array layer, the unused ones repeating the last, all zero where the list is empty. A
-// texel that inserted fewer fragments than it listed sets hs_list_status: a GL implementation that
-// stops long loops (Mesa's llvmpipe ends a shader's loops after 65535 steps) cut it short, and the
-// build throws rather than return wrong maps.
+// texel that inserted fewer fragments than it listed, or whose last loop (a probe of hs_probe_steps
+// steps, a uniform so that it is not unrolled) ran short, sets hs_list_status: a GL implementation
+// that stops long loops (Mesa's llvmpipe ends a shader's loops after 65535 steps) cut it short, and
+// the build throws rather than return wrong maps.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0, rgba32f) writeonly uniform image2DArray hs_nodes_image;
 uniform int hs_resolution;
+uniform int hs_probe_steps;
 
 bool hs_listed_before(uint a, uint b) {
     return hs_listed[a].depth < hs_listed[b].depth || (hs_listed[a].depth == hs_listed[b].depth && hs_listed[a].b <= hs_listed[b].b);
@@ -56,8 +58,7 @@ void main() {
         hs_insert_fragment(hs_listed[i].depth, hs_listed[i].b);
         ++inserted;
     }
-    if (inserted != listed) atomicOr(hs_list_status, 1u);
-    for (int layer = 0; layer < (HS_NODES + 1) / 2; ++layer) {
+    for (int layer = 0; layer < HS_NODES / 2; ++layer) {
         vec4 v = vec4(0.0);
         if (hs_node_count > 0) {
             int first = min(2 * layer, hs_node_count - 1), second = min(2 * layer + 1, hs_node_count - 1);
@@ -65,4 +66,7 @@ void main() {
         }
         imageStore(hs_nodes_image, ivec3(texel, layer), v);
     }
+    int probed = 0;
+    for (int step = 0; step < hs_probe_steps; ++step) ++probed;
+    if (inserted != listed || probed != hs_probe_steps) atomicOr(hs_list_status, 1u);
 }

@@ -21,7 +21,7 @@ void hs_append_fragment(uint texel, float depth, float b) {
     if (!(b > 0.0) || isnan(depth) || isinf(depth)) return;
     uint index = atomicAdd(hs_listed_count, 1u);
     if (index >= uint(hs_listed.length())) return;
-    hs_listed[index].depth = depth == 0.0 ? 0.0 : depth;
+    hs_listed[index].depth = floatBitsToUint(depth) == 0x80000000u ? 0.0 : depth; // by its bits: no compiler folds this away
     hs_listed[index].b = b;
     hs_listed[index].next = atomicExchange(hs_list_heads[2u * texel], index);
     atomicAdd(hs_list_heads[2u * texel + 1u], 1u);

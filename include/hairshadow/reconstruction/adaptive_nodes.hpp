@@ -95,6 +95,7 @@ public:
     }
     /// The nodes, the last repeated into the unused ones.
     void finish(adaptive_node_list<N>& out) const noexcept {
+        if (count_ == 0) return; // nothing inserted: the texel stays all zero
         for (int i = 0; i < N; ++i) {
             const auto& n = nodes_[std::size_t(std::min(i, count_ - 1))];
             out.nodes[std::size_t(i)] = {n.depth, n.omega};
@@ -138,7 +139,7 @@ private:
 /// Optical depth from at most N adaptive nodes per texel (adaptive volumetric shadow maps).
 template <int N>
 class adaptive_nodes {
-    static_assert(N >= 3, "adaptive nodes keep the first and last node and remove among the others");
+    static_assert(N >= 4 && N % 2 == 0, "adaptive nodes: an even N of at least 4 (GL keeps two nodes a texture layer; the first and last are never removed)");
 
 public:
     static constexpr int node_count = N;

@@ -79,6 +79,7 @@ public:
         }
         glUseProgram(resolve_program_.get());
         glUniform1i(glGetUniformLocation(resolve_program_.get(), "hs_resolution"), res);
+        glUniform1i(glGetUniformLocation(resolve_program_.get(), "hs_probe_steps"), 2);
         bind_lists();
         glBindImageTexture(0, nodes_.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         const GLuint groups = GLuint((res + 7) / 8);
@@ -199,7 +200,11 @@ private:
     }
 
     void allocate(int res) {
-        if (capacity_ == 0) grow_records(std::max<std::size_t>(last_fragments_, 4 * std::size_t(res) * std::size_t(res)));
+        if (capacity_ == 0) { // a first guess of 4 fragments a texel, within one storage block; a build that needs more grows it
+            GLint64 block = 0;
+            glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &block);
+            grow_records(std::min<std::size_t>(4 * std::size_t(res) * std::size_t(res), std::size_t(std::max<GLint64>(block - 8, 12) / 12)));
+        }
         if (res == allocated_) return;
         nodes_ = make_texture();
         glBindTexture(GL_TEXTURE_2D_ARRAY, nodes_.get());
