@@ -111,15 +111,20 @@ for defines, tag in (("", "fixed"), ("#define HS_MEASURED_DENSITY\n", "measured"
 
 # The projected methods (gl/maps/projected_maps.hpp): the raster pass, the compute build and the look-up,
 # each over its reconstruction's snippet.
-PROJECTIONS = {"fourier_series": ("#define HS_HARMONICS 3\n", "#define HS_HARMONICS 7\n"), "power_moments": ("#define HS_MOMENTS 4\n",)}
+PROJECTIONS = {"fourier_series": ("#define HS_HARMONICS 3\n", "#define HS_HARMONICS 7\n"), "power_moments": ("#define HS_MOMENTS 4\n", "#define HS_MOMENTS 6\n", "#define HS_MOMENTS 8\n")}
 for reconstruction, variants in PROJECTIONS.items():
     for defines in variants:
-        tag = reconstruction + "_" + defines.split()[2]
-        projection = ["placement/common", "reconstruction/depth_projection", "reconstruction/" + reconstruction]
-        COMPOSITIONS[f"projection_pass_{tag}"] = ("frag", defines, ["raster/coverage"] + projection + ["passes/projection"], "")
-        COMPOSITIONS[f"lookup_projection_{tag}"] = ("vert", defines, projection + ["lookup/light", "lookup/projection"], LOOKUP_MAIN)
-        COMPOSITIONS[f"compute_projection_{tag}"] = ("comp", "#define HS_SUBPIXEL_BITS 8\n" + defines + "#define HS_SUM_SLOTS 8\n", [
-            "compute/common", "accumulation/float", "compute/tile_sums"] + projection + ["compute/projection"], "")
+        for accumulation, eight in (("float", ""), ("emulated_8bit", "#define HS_EIGHT_BIT\n")):
+            if eight and reconstruction != "fourier_series":
+                continue  # 8-bit steps: Fourier opacity maps' variant
+            tag = reconstruction + "_" + defines.split()[2] + "_" + accumulation
+            common = defines + f"#define HS_TERMS_PER_OPTICAL_DEPTH {2 if reconstruction == 'fourier_series' else 1}.0\n"
+            projection = ["accumulation/" + accumulation, "placement/common", "reconstruction/" + reconstruction, "reconstruction/depth_projection"]
+            COMPOSITIONS[f"projection_pass_{tag}"] = ("frag", common + eight, ["raster/coverage"] + projection + ["passes/projection"], "")
+            COMPOSITIONS[f"lookup_projection_{tag}"] = ("vert", common + eight, projection + ["lookup/light", "lookup/projection"], LOOKUP_MAIN)
+            COMPOSITIONS[f"compute_projection_{tag}"] = (
+                "comp", "#define HS_SUBPIXEL_BITS 8\n" + common + eight + "#define HS_SUM_SLOTS 8\n#define HS_SUMS_FORMAT " + ("rgba8" if eight else "rgba32f") + "\n",
+                ["compute/common"] + projection[:1] + ["compute/tile_sums"] + projection[1:] + ["compute/projection"], "")
 
 # Adaptive volumetric shadow maps (gl/maps/node_maps.hpp): the raster and compute list passes, the resolve
 # and the look-up, at 4 and 16 nodes.

@@ -1,7 +1,8 @@
 // Fourier opacity maps (fom:C): the coefficients and the reconstructed transmittance behind sheets of
 // strands at known depths, worked by hand in double from Jansen & Bavoil's formulas; the ringing
-// between two sheets and what the sigma factors do to it; specs; and the builds every method shares
-// (tiled against buffered, any thread count, the registry).
+// between two sheets and what the sigma factors do to it; the 8-bit variant's steps by hand and
+// within their rounding of the float maps; specs; and the builds every method shares (tiled against
+// buffered, any thread count, the registry).
 #include "sheets.hpp"
 #include "test_support.hpp"
 
@@ -129,7 +130,11 @@ TEST_CASE("fom specs parse C and sigma, and refuse bad ones", "[methods][fom][sp
     CHECK_FALSE(make_shadow_map("fom")->method_if<fourier_opacity_maps<7>>()->reconstruction().damped());
     CHECK(make_shadow_map("fom:15")->method_if<fourier_opacity_maps<15>>() != nullptr);
     CHECK(make_shadow_map("fom:3")->method_if<fourier_opacity_maps<3>>() != nullptr);
-    for (const char* bad : {"fom:", "fom:4", "fom:9", "fom:07", "fom:7:damped", "fom:7:sigma:1", "fom:sigma", "fom:7:8bit", "fom:17"}) {
+    CHECK(make_shadow_map("fom:7:8bit")->method_if<fourier_opacity_maps<7, emulated_8bit>>() != nullptr);
+    const auto damped_eight = make_shadow_map("fom:15:sigma:8bit");
+    REQUIRE(damped_eight->method_if<fourier_opacity_maps<15, emulated_8bit>>() != nullptr);
+    CHECK(damped_eight->method_if<fourier_opacity_maps<15, emulated_8bit>>()->reconstruction().damped());
+    for (const char* bad : {"fom:", "fom:4", "fom:9", "fom:07", "fom:7:damped", "fom:7:sigma:1", "fom:sigma", "fom:8bit:7", "fom:7:8bit:sigma", "fom:17"}) {
         CAPTURE(bad);
         CHECK_THROWS_AS(parse_method_spec(bad), spec_error);
     }
@@ -142,9 +147,76 @@ TEST_CASE("fom maps build tile by tile as from fragments, for any thread count, 
     CHECK(test::same_maps_tiled_and_buffered(fourier_opacity_maps<7>(), m, fb, light));
     CHECK(test::same_maps_tiled_and_buffered(fourier_opacity_maps<15>(depth_range<1>(), fourier_series<15>(true)), m, fb, light));
 
+    CHECK(test::same_maps_tiled_and_buffered(fourier_opacity_maps<7, emulated_8bit>(), m, fb, light));
+
     const auto map = make_shadow_map("fom:11:sigma");
     map->build(m, light);
     fourier_opacity_maps<11> direct(depth_range<1>(), fourier_series<11>(true));
     direct.build(m, light);
     CHECK(test::same_transmittance(*map, direct, m));
+    const auto eight = make_shadow_map("fom:7:8bit");
+    eight->build(m, light);
+    fourier_opacity_maps<7, emulated_8bit> direct_eight;
+    direct_eight.build(m, light);
+    CHECK(test::same_transmittance(*eight, direct_eight, m));
+}
+
+TEST_CASE("8-bit Fourier opacity maps store each term's steps, within their rounding of the float maps", "[methods][fom][8bit]") {
+    SECTION("two sheets, by hand") {
+        // alpha 0.3: b = 0.3567, one step of kappa / 255 = 0.02175 is 16.4, rounded to 16 a sheet.
+        const auto scene = test::make_sheets(2, 64);
+        fourier_opacity_maps<7, emulated_8bit> eight;
+        eight.build(scene.model, scene.light, alpha(0.3f));
+        const auto& steps = eight.texel(32, 32).data.sums;
+        CHECK(int(steps[0]) == 32);
+        // The sheets sit at the period's t = m and 1 - m (m = 1/7): cos(2 pi k t) is the same at both,
+        // sin opposite, so a_k's steps are 2 round(16.4 (1 + cos) / 2) and b_k's
+        // round(16.4 (1 + sin) / 2) + round(16.4 (1 - sin) / 2).
+        const double b = -std::log(0.7), t = 1.0 / 7.0;
+        for (int k = 1; k <= 3; ++k) {
+            const double c = std::cos(2 * std::numbers::pi * k * t), sn = std::sin(2 * std::numbers::pi * k * t);
+            const auto level = [&](double e) { return std::lround(e / emulated_8bit::kappa * 255.0); };
+            CAPTURE(k);
+            CHECK(int(steps[std::size_t(2 * k - 1)]) == 2 * level(b * (1 + c) / 2));
+            CHECK(int(steps[std::size_t(2 * k)]) == level(b * (1 + sn) / 2) + level(b * (1 - sn) / 2));
+        }
+        // Behind both sheets, the stored total: 32 steps.
+        const float y = scene.row_y[scene.row_y.size() / 2];
+        CHECK(eight.transmittance(glm::vec3(0.2f, y, -0.9f)) == Approx(std::exp(-emulated_8bit::kappa * 32.0f / 255.0f)).epsilon(1e-6));
+        CHECK(eight.transmittance(glm::vec3(0.2f, y, 0.9f)) == 1.0f);
+    }
+    SECTION("Sintel: every sum within its steps' rounding") {
+        const auto m = read_tfx(test::sintel_hair());
+        const auto light = light_space::fit(light_spec::directional({0.2f, -1, -0.4f}), m.bounds(), 256);
+        const auto fb = rasterize(m, light);
+        fourier_opacity_maps<7> full;
+        fourier_opacity_maps<7, emulated_8bit> eight;
+        full.build(m, light);
+        eight.build(m, light);
+        CHECK(eight.memory_bytes() < full.memory_bytes() / 2);
+        // n fragments: the total's steps are each within half a level (n / 2 levels), a_k = 2 (2 S_k - B)
+        // within 2 (n + n / 2) levels.
+        const float level = emulated_8bit::kappa / 255.0f;
+        long checked = 0, saturated = 0, off = 0;
+        double worst = 0;
+        for (int y = 0; y < 256; ++y)
+            for (int x = 0; x < 256; ++x) {
+                const auto n = float(fb.texel(x, y).size());
+                if (n == 0) continue;
+                if (eight.texel(x, y).data.sums[0] == 255) {
+                    ++saturated; // the total's steps saturated, and every sum's with it
+                    continue;
+                }
+                ++checked;
+                for (int k = 0; k < 7; ++k) {
+                    const float bound = (k == 0 ? n : 3.0f * n) * level, error = std::abs(eight.stored_optical_depth(x, y, k) - full.stored_optical_depth(x, y, k));
+                    worst = std::max(worst, double(error / bound));
+                    off += error > bound + 1e-5f;
+                }
+            }
+        CAPTURE(checked, saturated, worst);
+        CHECK(checked > 5000);
+        CHECK(off == 0);
+        CHECK(worst > 0.1); // the rounding is there to see
+    }
 }

@@ -1,7 +1,8 @@
-// Moment shadow maps (msm): the moments behind sheets of strands at known depths, worked by hand; two
-// sheets, which four moments determine, give exactly one sheet's shadow between them for any
-// overestimation; the bounds (overestimation 0 below the exact optical depth, 1 above it) behind five
-// sheets and on Sintel against the exact map; specs; and the builds every method shares.
+// Moment shadow maps (msm:4, 6, 8): the moments behind sheets of strands at known depths, worked by
+// hand; M / 2 sheets, which M moments determine, give exactly the sheets' shadow between them for any
+// overestimation; the roots of the canonical polynomials, a point far out included; the bounds
+// (overestimation 0 below the exact optical depth, 1 above it) behind five sheets and on Sintel
+// against the exact map; specs; and the builds every method shares.
 #include "sheets.hpp"
 #include "test_support.hpp"
 
@@ -22,7 +23,10 @@ raster_options alpha(float a) {
     return o;
 }
 
-moment_shadow_maps with_overestimation(float overestimation) { return moment_shadow_maps{depth_range<1>(), power_moments({.overestimation = overestimation})}; }
+template <int M = 4>
+moment_shadow_maps<M> with_overestimation(float overestimation) {
+    return moment_shadow_maps<M>{depth_range<1>(), power_moments<M>({.overestimation = overestimation})};
+}
 
 } // namespace
 
@@ -30,7 +34,7 @@ TEST_CASE("moment shadow maps store the optical depth and its power moments behi
     // Five sheets of alpha 0.3 at z = 0.5 .. -0.3: in each texel's range at z = -1, -0.5, 0, 0.5, 1.
     const auto scene = test::make_sheets(5, 64);
     const double b = -std::log(0.7);
-    moment_shadow_maps msm;
+    moment_shadow_maps<> msm;
     msm.build(scene.model, scene.light, alpha(0.3f));
     CHECK(msm.stored_optical_depth(32, 32, 0) == Approx(5 * b).epsilon(1e-6));
     CHECK(msm.stored_optical_depth(32, 32, 1) == Approx(0.0).margin(1e-5));
@@ -43,25 +47,80 @@ TEST_CASE("moment shadow maps store the optical depth and its power moments behi
     CHECK(msm.transmittance(glm::vec3(0.2f, y, -0.9f)) == Approx(std::pow(0.7, 5)).epsilon(1e-5));
 }
 
-TEST_CASE("two sheets, which four moments determine, give one sheet's shadow between them", "[methods][msm]") {
-    const auto scene = test::make_sheets(2, 64);
-    const float y = scene.row_y[scene.row_y.size() / 2];
-    for (const float overestimation : {0.0f, 0.25f, 1.0f}) {
-        auto msm = with_overestimation(overestimation);
-        msm.build(scene.model, scene.light, alpha(0.3f));
-        for (const float z : {0.49f, 0.45f, 0.4f, 0.35f, 0.31f}) {
-            CAPTURE(overestimation, z);
-            CHECK(msm.transmittance(glm::vec3(0.2f, y, z)) == Approx(0.7f).epsilon(1e-3));
-        }
-        CHECK(msm.transmittance(glm::vec3(0.2f, y, -0.9f)) == Approx(0.49f).epsilon(1e-5));
+TEST_CASE("six and eight moments store every power behind sheets of strands", "[methods][msm]") {
+    // Three sheets of alpha 0.3, in each texel's range at z = -1, 0 and 1: b z^j sums to
+    // b ((-1)^j + 0^j + 1), 2 b for even j, 0 for odd.
+    const auto scene = test::make_sheets(3, 64);
+    const double b = -std::log(0.7);
+    moment_shadow_maps<8> msm;
+    msm.build(scene.model, scene.light, alpha(0.3f));
+    CHECK(msm.stored_optical_depth(32, 32, 0) == Approx(3 * b).epsilon(1e-6));
+    for (int j = 1; j <= 8; ++j) {
+        CAPTURE(j);
+        if (j % 2) CHECK(msm.stored_optical_depth(32, 32, j) == Approx(0.0).margin(1e-5));
+        else CHECK(msm.stored_optical_depth(32, 32, j) == Approx(2 * b).epsilon(1e-5));
     }
+    CHECK(power_moments<6>().bias() == 5e-6f);
+    CHECK(power_moments<8>().bias() == 5e-5f);
+    CHECK(power_moments<8>({.bias = 1e-6f}).bias() == 1e-6f);
+}
+
+TEST_CASE("M / 2 sheets, which M moments determine, give the sheets' shadow between them", "[methods][msm]") {
+    const auto check = []<int M>(std::integral_constant<int, M>, double tolerance) {
+        const int sheets = M / 2;
+        const auto scene = test::make_sheets(sheets, 64);
+        const float y = scene.row_y[scene.row_y.size() / 2];
+        for (const float overestimation : {0.0f, 0.25f, 1.0f}) {
+            auto msm = with_overestimation<M>(overestimation);
+            msm.build(scene.model, scene.light, alpha(0.3f));
+            for (int behind = 1; behind < sheets; ++behind)
+                for (const float between : {0.1f, 0.5f, 0.9f}) {
+                    const float z = scene.sheet_z[std::size_t(behind - 1)] + between * (scene.sheet_z[std::size_t(behind)] - scene.sheet_z[std::size_t(behind - 1)]);
+                    CAPTURE(M, overestimation, behind, z);
+                    CHECK(msm.transmittance(glm::vec3(0.2f, y, z)) == Approx(std::pow(0.7, behind)).epsilon(tolerance));
+                }
+            CHECK(msm.transmittance(glm::vec3(0.2f, y, -0.9f)) == Approx(std::pow(0.7, sheets)).epsilon(1e-5));
+        }
+    };
+    check(std::integral_constant<int, 4>{}, 1e-3);
+    check(std::integral_constant<int, 6>{}, 1e-3);
+    check(std::integral_constant<int, 8>{}, 1e-3);
+}
+
+TEST_CASE("the canonical polynomials' roots, a point far out included", "[methods][msm]") {
+    // (z - r1) .. (z - rn) times a scale, in double, rounded to float coefficients.
+    const auto coefficients = [](std::vector<double> roots, double scale) {
+        std::vector<double> c{scale};
+        for (const double r : roots) {
+            c.push_back(0.0);
+            for (std::size_t k = c.size() - 1; k > 0; --k) c[k] = c[k - 1] - r * c[k];
+            c[0] = -r * c[0];
+        }
+        return std::vector<float>(c.begin(), c.end());
+    };
+    const auto check = [&]<int n>(std::integral_constant<int, n>, std::vector<double> roots, double tolerance) {
+        const auto c = coefficients(roots, 2.5);
+        const auto found = detail::real_roots<n>(c.data());
+        std::sort(roots.begin(), roots.end());
+        for (int i = 0; i < n; ++i) {
+            CAPTURE(n, i, roots[std::size_t(i)], found[std::size_t(i)]);
+            CHECK(found[std::size_t(i)] == Approx(roots[std::size_t(i)]).margin(tolerance).epsilon(1e-5));
+        }
+    };
+    check(std::integral_constant<int, 3>{}, {-0.7, 0.1, 0.9}, 1e-5);
+    check(std::integral_constant<int, 4>{}, {-0.95, -0.3, 0.2, 0.8}, 1e-5);
+    // One root far out: c_n small beside the rest, where Viete's and Ferrari's forms lose the others.
+    check(std::integral_constant<int, 3>{}, {-0.5, 0.25, 4000.0}, 1e-5);
+    check(std::integral_constant<int, 4>{}, {-5000.0, -0.6, 0.3, 0.7}, 1e-5);
+    check(std::integral_constant<int, 4>{}, {-0.9, -0.1, 0.4, 2.0e5}, 1e-4);
 }
 
 TEST_CASE("the moment bound: overestimation 0 never above the exact optical depth, 1 never below it", "[methods][msm]") {
-    const auto check_bounds = [](const hair_model& model, const light_space& light, const raster_options& options, std::size_t queries_at_least) {
+    const auto check_bounds = []<int M>(std::integral_constant<int, M>, const hair_model& model, const light_space& light, const raster_options& options,
+                                        std::size_t queries_at_least) {
         const auto fragments = rasterize(model, light, options);
         const deep_shadow_map exact(fragments, light);
-        auto lower = with_overestimation(0.0f), upper = with_overestimation(1.0f);
+        auto lower = with_overestimation<M>(0.0f), upper = with_overestimation<M>(1.0f);
         lower.build(model, light, options);
         upper.build(model, light, options);
         std::size_t queries = 0, below = 0, above = 0;
@@ -81,32 +140,41 @@ TEST_CASE("the moment bound: overestimation 0 never above the exact optical dept
                     below += low <= tau + 1e-3f * total;
                     above += high >= tau - 1e-3f * total;
                 }
-        CAPTURE(queries, worst_low, worst_high);
+        CAPTURE(M, queries, worst_low, worst_high);
         CHECK(queries >= queries_at_least);
         CHECK(below == queries);
         CHECK(above == queries);
     };
     SECTION("five sheets") {
         const auto scene = test::make_sheets(5, 64);
-        check_bounds(scene.model, scene.light, alpha(0.3f), 1000);
+        check_bounds(std::integral_constant<int, 4>{}, scene.model, scene.light, alpha(0.3f), 1000);
+        check_bounds(std::integral_constant<int, 6>{}, scene.model, scene.light, alpha(0.3f), 1000);
+        check_bounds(std::integral_constant<int, 8>{}, scene.model, scene.light, alpha(0.3f), 1000);
     }
     SECTION("Sintel, 128x128") {
         const auto m = read_tfx(test::sintel_hair());
-        check_bounds(m, light_space::fit(light_spec::directional({0.2f, -1, -0.4f}), m.bounds(), 128), {}, 100000);
+        const auto light = light_space::fit(light_spec::directional({0.2f, -1, -0.4f}), m.bounds(), 128);
+        check_bounds(std::integral_constant<int, 4>{}, m, light, {}, 100000);
+        check_bounds(std::integral_constant<int, 6>{}, m, light, {}, 100000);
+        check_bounds(std::integral_constant<int, 8>{}, m, light, {}, 100000);
     }
 }
 
 TEST_CASE("msm specs parse the overestimation, and refuse bad ones", "[methods][msm][spec]") {
     const auto map = make_shadow_map("msm:4:0");
-    const auto* made = map->method_if<moment_shadow_maps>();
+    const auto* made = map->method_if<moment_shadow_maps<4>>();
     REQUIRE(made != nullptr);
     CHECK(made->reconstruction().parameters().overestimation == 0.0f);
-    CHECK(make_shadow_map("msm")->method_if<moment_shadow_maps>()->reconstruction().parameters() == power_moments_parameters{});
+    CHECK(make_shadow_map("msm")->method_if<moment_shadow_maps<4>>()->reconstruction().parameters() == power_moments_parameters{});
+    const auto eight = make_shadow_map("msm:8:1");
+    REQUIRE(eight->method_if<moment_shadow_maps<8>>() != nullptr);
+    CHECK(eight->method_if<moment_shadow_maps<8>>()->reconstruction().parameters().overestimation == 1.0f);
+    CHECK(make_shadow_map("msm:6")->method_if<moment_shadow_maps<6>>() != nullptr);
     // No bias, or too little: a texel of two depths would leave the moments' matrix singular.
-    CHECK_THROWS_AS(power_moments({.bias = 0.0f}), argument_error);
-    CHECK_THROWS_AS(power_moments({.bias = 1e-9f}), argument_error);
-    CHECK_THROWS_AS(power_moments({.overestimation = std::nanf("")}), argument_error);
-    for (const char* bad : {"msm:", "msm:6", "msm:04", "msm:4:1.5", "msm:4:-0.1", "msm:4:nan", "msm:4:0:1", "msm:4:8bit", "msm:x"}) {
+    CHECK_THROWS_AS(power_moments<4>({.bias = 0.0f}), argument_error);
+    CHECK_THROWS_AS(power_moments<8>({.bias = 1e-9f}), argument_error);
+    CHECK_THROWS_AS(power_moments<4>({.overestimation = std::nanf("")}), argument_error);
+    for (const char* bad : {"msm:", "msm:5", "msm:10", "msm:2", "msm:04", "msm:4:1.5", "msm:4:-0.1", "msm:4:nan", "msm:4:0:1", "msm:4:8bit", "msm:x"}) {
         CAPTURE(bad);
         CHECK_THROWS_AS(parse_method_spec(bad), spec_error);
     }
@@ -116,11 +184,17 @@ TEST_CASE("msm maps build tile by tile as from fragments, for any thread count, 
     const auto m = read_tfx(test::sintel_hair());
     const auto light = light_space::fit(light_spec::directional({0.2f, -1, -0.4f}), m.bounds(), 256);
     const auto fb = rasterize(m, light);
-    CHECK(test::same_maps_tiled_and_buffered(moment_shadow_maps(), m, fb, light));
+    CHECK(test::same_maps_tiled_and_buffered(moment_shadow_maps<>(), m, fb, light));
+    CHECK(test::same_maps_tiled_and_buffered(moment_shadow_maps<8>(), m, fb, light));
 
     const auto map = make_shadow_map("msm:4:0.5");
     map->build(m, light);
     auto direct = with_overestimation(0.5f);
     direct.build(m, light);
     CHECK(test::same_transmittance(*map, direct, m));
+    const auto eight = make_shadow_map("msm:8:0.5");
+    eight->build(m, light);
+    auto direct_eight = with_overestimation<8>(0.5f);
+    direct_eight.build(m, light);
+    CHECK(test::same_transmittance(*eight, direct_eight, m));
 }

@@ -48,7 +48,7 @@ TEST_CASE("the grammar, the command line's lists and the fuzz dictionary come fr
     CHECK(has("8bit"));
     CHECK_FALSE(has("float")); // the default accumulation, which a spec never names
     CHECK(has("128"));         // occ:128:4's fields
-    CHECK_THAT(grammar, Catch::Contains("append :8bit (emulated 8-bit accumulation) to osm, dc, dom, occ or ue"));
+    CHECK_THAT(grammar, Catch::Contains("append :8bit (emulated 8-bit accumulation) to osm, dc, dom, occ, fom or ue"));
     // The command line's default lists: the papers' methods in every one, in the registry's order.
     CHECK(example_spec_list(in_figure) == "osm:16,osm:256,dc:4,dom:3,occ:128:4,fom,msm,avsm,adsm,ue");
     CHECK(example_spec_list(in_animate) == "osm:16,dc:4,dom:3,occ:128:4,fom,msm,avsm,ue");
@@ -67,6 +67,6 @@ TEST_CASE("a spec's accumulation is a parameter: named last, only where the fami
         CAPTURE(bad);
         CHECK_THROWS_AS(parse_method_spec(bad), spec_error);
     }
-    CHECK_THROWS_WITH(parse_method_spec("adsm:8bit"), Catch::Contains(":8bit applies to osm, dc, dom, occ or ue"));
+    CHECK_THROWS_WITH(parse_method_spec("adsm:8bit"), Catch::Contains(":8bit applies to osm, dc, dom, occ, fom or ue"));
     CHECK_THROWS_WITH(parse_method_spec("frob:3"), Catch::Contains("unknown method 'frob'"));
 }

@@ -14,6 +14,7 @@ float hs_transmittance(vec3 world_pos) {
         vec4 v = texelFetch(hs_sums_texture, ivec3(texel, layer), 0);
         for (int c = 0; c < 4 && 4 * layer + c < HS_SUMS; ++c) sums[4 * layer + c] = v[c];
     }
+    hs_decode_sums(sums);
     float total = hs_total_optical_depth(sums);
     if (!(depth > range.x) || !(total > 0.0)) return 1.0;
     if (depth > range.w) return exp(-total);

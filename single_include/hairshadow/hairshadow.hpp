@@ -6418,6 +6418,49 @@ struct adaptive_volumetric_shadow_maps_family {
 /// Fourier opacity maps (Jansen & Bavoil 2010): C Fourier coefficients of each texel's absorption,
 /// over the texel's depth range. The spec `fom[:C[:sigma]]`.
 
+// ---- begin hairshadow/accumulation/emulated_8bit.hpp
+/// @file
+/// Emulated 8-bit accumulation (Kim & Neumann 2001, section 2): an RGBA8 target with additive blending.
+/// Each fragment writes b / kappa, which GL converts to 8 bits (round to nearest) before the blend
+/// adds it with saturation; a stored value q stands for the optical depth kappa * q / 255, with
+/// exp(-kappa) = 2^-8 so that a full texel (q = 255) lets 1/256 of the light through.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <string_view>
+
+namespace hairshadow {
+
+/// Every add quantised to 8 bits and saturated, as additive blending into an RGBA8 target does.
+struct emulated_8bit {
+    using value_type = std::uint8_t;
+    using sum_type = std::int32_t; ///< saturated at 255 after every add, exactly as the blend does
+    static constexpr std::string_view name = "8bit";
+    static constexpr std::string_view summary = "emulated 8-bit accumulation";
+    static constexpr std::string_view glsl_name = "accumulation/emulated_8bit";
+    /// exp(-kappa) = 2^-8: kappa = 8 ln 2, about 5.545 (the paper rounds it to 5.56).
+    static constexpr float kappa = 8.0f * std::numbers::ln2_v<float>;
+
+    /// The 8-bit step a fragment of optical depth b adds: its output b / kappa in unorm8, rounded half
+    /// away from zero (std::lround's rounding, computed inline as the GLSL twin computes it: the
+    /// whole part, and one more where the fraction, exact for x in [0, 255], is at least a half; a
+    /// call to lroundf cost a fifth of an 8-bit Fourier build).
+    static std::int32_t quantise(float optical_depth) noexcept {
+        const float unit = optical_depth / kappa;
+        const float x = (unit > 0.0f ? std::min(unit, 1.0f) : 0.0f) * 255.0f; // NaN to 0, never an undefined conversion
+        const auto whole = std::int32_t(x);
+        return whole + (x - float(whole) >= 0.5f ? 1 : 0);
+    }
+    static sum_type add(sum_type sum, float optical_depth) noexcept { return std::min<sum_type>(sum + quantise(optical_depth), 255); }
+    static constexpr sum_type combine(sum_type a, sum_type b) noexcept { return std::min<sum_type>(a + b, 255); }
+    static constexpr value_type store(sum_type sum) noexcept { return value_type(std::min<sum_type>(sum, 255)); }
+    static constexpr float decode(value_type v) noexcept { return kappa * float(v) / 255.0f; }
+};
+
+} // namespace hairshadow
+// ---- end hairshadow/accumulation/emulated_8bit.hpp
 // ---- begin hairshadow/placement/depth_range.hpp
 /// @file
 /// Occupancy maps' per-texel depth range (Sintorn & Assarsson 2009, section 3.1): the nearest and
@@ -6536,6 +6579,14 @@ private:
 /// 0 <= s <= 1), and their GLSL twins (gl/maps/projected_maps.hpp). Sums are kept in double and
 /// stored once as float, close to the GL compute build's exact fixed-point sums (tests/gl compare
 /// them within 1e-5 of the texel's largest sum).
+///
+/// An accumulation that stores quantised steps (emulated_8bit: additive blending into RGBA8 targets)
+/// adds only non-negative values, so the signed terms t_k are stored as steps of b (1 + t_k / t_0) / 2,
+/// between 0 and b where |t_k| <= t_0 (a Fourier term beside a_0, a power of z in [-1, 1] beside 1),
+/// and term 0 as b itself: t_0 = c b for Derived's `terms_per_optical_depth` c, a power of two, so
+/// that the steps are (t_0 + t_k) / (2 c) and t_0 / c, each one float rounding, as in GLSL. The
+/// look-up decodes b_k, the sum of step k, back to the signed sums: t_0 = c B and t_k = c (2 b_k - B)
+/// with B = b_0 (the texel's optical depth, saturated as the 8-bit accumulation saturates it).
 
 // ---- begin hairshadow/reconstruction/fibre_density.hpp
 /// @file
@@ -6703,17 +6754,23 @@ private:
 #include <array>
 #include <cstddef>
 #include <span>
+#include <type_traits>
 
 namespace hairshadow {
 
-/// A texel's projected sums: sums[0] is always the texel's total optical depth times a constant.
-template <int N>
+/// A texel's projected sums: sums[0] is always the texel's total optical depth times a constant
+/// (`Value`: float sums, or an 8-bit accumulation's steps of the encoded terms).
+template <int N, class Value = float>
 struct projected_sums {
-    std::array<float, std::size_t(N)> sums{};
+    std::array<Value, std::size_t(N)> sums{};
     friend bool operator==(const projected_sums&, const projected_sums&) = default;
 };
 
 namespace detail {
+
+/// Whether an accumulation stores quantised steps (emulated_8bit) rather than float sums.
+template <class Accumulation>
+inline constexpr bool quantised_accumulation = !std::is_floating_point_v<typename Accumulation::value_type>;
 
 /// Where `depth` lies in the texel's range: 0 at the nearest fragment, 1 at the furthest (0 for
 /// every depth where the range is one depth).
@@ -6732,15 +6789,42 @@ public:
     static constexpr bool accepts = fragment_span_state<Placement>;
 
     template <class Placement, class Accumulation>
-    using storage = projected_sums<N>;
+    using storage = projected_sums<N, typename Accumulation::value_type>;
 
     template <class Placement, class Accumulation, class Fragment>
     void build(const Placement&, const typename Placement::texel_state& state, std::span<const Fragment> fragments,
                storage<Placement, Accumulation>& out) const {
-        std::array<double, std::size_t(N)> terms{};
-        for (const auto& f : fragments)
-            derived().project(position_in_range(state.nearest, state.furthest, f.depth), fragment_optical_depth(f), terms.data());
-        for (int k = 0; k < N; ++k) out.sums[std::size_t(k)] = float(terms[std::size_t(k)]);
+        if constexpr (!quantised_accumulation<Accumulation>) {
+            std::array<double, std::size_t(N)> terms{};
+            for (const auto& f : fragments)
+                derived().project(position_in_range(state.nearest, state.furthest, f.depth), fragment_optical_depth(f), terms.data());
+            for (int k = 0; k < N; ++k) out.sums[std::size_t(k)] = float(terms[std::size_t(k)]);
+        } else {
+            std::array<typename Accumulation::sum_type, std::size_t(N)> steps{};
+            for (const auto& f : fragments) {
+                std::array<double, std::size_t(N)> terms{}; // one fragment's terms, each a float
+                derived().project(position_in_range(state.nearest, state.furthest, f.depth), fragment_optical_depth(f), terms.data());
+                const float t0 = float(terms[0]);
+                steps[0] = Accumulation::add(steps[0], t0 * (1.0f / Derived::terms_per_optical_depth));
+                for (int k = 1; k < N; ++k)
+                    steps[std::size_t(k)] = Accumulation::add(steps[std::size_t(k)], (t0 + float(terms[std::size_t(k)])) * (0.5f / Derived::terms_per_optical_depth));
+            }
+            for (int k = 0; k < N; ++k) out.sums[std::size_t(k)] = Accumulation::store(steps[std::size_t(k)]);
+        }
+    }
+
+    /// The signed sums a texel's storage stands for (see the file's comment).
+    template <class Accumulation>
+    static std::array<float, std::size_t(N)> decoded(const projected_sums<N, typename Accumulation::value_type>& in) noexcept {
+        if constexpr (!quantised_accumulation<Accumulation>) {
+            return in.sums;
+        } else {
+            std::array<float, std::size_t(N)> out{};
+            const float total = Accumulation::decode(in.sums[0]);
+            out[0] = Derived::terms_per_optical_depth * total;
+            for (int k = 1; k < N; ++k) out[std::size_t(k)] = Derived::terms_per_optical_depth * (2.0f * Accumulation::decode(in.sums[std::size_t(k)]) - total);
+            return out;
+        }
     }
 
     /// Nothing in front of the nearest fragment, the whole texel's optical depth behind the furthest
@@ -6749,10 +6833,11 @@ public:
     template <class Placement, class Accumulation>
     float optical_depth(const Placement&, const typename Placement::texel_state& state, const storage<Placement, Accumulation>& in,
                         float depth) const noexcept {
-        const float total = derived().total_optical_depth(in.sums.data());
+        const auto signed_sums = decoded<Accumulation>(in);
+        const float total = derived().total_optical_depth(signed_sums.data());
         if (!(depth > state.nearest) || !(total > 0.0f)) return 0.0f;
         if (depth > state.furthest) return total;
-        const float tau = derived().series_optical_depth(in.sums.data(), position_in_range(state.nearest, state.furthest, depth));
+        const float tau = derived().series_optical_depth(signed_sums.data(), position_in_range(state.nearest, state.furthest, depth));
         return tau > 0.0f ? std::min(tau, total) : 0.0f; // and a series that came to NaN (a singular moment matrix) casts none
     }
 
@@ -6761,7 +6846,7 @@ public:
     static constexpr int stored_maps = N;
     template <class Placement, class Accumulation>
     static float stored_optical_depth(const storage<Placement, Accumulation>& in, int k) noexcept {
-        return in.sums[std::size_t(k)];
+        return decoded<Accumulation>(in)[std::size_t(k)];
     }
 
 private:
@@ -6789,6 +6874,8 @@ class fourier_series : public detail::depth_projection<fourier_series<C>, C> {
 public:
     static constexpr int coefficients = C;
     static constexpr int harmonics = (C - 1) / 2;
+    /// a_0 = 2 b: what an 8-bit accumulation's encoding divides by (detail/depth_projection.hpp).
+    static constexpr float terms_per_optical_depth = 2.0f;
     static constexpr std::string_view name = "fourier_series";
     static constexpr std::string_view glsl_name = "reconstruction/fourier_series";
 
@@ -6859,9 +6946,10 @@ private:
 namespace hairshadow {
 
 /// Fourier opacity maps: the depth range (depth_range's nearest and furthest fragment, which place
-/// the period) and C coefficients summed in float (signed sums: no 8-bit accumulation).
-template <int C = 7>
-using fourier_opacity_maps = shadow_method<depth_range<1>, float_accumulation, fourier_series<C>>;
+/// the period) and C coefficients summed in float, or in emulated 8 bits (each signed coefficient
+/// stored as steps of b (1 + cos) / 2 or b (1 + sin) / 2 beside a_0's b: detail/depth_projection.hpp).
+template <int C = 7, class Accumulation = float_accumulation>
+using fourier_opacity_maps = shadow_method<depth_range<1>, Accumulation, fourier_series<C>>;
 
 /// The registration of Fourier opacity maps (methods/method_family.hpp).
 struct fourier_opacity_maps_family {
@@ -6869,10 +6957,11 @@ struct fourier_opacity_maps_family {
     static constexpr std::string_view grammar =
         "fom[:C[:sigma]] (Jansen & Bavoil's Fourier opacity maps: C = 3, 5, 7, 11 or 15 coefficients, 7 by default; sigma damps "
         "each harmonic by Lanczos' sigma factor)";
-    static constexpr bool takes_accumulation = false;
+    static constexpr bool takes_accumulation = true;
     static constexpr auto examples = std::make_tuple(spec_example<fourier_opacity_maps<7>>{"fom", in_compare | in_bench | in_figure | in_animate},
                                                      spec_example<fourier_opacity_maps<7>>{"fom:7:sigma", in_compare},
-                                                     spec_example<fourier_opacity_maps<15>>{"fom:15"});
+                                                     spec_example<fourier_opacity_maps<15>>{"fom:15"},
+                                                     spec_example<fourier_opacity_maps<7, emulated_8bit>>{"fom:7:8bit", in_compare});
     static constexpr auto keywords = std::to_array<std::string_view>({"sigma"});
     using sizes = size_list<3, 5, 7, 11, 15>;
 
@@ -6885,7 +6974,9 @@ struct fourier_opacity_maps_family {
     static bool visit(const spec_fields& f, Visit&& visit) {
         const int c = f.size() >= 1 ? f.whole(0) : 7;
         const bool damped = f.size() == 2;
-        return with_size<sizes>(c, [&](auto size) { visit(fourier_opacity_maps<size()>(depth_range<1>(), fourier_series<size()>(damped))); });
+        return with_size<sizes>(c, [&](auto size) {
+            visit(fourier_opacity_maps<size(), Accumulation>(depth_range<1>(), fourier_series<size()>(damped)));
+        });
     }
 };
 
@@ -6896,43 +6987,6 @@ struct fourier_opacity_maps_family {
 /// Unreal Engine's hair-count deep shadows (HairStrands): K layers at power-law depths behind each
 /// texel's first fragment, and T = A^max(0, count - 1). The spec `ue[:K[:ALPHA[:DISTRIBUTION]]]`.
 
-// ---- begin hairshadow/accumulation/emulated_8bit.hpp
-/// @file
-/// Emulated 8-bit accumulation (Kim & Neumann 2001, section 2): an RGBA8 target with additive blending.
-/// Each fragment writes b / kappa, which GL converts to 8 bits (round to nearest) before the blend
-/// adds it with saturation; a stored value q stands for the optical depth kappa * q / 255, with
-/// exp(-kappa) = 2^-8 so that a full texel (q = 255) lets 1/256 of the light through.
-
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
-#include <numbers>
-#include <string_view>
-
-namespace hairshadow {
-
-/// Every add quantised to 8 bits and saturated, as additive blending into an RGBA8 target does.
-struct emulated_8bit {
-    using value_type = std::uint8_t;
-    using sum_type = std::int32_t; ///< saturated at 255 after every add, exactly as the blend does
-    static constexpr std::string_view name = "8bit";
-    static constexpr std::string_view summary = "emulated 8-bit accumulation";
-    static constexpr std::string_view glsl_name = "accumulation/emulated_8bit";
-    /// exp(-kappa) = 2^-8: kappa = 8 ln 2, about 5.545 (the paper rounds it to 5.56).
-    static constexpr float kappa = 8.0f * std::numbers::ln2_v<float>;
-
-    /// The 8-bit step a fragment of optical depth b adds: its output b / kappa in unorm8.
-    static std::int32_t quantise(float optical_depth) noexcept {
-        return std::int32_t(std::lround(std::clamp(optical_depth / kappa, 0.0f, 1.0f) * 255.0f));
-    }
-    static sum_type add(sum_type sum, float optical_depth) noexcept { return std::min<sum_type>(sum + quantise(optical_depth), 255); }
-    static constexpr sum_type combine(sum_type a, sum_type b) noexcept { return std::min<sum_type>(a + b, 255); }
-    static constexpr value_type store(sum_type sum) noexcept { return value_type(std::min<sum_type>(sum, 255)); }
-    static constexpr float decode(value_type v) noexcept { return kappa * float(v) / 255.0f; }
-};
-
-} // namespace hairshadow
-// ---- end hairshadow/accumulation/emulated_8bit.hpp
 // ---- begin hairshadow/placement/power_layers.hpp
 /// @file
 /// Unreal Engine's deep shadow layers (HairStrands: HairStrandsDeepShadowCommon.ush, ComputeDOMWeights;
@@ -7412,26 +7466,133 @@ private:
 // ---- begin hairshadow/methods/moment_shadow_maps.hpp
 /// @file
 /// Moment shadow maps for translucent occluders (Peters et al. 2016; Münstermann et al. 2018's
-/// moment-based transparency): the total optical depth and four power moments of depth per texel,
-/// over the texel's depth range. The spec `msm[:4[:OVERESTIMATION]]`.
+/// moment-based transparency): the total optical depth and M power moments of depth per texel (4, 6 or
+/// 8), over the texel's depth range. The spec `msm[:M[:OVERESTIMATION]]`.
 
 // ---- begin hairshadow/reconstruction/power_moments.hpp
 /// @file
 /// Reconstruction by power moments: moment shadow maps for translucent occluders (Peters et al. 2016)
 /// as moment-based order-independent transparency computes them (Münstermann et al. 2018). Each
 /// texel keeps its total optical depth b_0 = sum b_i and the optical-depth-weighted power moments
-/// sum b_i z_i^j, j = 1 .. 4, of depth z in [-1, 1] (here the texel's depth range: -1 at its nearest
-/// fragment, 1 at its furthest; reconstruction/detail/depth_projection.hpp). A query at z normalises
-/// the moments by b_0, pulls them toward a fixed vector by a small bias (a singular Hankel matrix
-/// otherwise: two sheets of hair are two depths), and solves for the canonical distribution with one
-/// support point at z (Hamburger 4MSM): the weight of its points in front of z, plus `overestimation`
-/// times the weight at z, is the share of b_0 in front. Overestimation 0 gives the sharpest lower bound
-/// of that share over every distribution with these moments (a bound on the exact optical depth from
-/// below, which the bias loosens a little), 1 the upper bound; MBOIT's 0.25 is the default.
-/// docs/methods.md checks the bound on the test models.
+/// sum b_i z_i^j, j = 1 .. M (M = 4, 6 or 8), of depth z in [-1, 1] (here the texel's depth range: -1
+/// at its nearest fragment, 1 at its furthest; reconstruction/detail/depth_projection.hpp). A query
+/// at z normalises the moments by b_0, pulls them toward a fixed vector by a small bias (a singular
+/// Hankel matrix otherwise: k sheets of hair are k depths), and solves for the canonical distribution
+/// with one support point at z: z and the M/2 roots of a polynomial of degree M/2 (Hamburger MSM; a
+/// quadratic for 4 moments, a cubic for 6, a quartic for 8). The weight of its points in front of z,
+/// plus `overestimation` times the weight at z, is the share of b_0 in front. Overestimation 0 gives
+/// the sharpest lower bound of that share over every distribution with these moments (a bound on the
+/// exact optical depth from below, which the bias loosens a little), 1 the upper bound; MBOIT's 0.25
+/// is the default. Every operation is float, in one order that the GLSL twin repeats; docs/methods.md
+/// checks the bound on the test models.
 
+// ---- begin hairshadow/reconstruction/detail/polynomial_roots.hpp
+/// @file
+/// The real roots of c_0 + c_1 z + .. + c_n z^n (n = 2, 3, 4) whose roots are all real, as the
+/// canonical distributions of power moments give them (reconstruction/power_moments.hpp).
+///
+/// Degree 2 by the quadratic formula as moment shadow maps have always solved it (kept bit for bit).
+/// Degrees 3 and 4 by isolation and bisection rather than Viete's or Ferrari's closed forms: a
+/// canonical distribution often has a point far out (c_n small beside the others), and there the
+/// closed forms, which shift by c_(n-1) / c_n, lose the roots near [-1, 1] to cancellation (the moment
+/// bound, measured on random texels, then failed by up to 68 times the texel's total). The roots of a
+/// polynomial whose roots are all real are separated by those of its derivative (Rolle), so each
+/// interval between the derivative's roots (found the same way, down to a quadratic solved in the
+/// stable form) holds one root, where the polynomial is monotonic; the outer ones are bracketed by
+/// doubling a step outward. A fixed number of halvings then narrows each bracket to the float
+/// resolution. Only float additions, multiplications, divisions and comparisons, in one order that
+/// shaders/reconstruction/power_moments.glsl repeats.
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+
+namespace hairshadow::detail {
+
+/// Halvings of a root's bracket: from a bracket of width 2^k, k + 24 halvings reach float
+/// resolution; 40 cover brackets up to 2^16 wide at full precision.
+inline constexpr int root_bisection_steps = 40;
+/// Doublings of the step outward that brackets the outermost roots (2^60 at most).
+inline constexpr int root_bracket_doublings = 60;
+
+/// c[0] + c[1] z + .. + c[n] z^n, by Horner's rule.
+template <int n>
+float polynomial_at(const float* c, float z) noexcept {
+    float value = c[n];
+    for (int k = n - 1; k >= 0; --k) value = value * z + c[k];
+    return value;
+}
+
+/// The root of the n-degree polynomial c in [lo, hi], where it changes sign once.
+template <int n>
+float bisected_root(const float* c, float lo, float hi) noexcept {
+    const bool negative_at_lo = polynomial_at<n>(c, lo) < 0.0f;
+    for (int step = 0; step < root_bisection_steps; ++step) {
+        const float mid = 0.5f * (lo + hi);
+        const bool below = (polynomial_at<n>(c, mid) < 0.0f) == negative_at_lo; // the root lies above mid
+        lo = below ? mid : lo; // selects, not branches: the side is a coin toss
+        hi = below ? hi : mid;
+    }
+    return 0.5f * (lo + hi);
+}
+
+/// The roots of c[0] + c[1] z + .. + c[n] z^n, all real, in ascending order for n >= 3.
+template <int n>
+std::array<float, std::size_t(n)> real_roots(const float* c) noexcept {
+    static_assert(n >= 2 && n <= 4, "real_roots solves degrees 2 to 4");
+    if constexpr (n == 2) {
+        const float p = c[1] / c[2], q = c[0] / c[2];
+        const float r = std::sqrt(0.25f * p * p - q);
+        return {-0.5f * p - r, -0.5f * p + r};
+    } else {
+        // The derivative's roots, ascending.
+        float slope[n];
+        for (int k = 0; k < n; ++k) slope[k] = float(k + 1) * c[k + 1];
+        std::array<float, std::size_t(n - 1)> critical{};
+        if constexpr (n == 3) {
+            // The stable form of the quadratic formula: no cancellation where slope[2] is small.
+            const float middle = 0.5f * slope[1];
+            const float root = std::sqrt(std::max(middle * middle - slope[0] * slope[2], 0.0f));
+            const float t = -(middle + (middle < 0.0f ? -root : root));
+            const float z1 = t / slope[2], z2 = slope[0] / t;
+            critical = {std::min(z1, z2), std::max(z1, z2)};
+        } else {
+            critical = real_roots<n - 1>(slope);
+        }
+        std::array<float, std::size_t(n)> roots{};
+        for (int i = 0; i < n; ++i) {
+            float lo, hi;
+            if (i == 0 || i == n - 1) {
+                // Outward from the outermost critical point until the sign changes.
+                const float from = i == 0 ? critical[0] : critical[std::size_t(n - 2)], direction = i == 0 ? -1.0f : 1.0f;
+                const bool negative_at_from = polynomial_at<n>(c, from) < 0.0f;
+                float step = 1.0f, to = from + direction * step;
+                for (int k = 0; k < root_bracket_doublings && (polynomial_at<n>(c, to) < 0.0f) == negative_at_from; ++k) {
+                    step = 2.0f * step;
+                    to = from + direction * step;
+                }
+                if ((polynomial_at<n>(c, to) < 0.0f) == negative_at_from) {
+                    roots[std::size_t(i)] = from; // no change of sign: rounding merged a double root at the critical point
+                    continue;
+                }
+                lo = i == 0 ? to : from;
+                hi = i == 0 ? from : to;
+            } else {
+                lo = critical[std::size_t(i - 1)];
+                hi = critical[std::size_t(i)];
+            }
+            roots[std::size_t(i)] = bisected_root<n>(c, lo, hi);
+        }
+        return roots;
+    }
+}
+
+} // namespace hairshadow::detail
+// ---- end hairshadow/reconstruction/detail/polynomial_roots.hpp
+
+#include <array>
+#include <cmath>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -7442,81 +7603,142 @@ struct power_moments_parameters {
     /// The weight the canonical distribution's point at the query depth counts with: 0 the lower
     /// bound, 1 the upper, MBOIT's 0.25 by default.
     float overestimation = 0.25f;
-    /// How far the normalised moments are pulled toward (0, 0.375, 0, 0.375): MBOIT's bias vector for 4
-    /// power moments in 32-bit floats, with a bias of 5e-7 (our choice; at it the bound holds within
-    /// 1e-3 of a texel's total on Sintel and on sheets of strands, tests/test_moment_shadow_maps.cpp).
-    float bias = 5e-7f;
-    /// Throws argument_error unless the overestimation is in [0, 1] and the bias in [1e-7, 1]: with
-    /// less, a texel of two depths (its range's ends, z = -1 and 1) leaves the Hankel matrix singular.
+    /// How far the normalised moments are pulled toward MBOIT's bias vector for M power moments in
+    /// 32-bit floats (power_moments<M>::bias_vector). Unset: MBOIT's bias for M moments in 32-bit
+    /// floats, 5e-7, 5e-6 and 5e-5 for 4, 6 and 8 (the values of the authors' code as ported in
+    /// chrismile/PixelSyncOIT, src/OIT/OIT_MBOIT.cpp); at them the bound holds within 1e-3 of a
+    /// texel's total on Sintel and on sheets of strands (tests/test_moment_shadow_maps.cpp).
+    std::optional<float> bias{};
+    /// Throws argument_error unless the overestimation is in [0, 1] and a bias given is in [1e-7, 1]:
+    /// with less, a texel of two depths (its range's ends, z = -1 and 1) leaves the Hankel matrix singular.
     void check() const {
         if (!(overestimation >= 0.0f && overestimation <= 1.0f)) throw argument_error("power moments: the overestimation must be in [0, 1]");
-        if (!(bias >= 1e-7f && bias <= 1.0f)) throw argument_error("power moments: the bias must be in [1e-7, 1]");
+        if (bias && !(*bias >= 1e-7f && *bias <= 1.0f)) throw argument_error("power moments: the bias must be in [1e-7, 1]");
     }
     friend bool operator==(const power_moments_parameters&, const power_moments_parameters&) = default;
 };
 
-/// Optical depth from the total and four power moments of each texel's absorption.
-class power_moments : public detail::depth_projection<power_moments, 5> {
+/// Optical depth from the total and M power moments of each texel's absorption.
+/// @tparam M power moments: 4, 6 or 8
+template <int M = 4>
+class power_moments : public detail::depth_projection<power_moments<M>, M + 1> {
+    static_assert(M == 4 || M == 6 || M == 8, "power_moments takes 4, 6 or 8 moments");
+    static constexpr int n = M / 2; // the canonical distribution's support points besides the query
+
 public:
-    static constexpr int moments = 4;
+    static constexpr int moments = M;
+    /// b_0 = b (detail/depth_projection.hpp's encoding for an 8-bit accumulation).
+    static constexpr float terms_per_optical_depth = 1.0f;
     static constexpr std::string_view name = "power_moments";
     static constexpr std::string_view glsl_name = "reconstruction/power_moments";
+    /// MBOIT's bias vectors for 32-bit floats (the moments of a distribution the biased ones are
+    /// pulled toward; odd moments 0), as in chrismile/PixelSyncOIT's Data/Shaders/MBOIT/MomentOIT.glsl.
+    static constexpr std::array<float, std::size_t(M + 1)> bias_vector = [] {
+        if constexpr (M == 4) return std::array<float, 5>{1.0f, 0.0f, 0.375f, 0.0f, 0.375f};
+        else if constexpr (M == 6) return std::array<float, 7>{1.0f, 0.0f, 0.48f, 0.0f, 0.451f, 0.0f, 0.45f};
+        else return std::array<float, 9>{1.0f, 0.0f, 0.75f, 0.0f, 0.67666666666666664f, 0.0f, 0.63f, 0.0f, 0.60030303030303034f};
+    }();
+    /// MBOIT's bias for M moments in 32-bit floats (power_moments_parameters::bias).
+    static constexpr float default_bias = M == 4 ? 5e-7f : M == 6 ? 5e-6f : 5e-5f;
 
     power_moments() = default;
     explicit power_moments(const power_moments_parameters& parameters) : parameters_(parameters) { parameters.check(); }
     const power_moments_parameters& parameters() const noexcept { return parameters_; }
+    /// The bias the reconstruction uses: the parameters', or MBOIT's for M moments.
+    float bias() const noexcept { return parameters_.bias.value_or(default_bias); }
 
-    /// Adds b and b z, b z^2, b z^3, b z^4 at z = 2 s - 1.
+    /// Adds b and b z, b z^2, .. b z^M at z = 2 s - 1.
     static void project(float s, float b, double* terms) noexcept {
         const float z = 2.0f * s - 1.0f;
         float power = b;
         terms[0] += double(b);
-        for (int j = 1; j <= moments; ++j) {
+        for (int j = 1; j <= M; ++j) {
             power = power * z;
             terms[j] += double(power);
         }
     }
     static float total_optical_depth(const float* stored) noexcept { return stored[0]; }
 
-    /// b_0 times the share of it in front of position s (Hamburger 4MSM, in float as the GLSL twin).
+    /// b_0 times the share of it in front of position s (Hamburger MSM, in float as the GLSL twin).
     float series_optical_depth(const float* stored, float s) const noexcept {
-        const float b0 = stored[0], keep = 1.0f - parameters_.bias, pull = parameters_.bias * 0.375f;
-        const float b1 = keep * (stored[1] / b0), b2 = keep * (stored[2] / b0) + pull;
-        const float b3 = keep * (stored[3] / b0), b4 = keep * (stored[4] / b0) + pull;
+        // The biased normalised moments, b[0] = 1.
+        const float b0 = stored[0], bias = this->bias(), keep = 1.0f - bias;
+        std::array<float, std::size_t(M + 1)> b{};
+        b[0] = 1.0f;
+        for (int j = 1; j <= M; ++j) {
+            b[std::size_t(j)] = keep * (stored[j] / b0);
+            if (j % 2 == 0) b[std::size_t(j)] = b[std::size_t(j)] + bias * bias_vector[std::size_t(j)];
+        }
         const float z0 = 2.0f * s - 1.0f;
-        // Cholesky factorisation of the Hankel matrix of (1, b1, b2, b3, b4).
-        const float d11 = b2 - b1 * b1;
-        const float l21d11 = b3 - b1 * b2;
-        const float l21 = l21d11 / d11;
-        const float d22 = (b4 - b2 * b2) - l21d11 * l21;
-        // The polynomial c0 + c1 z + c2 z^2 whose roots, with z0, carry the canonical distribution.
-        float c1 = z0 - b1;
-        float c2 = z0 * z0 - b2 - l21 * c1;
-        c1 = c1 / d11;
-        c2 = c2 / d22;
-        c1 = c1 - l21 * c2;
-        const float c0 = 1.0f - (c1 * b1 + c2 * b2);
-        const float p = c1 / c2, q = c0 / c2;
-        const float r = std::sqrt(0.25f * p * p - q);
-        const float z1 = -0.5f * p - r, z2 = -0.5f * p + r;
-        // The interpolating polynomial of the weights (overestimation at z0, 1 in front, 0 behind),
-        // applied to the moments.
-        const float f0 = parameters_.overestimation, f1 = z1 < z0 ? 1.0f : 0.0f, f2 = z2 < z0 ? 1.0f : 0.0f;
-        const float f01 = (f1 - f0) / (z1 - z0), f12 = (f2 - f1) / (z2 - z1), f012 = (f12 - f01) / (z2 - z0);
-        const float q2 = f012, q1 = (f01 - f012 * z1) - q2 * z0;
-        const float q0 = f0 - (f01 - f012 * z1) * z0;
-        const float share = q0 + b1 * q1 + b2 * q2;
+        // An LDL^T factorisation of the Hankel matrix H_ij = b_(i+j), i, j = 0 .. n (e = l d).
+        float l[n + 1][n + 1] = {}, e[n + 1][n + 1] = {}, d[n + 1] = {};
+        d[0] = 1.0f;
+        for (int i = 1; i <= n; ++i) l[i][0] = e[i][0] = b[std::size_t(i)];
+        for (int j = 1; j <= n; ++j) {
+            float djj = b[std::size_t(2 * j)];
+            for (int k = 0; k < j; ++k) djj = djj - e[j][k] * l[j][k];
+            d[j] = djj;
+            for (int i = j + 1; i <= n; ++i) {
+                float eij = b[std::size_t(i + j)];
+                for (int k = 0; k < j; ++k) eij = eij - e[i][k] * l[j][k];
+                e[i][j] = eij;
+                l[i][j] = eij / djj;
+            }
+        }
+        // c = H^-1 (1, z0, .. z0^n): the coefficients of the polynomial whose roots, with z0, carry
+        // the canonical distribution.
+        float c[n + 1];
+        c[0] = 1.0f;
+        float power = 1.0f;
+        for (int i = 1; i <= n; ++i) {
+            power = power * z0;
+            float ci = power;
+            for (int k = 0; k < i; ++k) ci = ci - l[i][k] * c[k];
+            c[i] = ci;
+        }
+        for (int i = 1; i <= n; ++i) c[i] = c[i] / d[i];
+        for (int i = n - 1; i >= 0; --i) {
+            float sum = l[i + 1][i] * c[i + 1];
+            for (int j = i + 2; j <= n; ++j) sum = sum + l[j][i] * c[j];
+            c[i] = c[i] - sum;
+        }
+        // The support points and their weights (overestimation at z0, 1 in front, 0 behind).
+        float z[n + 1], f[n + 1];
+        z[0] = z0;
+        f[0] = parameters_.overestimation;
+        const auto roots = detail::real_roots<n>(c);
+        for (int i = 1; i <= n; ++i) {
+            z[i] = roots[std::size_t(i - 1)];
+            f[i] = z[i] < z0 ? 1.0f : 0.0f;
+        }
+        // The polynomial interpolating the weights at the points (Newton's divided differences, then
+        // its monomial coefficients), applied to the moments.
+        for (int order = 1; order <= n; ++order)
+            for (int i = n; i >= order; --i) f[i] = (f[i] - f[i - 1]) / (z[i] - z[i - order]);
+        float q[n + 1] = {};
+        q[0] = f[n];
+        for (int k = n - 1, degree = 0; k >= 0; --k, ++degree) {
+            q[degree + 1] = q[degree];
+            for (int i = degree; i >= 1; --i) q[i] = q[i - 1] - q[i] * z[k];
+            q[0] = f[k] - q[0] * z[k];
+        }
+        float share = q[0];
+        for (int k = 1; k <= n; ++k) share = share + b[std::size_t(k)] * q[k];
         // Where rounding still leaves no solution (a root on the query), the share the weights give
         // every point at the query: 0 for the lower bound, 1 for the upper, so a bound stays one.
-        return b0 * (std::isfinite(share) ? share : f0);
+        return b0 * (std::isfinite(share) ? share : parameters_.overestimation);
     }
 
     /// The GLSL twin (shaders/reconstruction/power_moments.glsl) and its parameters.
-    static std::string glsl_defines() { return "#define HS_MOMENTS 4\n"; }
+    static std::string glsl_defines() { return "#define HS_MOMENTS " + std::to_string(M) + "\n"; }
     template <class Set>
     void glsl_uniforms(Set&& set) const {
         set("hs_moment_overestimation", parameters_.overestimation);
-        set("hs_moment_bias", parameters_.bias);
+        set("hs_moment_bias", bias());
+        // The pull on moment 2k, the bias times the bias vector, computed here so that GL adds the
+        // CPU's floats.
+        for (int k = 1; k <= n; ++k)
+            set("hs_moment_pull[" + std::to_string(k - 1) + "]", bias() * bias_vector[std::size_t(2 * k)]);
     }
 
 private:
@@ -7529,29 +7751,34 @@ private:
 namespace hairshadow {
 
 /// Moment shadow maps: the depth range (depth_range's nearest and furthest fragment, which bound z)
-/// and five sums in float (signed moments: no 8-bit accumulation).
-using moment_shadow_maps = shadow_method<depth_range<1>, float_accumulation, power_moments>;
+/// and M + 1 sums in float (the family takes no 8-bit accumulation: moment-based transparency keeps
+/// moments in 16 bits at the least, and the bound needs their precision).
+template <int M = 4>
+using moment_shadow_maps = shadow_method<depth_range<1>, float_accumulation, power_moments<M>>;
 
 /// The registration of moment shadow maps (methods/method_family.hpp).
 struct moment_shadow_maps_family {
     static constexpr std::string_view name = "msm";
     static constexpr std::string_view grammar =
-        "msm[:4[:OVERESTIMATION]] (moment shadow maps for translucent occluders: 4 power moments; the weight of the query's own "
-        "depth in [0, 1], 0.25 by default as moment-based transparency, 0 for the lower bound)";
+        "msm[:M[:OVERESTIMATION]] (moment shadow maps for translucent occluders: M = 4, 6 or 8 power moments, 4 by default; the "
+        "weight of the query's own depth in [0, 1], 0.25 by default as moment-based transparency, 0 for the lower bound)";
     static constexpr bool takes_accumulation = false;
-    static constexpr auto examples = std::make_tuple(spec_example<moment_shadow_maps>{"msm", in_compare | in_bench | in_figure | in_animate},
-                                                     spec_example<moment_shadow_maps>{"msm:4:0", in_compare});
+    static constexpr auto examples = std::make_tuple(spec_example<moment_shadow_maps<4>>{"msm", in_compare | in_bench | in_figure | in_animate},
+                                                     spec_example<moment_shadow_maps<4>>{"msm:4:0", in_compare},
+                                                     spec_example<moment_shadow_maps<6>>{"msm:6", in_compare},
+                                                     spec_example<moment_shadow_maps<8>>{"msm:8", in_compare});
     static constexpr std::array<std::string_view, 0> keywords{};
+    using sizes = size_list<4, 6, 8>;
 
     static void check(const spec_fields& f) {
         if (f.size() > 2) throw f.bad("msm takes at most M and OVERESTIMATION");
-        if (f.size() >= 1 && f.whole(0) != 4) throw f.bad("msm needs M = 4 power moments");
+        if (f.size() >= 1 && !sizes::contains(f.whole(0))) throw f.bad("msm needs M = 4, 6 or 8 power moments");
         f.checked([&] { parameters(f).check(); });
     }
     template <class Accumulation, class Visit>
     static bool visit(const spec_fields& f, Visit&& visit) {
-        visit(moment_shadow_maps(depth_range<1>(), power_moments(parameters(f))));
-        return true;
+        const int m = f.size() >= 1 ? f.whole(0) : 4;
+        return with_size<sizes>(m, [&](auto size) { visit(moment_shadow_maps<size()>(depth_range<1>(), power_moments<size()>(parameters(f)))); });
     }
 
 private:
@@ -8800,7 +9027,7 @@ inline std::string default_accumulation() {
     return name;
 }
 
-/// The names of the families whose specs take an accumulation: "osm, dc, dom, occ or ue".
+/// The names of the families whose specs take an accumulation: "osm, dc, dom, occ, fom or ue".
 inline std::string accumulating_families() {
     std::vector<std::string_view> names;
     registered_families::any([&]<class F>() {

@@ -57,6 +57,6 @@ int main() {
 
     const std::vector<std::string> methods{"osm:16", "osm:8:gamma", "osm:4:uniform:8bit", "dom:3", "dom:4:8bit", "dc:4", "dc:2:8bit",
                                            "occ:128:4", "occ:32:1:8bit", "docc:64:2", "rosm:16", "dsm", "dsm:0.01",
-                                           "adsm", "adsm:auto", "adsm:0.4:0.0021:0.35", "avsm:16", "fom:15:sigma", "msm:4:0.5", "ue:4:zero", "avsm"};
+                                           "adsm", "adsm:auto", "adsm:0.4:0.0021:0.35", "avsm:16", "fom:15:sigma", "msm:4:0.5", "ue:4:zero", "avsm", "msm:8:0", "msm:6", "fom:7:8bit"};
     for (std::size_t i = 0; i < methods.size(); ++i) text("method_spec", "method" + std::to_string(i), methods[i]);
 }

@@ -20,6 +20,7 @@ struct map_comparison {
     long state_off = 0;     ///< texels whose placement state differs in any bit
     long data_off = 0;      ///< stored values off: bits or counts at all, 8-bit levels at all, float sums by more than float_tolerance relative
     double worst = 0.0;     ///< the largest relative difference of a float sum
+    long levels_off = 0;    ///< 8-bit projected sums one level apart (counted in data_off when further)
     bool exact() const noexcept { return occupied == occupied_cpu && occupancy_off == 0 && state_off == 0 && data_off == 0; }
 };
 
@@ -81,6 +82,14 @@ map_comparison compare_maps(const Method& cpu, hairshadow::gl::maps<Method>& on_
             } else if constexpr (requires { a.data.bits; }) {
                 c.data_off += a.data.bits != b.data.bits;
                 for (std::size_t k = 0; k < a.data.slabs.size(); ++k) compare_value(c, a.data.slabs[k], b.data.slabs[k]);
+            } else if constexpr (requires { requires !std::is_floating_point_v<std::remove_cvref_t<decltype(a.data.sums[0])>>; }) {
+                // 8-bit steps of encoded terms, each rounded to a level from a term whose cosine GL
+                // and the C library may round apart: a level off now and then.
+                for (std::size_t k = 0; k < a.data.sums.size(); ++k) {
+                    const int levels = std::abs(int(a.data.sums[k]) - int(b.data.sums[k]));
+                    c.levels_off += levels == 1;
+                    c.data_off += levels > 1;
+                }
             } else if constexpr (requires { a.data.sums; }) {
                 // Signed sums that may cancel to near zero (a Fourier coefficient, an odd moment), of
                 // terms whose cosines GL and the C library round apart: each within

@@ -720,12 +720,12 @@ void main() {
 
 /// shaders/compute/projection.glsl
 inline constexpr std::string_view compute_projection = R"hs_glsl(// Compute build of the projected methods (Fourier opacity maps, moment shadow maps; one work group per
-// tile): every fragment's HS_SUMS terms (the reconstruction's hs_projection_terms at its place in the
-// texel's depth range) summed in fixed point, HS_SUM_SLOTS (a multiple of 4) of them per walk of the tile's segments;
+// tile): every fragment's HS_SUMS terms (hs_added_terms at its place in the texel's depth range) summed
+// in fixed point (or, HS_EIGHT_BIT, as integer 8-bit steps), HS_SUM_SLOTS (a multiple of 4) of them per walk of the tile's segments;
 // then each texel's sums into the sums texture, four to an array layer, where the raster pass blends
 // them.
 layout(local_size_x = 16, local_size_y = 16) in;
-layout(binding = 0, rgba32f) writeonly uniform image2DArray hs_sums_image;
+layout(binding = 0, HS_SUMS_FORMAT) writeonly uniform image2DArray hs_sums_image;
 
 shared vec2 hs_texel_range[256];
 ivec2 hs_origin;
@@ -737,7 +737,7 @@ void hs_emit(int x, int y) {
     hs_shade(x, y, depth, b);
     vec2 range = hs_texel_range[texel];
     float terms[HS_SUMS];
-    hs_projection_terms(hs_position_in_range(range.x, range.y, depth), b, terms);
+    hs_added_terms(hs_position_in_range(range.x, range.y, depth), b, terms);
     for (int k = 0; k < HS_SUM_SLOTS && hs_group_first + k < HS_SUMS; ++k) hs_add_sum(texel * uint(HS_SUM_SLOTS) + uint(k), terms[hs_group_first + k]);
 }
 
@@ -758,8 +758,12 @@ void main() {
             for (int layer = hs_group_first / 4; layer < (min(hs_group_first + HS_SUM_SLOTS, HS_SUMS) + 3) / 4; ++layer) {
                 vec4 v = vec4(0.0);
                 for (int c = 0; c < 4 && 4 * layer + c < HS_SUMS; ++c) {
-                    int64_t sum = int64_t(hs_sum(me * uint(HS_SUM_SLOTS) + uint(4 * layer + c - hs_group_first)));
-                    v[c] = float(double(sum) / 1099511627776.0lf); // signed: the terms may be negative
+                    uint slot = me * uint(HS_SUM_SLOTS) + uint(4 * layer + c - hs_group_first);
+#ifdef HS_EIGHT_BIT
+                    v[c] = hs_stored(hs_sum(slot));
+#else
+                    v[c] = float(double(int64_t(hs_sum(slot))) / 1099511627776.0lf); // signed: the terms may be negative
+#endif
                 }
                 imageStore(hs_sums_image, ivec3(texel, layer), v);
             }
@@ -1145,6 +1149,7 @@ float hs_transmittance(vec3 world_pos) {
         vec4 v = texelFetch(hs_sums_texture, ivec3(texel, layer), 0);
         for (int c = 0; c < 4 && 4 * layer + c < HS_SUMS; ++c) sums[4 * layer + c] = v[c];
     }
+    hs_decode_sums(sums);
     float total = hs_total_optical_depth(sums);
     if (!(depth > range.x) || !(total > 0.0)) return 1.0;
     if (depth > range.w) return exp(-total);
@@ -1433,16 +1438,17 @@ void main() {
 /// shaders/passes/projection.glsl
 inline constexpr std::string_view passes_projection = R"hs_glsl(// The projected methods' raster pass (Fourier opacity maps, moment shadow maps): each fragment adds its
 // HS_SUMS terms (the reconstruction's hs_projection_terms at its place in the texel's depth range) to
-// its texel, four to a target, by additive blending into RGBA32F layers of a 2D array texture.
+// its texel, four to a target, by additive blending into RGBA32F layers of a 2D array texture (or their
+// 8-bit encoding, hs_encode'd, into RGBA8 layers).
 layout(location = 0) out vec4 hs_sums_out[(HS_SUMS + 3) / 4];
 
 void main() {
     vec4 range = texelFetch(hs_range_map, ivec2(gl_FragCoord.xy), 0);
     float terms[HS_SUMS];
-    hs_projection_terms(hs_position_in_range(range.x, range.w, hs_fragment_depth()), hs_fragment_optical_depth(), terms);
+    hs_added_terms(hs_position_in_range(range.x, range.w, hs_fragment_depth()), hs_fragment_optical_depth(), terms);
     for (int t = 0; t < (HS_SUMS + 3) / 4; ++t) {
         vec4 v = vec4(0.0);
-        for (int c = 0; c < 4 && 4 * t + c < HS_SUMS; ++c) v[c] = terms[4 * t + c];
+        for (int c = 0; c < 4 && 4 * t + c < HS_SUMS; ++c) v[c] = hs_encode(terms[4 * t + c]);
         hs_sums_out[t] = v;
     }
 }
@@ -1870,13 +1876,42 @@ float hs_nodes_transmittance(float depths[HS_NODES], float omegas[HS_NODES], flo
 
 /// shaders/reconstruction/depth_projection.glsl
 inline constexpr std::string_view reconstruction_depth_projection = R"hs_glsl(// What Fourier opacity maps and moment shadow maps share (mirrors
-// reconstruction/detail/depth_projection.hpp): a fragment's place in its texel's depth range, 0 at the
-// nearest fragment and 1 at the furthest, divided as the CPU divides (a quotient of floats in double,
-// rounded once, is the correctly rounded float quotient).
+// reconstruction/detail/depth_projection.hpp), composed after the reconstruction's snippet: a
+// fragment's place in its texel's depth range, 0 at the nearest fragment and 1 at the furthest, divided
+// as the CPU divides (a quotient of floats in double, rounded once, is the correctly rounded float
+// quotient); the terms a fragment adds and the sums a texel stores, under either accumulation.
 float hs_position_in_range(float nearest, float furthest, float depth) {
     precise float span = furthest - nearest;
     precise float offset = depth - nearest;
     return span > 0.0 ? clamp(float(double(offset) / double(span)), 0.0, 1.0) : 0.0;
+}
+
+// The terms a fragment adds (composed after the reconstruction, whose hs_projection_terms and HS_SUMS
+// it uses): the reconstruction's, or with an 8-bit accumulation (HS_EIGHT_BIT) their non-negative
+// encoding, (t_0 + t_k) / (2 c) and t_0 / c with c = HS_TERMS_PER_OPTICAL_DEPTH, as the CPU encodes them.
+void hs_added_terms(float s, float b, out float terms[HS_SUMS]) {
+    hs_projection_terms(s, b, terms);
+#ifdef HS_EIGHT_BIT
+    float t0 = terms[0];
+    for (int k = 1; k < HS_SUMS; ++k) {
+        precise float step = (t0 + terms[k]) * (0.5 / HS_TERMS_PER_OPTICAL_DEPTH);
+        terms[k] = step;
+    }
+    terms[0] = t0 * (1.0 / HS_TERMS_PER_OPTICAL_DEPTH);
+#endif
+}
+
+// A texel's signed sums from what it stores (the accumulation's hs_decode of each): with 8-bit steps,
+// t_0 = c B and t_k = c (2 b_k - B), B the decoded step sum of term 0.
+void hs_decode_sums(inout float sums[HS_SUMS]) {
+#ifdef HS_EIGHT_BIT
+    float total = hs_decode(sums[0]);
+    sums[0] = HS_TERMS_PER_OPTICAL_DEPTH * total;
+    for (int k = 1; k < HS_SUMS; ++k) {
+        precise float t = HS_TERMS_PER_OPTICAL_DEPTH * (2.0 * hs_decode(sums[k]) - total);
+        sums[k] = t;
+    }
+#endif
 }
 )hs_glsl";
 
@@ -2048,13 +2083,17 @@ float hs_occupancy_optical_depth_in_front(int k, uint bits[HS_WORDS], float slab
 
 /// shaders/reconstruction/power_moments.glsl
 inline constexpr std::string_view reconstruction_power_moments = R"hs_glsl(// Moment shadow maps for translucent occluders (Peters et al. 2016; Münstermann et al. 2018), mirroring
-// hairshadow::power_moments: a fragment of optical depth b at z = 2 s - 1 adds b, b z, b z^2, b z^3 and
-// b z^4; a query at z normalises the moments by b_0, pulls them toward (0, 0.375, 0, 0.375) by
-// hs_moment_bias, and takes b_0 times the share of the canonical distribution (Hamburger 4MSM) in front
-// of z, its point at z weighted by hs_moment_overestimation. Float, in the CPU's order of operations.
+// hairshadow::power_moments<HS_MOMENTS> and reconstruction/detail/polynomial_roots.hpp: a fragment of
+// optical depth b at z = 2 s - 1 adds b, b z, .. b z^HS_MOMENTS; a query at z normalises the moments by
+// b_0, pulls the even ones by hs_moment_pull (the CPU's bias times MBOIT's bias vector), and takes b_0
+// times the share of the canonical distribution in front of z (z and the roots of a polynomial of
+// degree HS_MOMENTS / 2), its point at z weighted by hs_moment_overestimation. Float, in the CPU's
+// order of operations.
 #define HS_SUMS (HS_MOMENTS + 1)
+#define HS_MOMENT_POINTS (HS_MOMENTS / 2)
 uniform float hs_moment_overestimation;
 uniform float hs_moment_bias;
+uniform float hs_moment_pull[HS_MOMENT_POINTS];
 
 void hs_projection_terms(float s, float b, out float terms[HS_SUMS]) {
     precise float z = 2.0 * s - 1.0;
@@ -2068,30 +2107,174 @@ void hs_projection_terms(float s, float b, out float terms[HS_SUMS]) {
 
 float hs_total_optical_depth(float sums[HS_SUMS]) { return sums[0]; }
 
+#if HS_MOMENT_POINTS > 2
+// The roots of a polynomial whose roots are all real (degree 3 or 4), as polynomial_roots.hpp finds
+// them: each between two roots of the derivative, the outer ones bracketed by doubling a step outward,
+// then 40 halvings.
+float hs_polynomial_at(float c[HS_MOMENT_POINTS + 1], int degree, float z) {
+    precise float value = c[degree];
+    for (int k = degree - 1; k >= 0; --k) value = value * z + c[k];
+    return value;
+}
+
+float hs_bisected_root(float c[HS_MOMENT_POINTS + 1], int degree, float lo, float hi) {
+    bool negative_at_lo = hs_polynomial_at(c, degree, lo) < 0.0;
+    for (int step = 0; step < 40; ++step) {
+        precise float mid = 0.5 * (lo + hi);
+        if ((hs_polynomial_at(c, degree, mid) < 0.0) == negative_at_lo) lo = mid;
+        else hi = mid;
+    }
+    precise float root = 0.5 * (lo + hi);
+    return root;
+}
+
+// The roots of the polynomial c of `degree` (3 or 4), ascending, given its derivative's.
+void hs_isolated_roots(float c[HS_MOMENT_POINTS + 1], int degree, float critical[HS_MOMENT_POINTS], out float roots[HS_MOMENT_POINTS]) {
+    for (int i = 0; i < degree; ++i) {
+        precise float lo, hi;
+        if (i == 0 || i == degree - 1) {
+            float from = i == 0 ? critical[0] : critical[degree - 2], direction = i == 0 ? -1.0 : 1.0;
+            bool negative_at_from = hs_polynomial_at(c, degree, from) < 0.0;
+            precise float step = 1.0, to = from + direction * step;
+            for (int k = 0; k < 60 && (hs_polynomial_at(c, degree, to) < 0.0) == negative_at_from; ++k) {
+                step = 2.0 * step;
+                to = from + direction * step;
+            }
+            if ((hs_polynomial_at(c, degree, to) < 0.0) == negative_at_from) {
+                roots[i] = from; // no change of sign: a double root at the critical point
+                continue;
+            }
+            lo = i == 0 ? to : from;
+            hi = i == 0 ? from : to;
+        } else {
+            lo = critical[i - 1];
+            hi = critical[i];
+        }
+        roots[i] = hs_bisected_root(c, degree, lo, hi);
+    }
+}
+
+// The stable quadratic formula's two roots of c[0] + c[1] z + c[2] z^2, ascending.
+void hs_quadratic_roots(float c[HS_MOMENT_POINTS + 1], out float roots[HS_MOMENT_POINTS]) {
+    precise float middle = 0.5 * c[1];
+    precise float root = sqrt(max(middle * middle - c[0] * c[2], 0.0));
+    precise float t = -(middle + (middle < 0.0 ? -root : root));
+    precise float z1 = t / c[2], z2 = c[0] / t;
+    roots[0] = min(z1, z2);
+    roots[1] = max(z1, z2);
+}
+
+void hs_moment_roots(float c[HS_MOMENT_POINTS + 1], out float roots[HS_MOMENT_POINTS]) {
+    float slope[HS_MOMENT_POINTS + 1], critical[HS_MOMENT_POINTS];
+    for (int k = 0; k < HS_MOMENT_POINTS; ++k) {
+        precise float s = float(k + 1) * c[k + 1];
+        slope[k] = s;
+    }
+    slope[HS_MOMENT_POINTS] = 0.0;
+#if HS_MOMENT_POINTS == 3
+    hs_quadratic_roots(slope, critical);
+#else
+    float second[HS_MOMENT_POINTS + 1], inflexion[HS_MOMENT_POINTS];
+    for (int k = 0; k < 3; ++k) {
+        precise float s = float(k + 1) * slope[k + 1];
+        second[k] = s;
+    }
+    second[3] = 0.0;
+    second[4] = 0.0;
+    hs_quadratic_roots(second, inflexion);
+    hs_isolated_roots(slope, 3, inflexion, critical);
+#endif
+    hs_isolated_roots(c, HS_MOMENT_POINTS, critical, roots);
+}
+#endif
+
 float hs_series_optical_depth(float sums[HS_SUMS], float s) {
-    precise float b0 = sums[0], keep = 1.0 - hs_moment_bias, pull = hs_moment_bias * 0.375;
-    precise float b1 = keep * (sums[1] / b0), b2 = keep * (sums[2] / b0) + pull;
-    precise float b3 = keep * (sums[3] / b0), b4 = keep * (sums[4] / b0) + pull;
+    const int n = HS_MOMENT_POINTS;
+    // The biased normalised moments, b[0] = 1.
+    float b[HS_SUMS];
+    precise float b0 = sums[0], keep = 1.0 - hs_moment_bias;
+    b[0] = 1.0;
+    for (int j = 1; j <= HS_MOMENTS; ++j) {
+        precise float bj = keep * (sums[j] / b0);
+        if (j % 2 == 0) bj = bj + hs_moment_pull[j / 2 - 1];
+        b[j] = bj;
+    }
     precise float z0 = 2.0 * s - 1.0;
-    precise float d11 = b2 - b1 * b1;
-    precise float l21d11 = b3 - b1 * b2;
-    precise float l21 = l21d11 / d11;
-    precise float d22 = (b4 - b2 * b2) - l21d11 * l21;
-    precise float c1 = z0 - b1;
-    precise float c2 = z0 * z0 - b2 - l21 * c1;
-    c1 = c1 / d11;
-    c2 = c2 / d22;
-    c1 = c1 - l21 * c2;
-    precise float c0 = 1.0 - (c1 * b1 + c2 * b2);
-    precise float p = c1 / c2, q = c0 / c2;
+    // LDL^T of the Hankel matrix H_ij = b_(i+j) (e = l d).
+    float l[(n + 1) * (n + 1)], e[(n + 1) * (n + 1)], d[n + 1];
+    for (int k = 0; k < (n + 1) * (n + 1); ++k) l[k] = e[k] = 0.0;
+    d[0] = 1.0;
+    for (int i = 1; i <= n; ++i) l[i * (n + 1)] = e[i * (n + 1)] = b[i];
+    for (int j = 1; j <= n; ++j) {
+        precise float djj = b[2 * j];
+        for (int k = 0; k < j; ++k) djj = djj - e[j * (n + 1) + k] * l[j * (n + 1) + k];
+        d[j] = djj;
+        for (int i = j + 1; i <= n; ++i) {
+            precise float eij = b[i + j];
+            for (int k = 0; k < j; ++k) eij = eij - e[i * (n + 1) + k] * l[j * (n + 1) + k];
+            precise float lij = eij / djj;
+            e[i * (n + 1) + j] = eij;
+            l[i * (n + 1) + j] = lij;
+        }
+    }
+    // c = H^-1 (1, z0, .. z0^n).
+    float c[n + 1];
+    c[0] = 1.0;
+    precise float power = 1.0;
+    for (int i = 1; i <= n; ++i) {
+        power = power * z0;
+        precise float ci = power;
+        for (int k = 0; k < i; ++k) ci = ci - l[i * (n + 1) + k] * c[k];
+        c[i] = ci;
+    }
+    for (int i = 1; i <= n; ++i) {
+        precise float ci = c[i] / d[i];
+        c[i] = ci;
+    }
+    for (int i = n - 1; i >= 0; --i) {
+        precise float sum = l[(i + 1) * (n + 1) + i] * c[i + 1];
+        for (int j = i + 2; j <= n; ++j) sum = sum + l[j * (n + 1) + i] * c[j];
+        precise float ci = c[i] - sum;
+        c[i] = ci;
+    }
+    // The support points and their weights.
+    float z[n + 1], f[n + 1], roots[n];
+#if HS_MOMENT_POINTS == 2
+    precise float p = c[1] / c[2], q = c[0] / c[2];
     precise float r = sqrt(0.25 * p * p - q);
-    precise float z1 = -0.5 * p - r, z2 = -0.5 * p + r;
-    float f0 = hs_moment_overestimation, f1 = z1 < z0 ? 1.0 : 0.0, f2 = z2 < z0 ? 1.0 : 0.0;
-    precise float f01 = (f1 - f0) / (z1 - z0), f12 = (f2 - f1) / (z2 - z1), f012 = (f12 - f01) / (z2 - z0);
-    precise float q2 = f012, q1 = (f01 - f012 * z1) - q2 * z0;
-    precise float q0 = f0 - (f01 - f012 * z1) * z0;
-    precise float share = q0 + b1 * q1 + b2 * q2;
-    return b0 * (isnan(share) || isinf(share) ? f0 : share); // no solution: the query's own weight, as on the CPU
+    precise float r1 = -0.5 * p - r, r2 = -0.5 * p + r;
+    roots[0] = r1;
+    roots[1] = r2;
+#else
+    hs_moment_roots(c, roots);
+#endif
+    z[0] = z0;
+    f[0] = hs_moment_overestimation;
+    for (int i = 1; i <= n; ++i) {
+        z[i] = roots[i - 1];
+        f[i] = z[i] < z0 ? 1.0 : 0.0;
+    }
+    // The polynomial interpolating the weights (divided differences, then monomial coefficients).
+    for (int order = 1; order <= n; ++order)
+        for (int i = n; i >= order; --i) {
+            precise float fi = (f[i] - f[i - 1]) / (z[i] - z[i - order]);
+            f[i] = fi;
+        }
+    float qc[n + 1];
+    for (int k = 0; k <= n; ++k) qc[k] = 0.0;
+    qc[0] = f[n];
+    for (int k = n - 1, degree = 0; k >= 0; --k, ++degree) {
+        qc[degree + 1] = qc[degree];
+        for (int i = degree; i >= 1; --i) {
+            precise float qi = qc[i - 1] - qc[i] * z[k];
+            qc[i] = qi;
+        }
+        precise float q0 = f[k] - qc[0] * z[k];
+        qc[0] = q0;
+    }
+    precise float share = qc[0];
+    for (int k = 1; k <= n; ++k) share = share + b[k] * qc[k];
+    return b0 * (isnan(share) || isinf(share) ? hs_moment_overestimation : share); // no solution: the query's own weight, as on the CPU
 }
 )hs_glsl";
 

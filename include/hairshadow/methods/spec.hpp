@@ -22,7 +22,7 @@ inline std::string default_accumulation() {
     return name;
 }
 
-/// The names of the families whose specs take an accumulation: "osm, dc, dom, occ or ue".
+/// The names of the families whose specs take an accumulation: "osm, dc, dom, occ, fom or ue".
 inline std::string accumulating_families() {
     std::vector<std::string_view> names;
     registered_families::any([&]<class F>() {

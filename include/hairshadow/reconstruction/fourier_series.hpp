@@ -38,6 +38,8 @@ class fourier_series : public detail::depth_projection<fourier_series<C>, C> {
 public:
     static constexpr int coefficients = C;
     static constexpr int harmonics = (C - 1) / 2;
+    /// a_0 = 2 b: what an 8-bit accumulation's encoding divides by (detail/depth_projection.hpp).
+    static constexpr float terms_per_optical_depth = 2.0f;
     static constexpr std::string_view name = "fourier_series";
     static constexpr std::string_view glsl_name = "reconstruction/fourier_series";
 

@@ -3,8 +3,10 @@
 /// The projected methods on GL (Fourier opacity maps, moment shadow maps: a reconstruction built on
 /// detail::depth_projection): after the light pass's depth-range map, one pass adds every fragment's
 /// N terms at its place in its texel's range into the layers of an RGBA32F 2D array texture, four
-/// sums a layer. The raster path blends them additively (up to 8 targets, 32 sums, in one draw); the
-/// compute path sums them in fixed point, in any order to the same bits. Both the passes and the
+/// sums a layer (RGBA8 with an 8-bit accumulation, which adds the encoded terms, each quantised:
+/// reconstruction/detail/depth_projection.hpp). The raster path blends them additively (up to 8
+/// targets, 32 sums, in one draw); the compute path sums them in fixed point (or as integer 8-bit
+/// steps), in any order to the same bits. Both the passes and the
 /// look-up are composed from the reconstruction's GLSL (hs_projection_terms, hs_total_optical_depth,
 /// hs_series_optical_depth, with its defines and uniforms), so a new projection brings only that.
 
@@ -23,6 +25,8 @@ template <class Method>
 class projected_maps_gl : public detail::maps_base<typename Method::placement_type> {
     using P = typename Method::placement_type;
     using R = typename Method::reconstruction_type;
+    using A = typename Method::accumulation_type;
+    using accumulation = accumulation_glsl<A>;
     using base = detail::maps_base<P>;
     static_assert(std::is_base_of_v<hairshadow::detail::depth_projection<R, R::sums>, R>, "projected_maps_gl needs a reconstruction built on depth_projection");
     static_assert(R::sums <= 32, "one raster pass writes at most 8 targets of 4 sums");
@@ -41,8 +45,8 @@ public:
         if (draw_buffers < array_layers) throw feature_error("this projected method needs " + std::to_string(array_layers) + " draw buffers");
         const auto vs = compile_stage(GL_VERTEX_SHADER, {}, {shaders::raster_vertex}, "raster/vertex");
         const auto fs = compile_stage(GL_FRAGMENT_SHADER, defines(),
-                                      {shaders::raster_coverage, shaders::placement_common, shaders::reconstruction_depth_projection,
-                                       reconstruction_source(), shaders::passes_projection},
+                                      {shaders::raster_coverage, accumulation::source(), shaders::placement_common, reconstruction_source(),
+                                       shaders::reconstruction_depth_projection, shaders::passes_projection},
                                       "passes/projection");
         raster_program_ = link_program({&vs, &fs}, "projection pass");
     }
@@ -51,8 +55,8 @@ public:
     /// version line; bind with bind_lookup(program, first_unit, prefix).
     static std::string lookup_source(std::string_view prefix = default_lookup_prefix) {
         std::string s = defines();
-        for (auto piece : {shaders::placement_common, shaders::reconstruction_depth_projection, reconstruction_source(), shaders::lookup_light,
-                           shaders::lookup_projection})
+        for (auto piece : {accumulation::source(), shaders::placement_common, reconstruction_source(), shaders::reconstruction_depth_projection,
+                           shaders::lookup_light, shaders::lookup_projection})
             s += piece;
         return prefix_glsl(s, prefix);
     }
@@ -70,13 +74,13 @@ public:
         if (pass.compute()) {
             // shaders/compute/projection: one work group per tile of the light pass's lists, 8 sums a walk.
             if (!compute_program_)
-                compute_program_ = detail::link_compute_pass(defines() + "#define HS_SUM_SLOTS 8\n",
-                                                             {shaders::accumulation_float, shaders::compute_tile_sums, shaders::placement_common,
-                                                              shaders::reconstruction_depth_projection, reconstruction_source()},
+                compute_program_ = detail::link_compute_pass(compute_defines() + "#define HS_SUM_SLOTS 8\n",
+                                                             {accumulation::source(), shaders::compute_tile_sums, shaders::placement_common,
+                                                              reconstruction_source(), shaders::reconstruction_depth_projection},
                                                              shaders::compute_projection, "compute/projection");
             this->begin_compute_pass(pass, compute_program_.get());
             detail::set_policy_uniforms(lookup_binder(compute_program_.get(), 1, default_lookup_prefix), reconstruction_);
-            glBindImageTexture(0, sums_.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+            glBindImageTexture(0, sums_.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, accumulation::texture_format);
             pass.compute()->dispatch_tiles();
             glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
             check("projected maps: compute pass");
@@ -117,12 +121,13 @@ public:
         const P& placement = this->placement_from(range);
         const int res = this->light_.resolution();
         const std::size_t n = std::size_t(res) * std::size_t(res);
-        std::vector<float> stored(4 * n * std::size_t(array_layers));
+        std::vector<typename A::value_type> stored(4 * n * std::size_t(array_layers));
         {
             state_guard guard("hairshadow: projected maps read-back");
             guard.set_pass_state();
             glBindTexture(GL_TEXTURE_2D_ARRAY, sums_.get());
-            glGetTexImage(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA, GL_FLOAT, stored.data());
+            glPixelStorei(GL_PACK_ALIGNMENT, 1);
+            glGetTexImage(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA, accumulation::pixel_type, stored.data());
             check("projected maps read-back");
         }
         std::vector<typename Method::texel_maps> out(n);
@@ -153,22 +158,28 @@ public:
     }
 
     /// Bytes of the textures the look-up reads: the depth range (RGBA32F, one extra row) and the sums
-    /// (RGBA32F layers), at the last build's resolution.
+    /// (RGBA32F or RGBA8 layers), at the last build's resolution.
     std::size_t memory_bytes() const noexcept {
         const std::size_t res = std::size_t(allocated_);
-        return 16 * res * (res + 1) + 16 * res * res * std::size_t(array_layers);
+        return 16 * res * (res + 1) + accumulation::texel_bytes * res * res * std::size_t(array_layers);
     }
 
 private:
+    /// The reconstruction's defines, and HS_EIGHT_BIT where the accumulation stores 8-bit steps.
     static std::string defines() {
-        return "#define HS_ALPHA_MAX " + std::to_string(HAIRSHADOW_ALPHA_MAX) + "\n" + detail::policy_defines<R>();
+        return common_defines() + (accumulation::unorm8 ? "#define HS_EIGHT_BIT\n" : "");
+    }
+    static std::string compute_defines() { return common_defines() + accumulation::image_defines("HS_SUMS_FORMAT"); }
+    static std::string common_defines() {
+        return "#define HS_ALPHA_MAX " + std::to_string(HAIRSHADOW_ALPHA_MAX) + "\n" + accumulation::defines() + detail::policy_defines<R>() +
+               "#define HS_TERMS_PER_OPTICAL_DEPTH " + std::to_string(int(R::terms_per_optical_depth)) + ".0\n";
     }
     static std::string_view reconstruction_source() { return detail::policy_source<R>(R::glsl_name); }
     void allocate(int res) {
         if (res == allocated_) return;
         sums_ = make_texture();
         glBindTexture(GL_TEXTURE_2D_ARRAY, sums_.get());
-        glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA32F, res, res, array_layers);
+        glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, accumulation::texture_format, res, res, array_layers);
         allocated_ = res;
     }
 

@@ -13,6 +13,14 @@
 /// 0 <= s <= 1), and their GLSL twins (gl/maps/projected_maps.hpp). Sums are kept in double and
 /// stored once as float, close to the GL compute build's exact fixed-point sums (tests/gl compare
 /// them within 1e-5 of the texel's largest sum).
+///
+/// An accumulation that stores quantised steps (emulated_8bit: additive blending into RGBA8 targets)
+/// adds only non-negative values, so the signed terms t_k are stored as steps of b (1 + t_k / t_0) / 2,
+/// between 0 and b where |t_k| <= t_0 (a Fourier term beside a_0, a power of z in [-1, 1] beside 1),
+/// and term 0 as b itself: t_0 = c b for Derived's `terms_per_optical_depth` c, a power of two, so
+/// that the steps are (t_0 + t_k) / (2 c) and t_0 / c, each one float rounding, as in GLSL. The
+/// look-up decodes b_k, the sum of step k, back to the signed sums: t_0 = c B and t_k = c (2 b_k - B)
+/// with B = b_0 (the texel's optical depth, saturated as the 8-bit accumulation saturates it).
 
 #include <hairshadow/reconstruction/fibre_density.hpp>
 
@@ -20,17 +28,23 @@
 #include <array>
 #include <cstddef>
 #include <span>
+#include <type_traits>
 
 namespace hairshadow {
 
-/// A texel's projected sums: sums[0] is always the texel's total optical depth times a constant.
-template <int N>
+/// A texel's projected sums: sums[0] is always the texel's total optical depth times a constant
+/// (`Value`: float sums, or an 8-bit accumulation's steps of the encoded terms).
+template <int N, class Value = float>
 struct projected_sums {
-    std::array<float, std::size_t(N)> sums{};
+    std::array<Value, std::size_t(N)> sums{};
     friend bool operator==(const projected_sums&, const projected_sums&) = default;
 };
 
 namespace detail {
+
+/// Whether an accumulation stores quantised steps (emulated_8bit) rather than float sums.
+template <class Accumulation>
+inline constexpr bool quantised_accumulation = !std::is_floating_point_v<typename Accumulation::value_type>;
 
 /// Where `depth` lies in the texel's range: 0 at the nearest fragment, 1 at the furthest (0 for
 /// every depth where the range is one depth).
@@ -49,15 +63,42 @@ public:
     static constexpr bool accepts = fragment_span_state<Placement>;
 
     template <class Placement, class Accumulation>
-    using storage = projected_sums<N>;
+    using storage = projected_sums<N, typename Accumulation::value_type>;
 
     template <class Placement, class Accumulation, class Fragment>
     void build(const Placement&, const typename Placement::texel_state& state, std::span<const Fragment> fragments,
                storage<Placement, Accumulation>& out) const {
-        std::array<double, std::size_t(N)> terms{};
-        for (const auto& f : fragments)
-            derived().project(position_in_range(state.nearest, state.furthest, f.depth), fragment_optical_depth(f), terms.data());
-        for (int k = 0; k < N; ++k) out.sums[std::size_t(k)] = float(terms[std::size_t(k)]);
+        if constexpr (!quantised_accumulation<Accumulation>) {
+            std::array<double, std::size_t(N)> terms{};
+            for (const auto& f : fragments)
+                derived().project(position_in_range(state.nearest, state.furthest, f.depth), fragment_optical_depth(f), terms.data());
+            for (int k = 0; k < N; ++k) out.sums[std::size_t(k)] = float(terms[std::size_t(k)]);
+        } else {
+            std::array<typename Accumulation::sum_type, std::size_t(N)> steps{};
+            for (const auto& f : fragments) {
+                std::array<double, std::size_t(N)> terms{}; // one fragment's terms, each a float
+                derived().project(position_in_range(state.nearest, state.furthest, f.depth), fragment_optical_depth(f), terms.data());
+                const float t0 = float(terms[0]);
+                steps[0] = Accumulation::add(steps[0], t0 * (1.0f / Derived::terms_per_optical_depth));
+                for (int k = 1; k < N; ++k)
+                    steps[std::size_t(k)] = Accumulation::add(steps[std::size_t(k)], (t0 + float(terms[std::size_t(k)])) * (0.5f / Derived::terms_per_optical_depth));
+            }
+            for (int k = 0; k < N; ++k) out.sums[std::size_t(k)] = Accumulation::store(steps[std::size_t(k)]);
+        }
+    }
+
+    /// The signed sums a texel's storage stands for (see the file's comment).
+    template <class Accumulation>
+    static std::array<float, std::size_t(N)> decoded(const projected_sums<N, typename Accumulation::value_type>& in) noexcept {
+        if constexpr (!quantised_accumulation<Accumulation>) {
+            return in.sums;
+        } else {
+            std::array<float, std::size_t(N)> out{};
+            const float total = Accumulation::decode(in.sums[0]);
+            out[0] = Derived::terms_per_optical_depth * total;
+            for (int k = 1; k < N; ++k) out[std::size_t(k)] = Derived::terms_per_optical_depth * (2.0f * Accumulation::decode(in.sums[std::size_t(k)]) - total);
+            return out;
+        }
     }
 
     /// Nothing in front of the nearest fragment, the whole texel's optical depth behind the furthest
@@ -66,10 +107,11 @@ public:
     template <class Placement, class Accumulation>
     float optical_depth(const Placement&, const typename Placement::texel_state& state, const storage<Placement, Accumulation>& in,
                         float depth) const noexcept {
-        const float total = derived().total_optical_depth(in.sums.data());
+        const auto signed_sums = decoded<Accumulation>(in);
+        const float total = derived().total_optical_depth(signed_sums.data());
         if (!(depth > state.nearest) || !(total > 0.0f)) return 0.0f;
         if (depth > state.furthest) return total;
-        const float tau = derived().series_optical_depth(in.sums.data(), position_in_range(state.nearest, state.furthest, depth));
+        const float tau = derived().series_optical_depth(signed_sums.data(), position_in_range(state.nearest, state.furthest, depth));
         return tau > 0.0f ? std::min(tau, total) : 0.0f; // and a series that came to NaN (a singular moment matrix) casts none
     }
 
@@ -78,7 +120,7 @@ public:
     static constexpr int stored_maps = N;
     template <class Placement, class Accumulation>
     static float stored_optical_depth(const storage<Placement, Accumulation>& in, int k) noexcept {
-        return in.sums[std::size_t(k)];
+        return decoded<Accumulation>(in)[std::size_t(k)];
     }
 
 private:
