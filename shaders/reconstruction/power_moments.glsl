@@ -34,7 +34,9 @@ float hs_polynomial_at(float c[HS_MOMENT_POINTS + 1], int degree, float z) {
 }
 
 float hs_bisected_root(float c[HS_MOMENT_POINTS + 1], int degree, float lo, float hi) {
-    bool negative_at_lo = hs_polynomial_at(c, degree, lo) < 0.0;
+    float at_lo = hs_polynomial_at(c, degree, lo), at_hi = hs_polynomial_at(c, degree, hi);
+    bool negative_at_lo = at_lo < 0.0;
+    if ((at_hi < 0.0) == negative_at_lo) return abs(at_lo) <= abs(at_hi) ? lo : hi; // a double root, as on the CPU
     for (int step = 0; step < 40; ++step) {
         precise float mid = 0.5 * (lo + hi);
         if ((hs_polynomial_at(c, degree, mid) < 0.0) == negative_at_lo) lo = mid;

@@ -6583,10 +6583,11 @@ private:
 /// An accumulation that stores quantised steps (emulated_8bit: additive blending into RGBA8 targets)
 /// adds only non-negative values, so the signed terms t_k are stored as steps of b (1 + t_k / t_0) / 2,
 /// between 0 and b where |t_k| <= t_0 (a Fourier term beside a_0, a power of z in [-1, 1] beside 1),
-/// and term 0 as b itself: t_0 = c b for Derived's `terms_per_optical_depth` c, a power of two, so
-/// that the steps are (t_0 + t_k) / (2 c) and t_0 / c, each one float rounding, as in GLSL. The
-/// look-up decodes b_k, the sum of step k, back to the signed sums: t_0 = c B and t_k = c (2 b_k - B)
-/// with B = b_0 (the texel's optical depth, saturated as the 8-bit accumulation saturates it).
+/// and term 0 as b itself: t_0 = c b for Derived's `terms_per_optical_depth` c (1 unless it says so),
+/// a power of two, so that the steps are (t_0 + t_k) / (2 c) and t_0 / c, each one float rounding,
+/// as in GLSL. The look-up decodes S_k, the sum of step k, back to the signed sums: t_0 = c B and
+/// t_k = c (2 S_k - B) with B = S_0 (the texel's optical depth, saturated as the 8-bit accumulation
+/// saturates it).
 
 // ---- begin hairshadow/reconstruction/fibre_density.hpp
 /// @file
@@ -6772,6 +6773,18 @@ namespace detail {
 template <class Accumulation>
 inline constexpr bool quantised_accumulation = !std::is_floating_point_v<typename Accumulation::value_type>;
 
+/// Term 0 over a fragment's optical depth: the reconstruction's `terms_per_optical_depth`, 1 where it
+/// gives none; a power of two from 1 to 8, so that the 8-bit encoding's scalings are exact.
+template <class Derived>
+constexpr float terms_per_optical_depth() noexcept {
+    constexpr float c = [] {
+        if constexpr (requires { Derived::terms_per_optical_depth; }) return float(Derived::terms_per_optical_depth);
+        else return 1.0f;
+    }();
+    static_assert(c == 1.0f || c == 2.0f || c == 4.0f || c == 8.0f, "terms_per_optical_depth must be 1, 2, 4 or 8");
+    return c;
+}
+
 /// Where `depth` lies in the texel's range: 0 at the nearest fragment, 1 at the furthest (0 for
 /// every depth where the range is one depth).
 inline float position_in_range(float nearest, float furthest, float depth) noexcept {
@@ -6805,9 +6818,12 @@ public:
                 std::array<double, std::size_t(N)> terms{}; // one fragment's terms, each a float
                 derived().project(position_in_range(state.nearest, state.furthest, f.depth), fragment_optical_depth(f), terms.data());
                 const float t0 = float(terms[0]);
-                steps[0] = Accumulation::add(steps[0], t0 * (1.0f / Derived::terms_per_optical_depth));
-                for (int k = 1; k < N; ++k)
-                    steps[std::size_t(k)] = Accumulation::add(steps[std::size_t(k)], (t0 + float(terms[std::size_t(k)])) * (0.5f / Derived::terms_per_optical_depth));
+                constexpr float c = terms_per_optical_depth<Derived>();
+                steps[0] = Accumulation::add(steps[0], t0 * (1.0f / c));
+                for (int k = 1; k < N; ++k) {
+                    const float step = (t0 + float(terms[std::size_t(k)])) * (0.5f / c);
+                    steps[std::size_t(k)] = Accumulation::add(steps[std::size_t(k)], step);
+                }
             }
             for (int k = 0; k < N; ++k) out.sums[std::size_t(k)] = Accumulation::store(steps[std::size_t(k)]);
         }
@@ -6821,8 +6837,9 @@ public:
         } else {
             std::array<float, std::size_t(N)> out{};
             const float total = Accumulation::decode(in.sums[0]);
-            out[0] = Derived::terms_per_optical_depth * total;
-            for (int k = 1; k < N; ++k) out[std::size_t(k)] = Derived::terms_per_optical_depth * (2.0f * Accumulation::decode(in.sums[std::size_t(k)]) - total);
+            constexpr float c = terms_per_optical_depth<Derived>();
+            out[0] = c * total;
+            for (int k = 1; k < N; ++k) out[std::size_t(k)] = c * (2.0f * Accumulation::decode(in.sums[std::size_t(k)]) - total);
             return out;
         }
     }
@@ -7509,8 +7526,10 @@ private:
 
 namespace hairshadow::detail {
 
-/// Halvings of a root's bracket: from a bracket of width 2^k, k + 24 halvings reach float
-/// resolution; 40 cover brackets up to 2^16 wide at full precision.
+/// Halvings of a root's bracket: from a bracket of width 2^k, about k + 24 halvings reach float
+/// resolution near 1, so 40 bring an inner bracket (at most a few units wide) to it; an outer one may
+/// be up to 2^60 wide, and 40 halvings still leave its root to within 2^-40 of the bracket, fine for
+/// a root that far out, whose relative precision is what the weights need.
 inline constexpr int root_bisection_steps = 40;
 /// Doublings of the step outward that brackets the outermost roots (2^60 at most).
 inline constexpr int root_bracket_doublings = 60;
@@ -7523,10 +7542,13 @@ float polynomial_at(const float* c, float z) noexcept {
     return value;
 }
 
-/// The root of the n-degree polynomial c in [lo, hi], where it changes sign once.
+/// The root of the n-degree polynomial c in [lo, hi], where it changes sign once. Where rounding
+/// leaves the same sign at both ends (a double root at a critical point), the end nearer zero.
 template <int n>
 float bisected_root(const float* c, float lo, float hi) noexcept {
-    const bool negative_at_lo = polynomial_at<n>(c, lo) < 0.0f;
+    const float at_lo = polynomial_at<n>(c, lo), at_hi = polynomial_at<n>(c, hi);
+    const bool negative_at_lo = at_lo < 0.0f;
+    if ((at_hi < 0.0f) == negative_at_lo) return std::abs(at_lo) <= std::abs(at_hi) ? lo : hi;
     for (int step = 0; step < root_bisection_steps; ++step) {
         const float mid = 0.5f * (lo + hi);
         const bool below = (polynomial_at<n>(c, mid) < 0.0f) == negative_at_lo; // the root lies above mid

@@ -172,7 +172,7 @@ private:
     static std::string compute_defines() { return common_defines() + accumulation::image_defines("HS_SUMS_FORMAT"); }
     static std::string common_defines() {
         return "#define HS_ALPHA_MAX " + std::to_string(HAIRSHADOW_ALPHA_MAX) + "\n" + accumulation::defines() + detail::policy_defines<R>() +
-               "#define HS_TERMS_PER_OPTICAL_DEPTH " + std::to_string(int(R::terms_per_optical_depth)) + ".0\n";
+               "#define HS_TERMS_PER_OPTICAL_DEPTH " + std::to_string(int(hairshadow::detail::terms_per_optical_depth<R>())) + ".0\n";
     }
     static std::string_view reconstruction_source() { return detail::policy_source<R>(R::glsl_name); }
     void allocate(int res) {

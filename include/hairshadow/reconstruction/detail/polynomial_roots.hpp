@@ -21,8 +21,10 @@
 
 namespace hairshadow::detail {
 
-/// Halvings of a root's bracket: from a bracket of width 2^k, k + 24 halvings reach float
-/// resolution; 40 cover brackets up to 2^16 wide at full precision.
+/// Halvings of a root's bracket: from a bracket of width 2^k, about k + 24 halvings reach float
+/// resolution near 1, so 40 bring an inner bracket (at most a few units wide) to it; an outer one may
+/// be up to 2^60 wide, and 40 halvings still leave its root to within 2^-40 of the bracket, fine for
+/// a root that far out, whose relative precision is what the weights need.
 inline constexpr int root_bisection_steps = 40;
 /// Doublings of the step outward that brackets the outermost roots (2^60 at most).
 inline constexpr int root_bracket_doublings = 60;
@@ -35,10 +37,13 @@ float polynomial_at(const float* c, float z) noexcept {
     return value;
 }
 
-/// The root of the n-degree polynomial c in [lo, hi], where it changes sign once.
+/// The root of the n-degree polynomial c in [lo, hi], where it changes sign once. Where rounding
+/// leaves the same sign at both ends (a double root at a critical point), the end nearer zero.
 template <int n>
 float bisected_root(const float* c, float lo, float hi) noexcept {
-    const bool negative_at_lo = polynomial_at<n>(c, lo) < 0.0f;
+    const float at_lo = polynomial_at<n>(c, lo), at_hi = polynomial_at<n>(c, hi);
+    const bool negative_at_lo = at_lo < 0.0f;
+    if ((at_hi < 0.0f) == negative_at_lo) return std::abs(at_lo) <= std::abs(at_hi) ? lo : hi;
     for (int step = 0; step < root_bisection_steps; ++step) {
         const float mid = 0.5f * (lo + hi);
         const bool below = (polynomial_at<n>(c, mid) < 0.0f) == negative_at_lo; // the root lies above mid
