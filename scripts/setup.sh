@@ -7,7 +7,8 @@
 set -euo pipefail
 main=(build-essential cmake ninja-build pkg-config python3 libglm-dev libstb-dev libcli11-dev python3-glad libosmesa6-dev libegl-dev
       libgl1-mesa-dri)
-rest=(catch2 libbenchmark-dev glslang-tools libglfw3-dev xvfb xauth clang libclang-rt-14-dev)
+rest=(catch2 libbenchmark-dev glslang-tools libglfw3-dev xvfb xauth clang libclang-rt-14-dev python3-dev pybind11-dev python3-numpy python3-pytest
+      python3-matplotlib)
 case "${1:-all}" in
     main) packages=("${main[@]}") ;;
     all) packages=("${main[@]}" "${rest[@]}") ;;

@@ -48,29 +48,23 @@ bool reset_peak() {
     return clear.good();
 }
 
-struct row {
-    std::string method;
-    double cold = 0, median = 0, min = 0, max = 0, gpu_median = 0; ///< gpu_median: by GL timer queries
-    std::size_t fragments = 0, map_bytes = 0;
-    std::uint64_t maps_hash = 0; ///< any_shadow_map::maps_hash of the last build (on GL, of its read-back)
-    std::optional<double> peak_mib;
-};
-
 } // namespace
 
-int run_bench(const hair_model& model, const light_space& light, const bench_options& o, gl_backend* gl) {
+bench_result measure_builds(const hair_model& model, const light_space& light, const bench_options& o, gl_backend* gl) {
     const auto now = [] { return std::chrono::steady_clock::now(); };
     // GL counts no fragments: they are the CPU rule's, counted once, tile by tile.
     const std::size_t gl_fragments = gl ? count_fragments(model, light, o.raster) : 0;
-    bool peak_known = reset_peak();
-    const std::optional<double> baseline_kib = status_kib("VmRSS");
-    std::vector<row> rows;
+    if (o.repeat < 1) throw argument_error("bench: repeat must be at least 1, not " + std::to_string(o.repeat));
+    bench_result result;
+    result.peak_known = reset_peak();
+    result.baseline_kib = status_kib("VmRSS");
+    auto& rows = result.rows;
     for (const auto& spec : o.specs) {
-        std::fprintf(stderr, "  %s ...", spec.text.c_str());
-        std::fflush(stderr);
-        row r;
+        if (o.progress) std::fprintf(stderr, "  %s ...", spec.text.c_str());
+        if (o.progress) std::fflush(stderr);
+        bench_row r;
         r.method = spec.text;
-        peak_known = reset_peak() && peak_known;
+        result.peak_known = reset_peak() && result.peak_known;
         std::vector<double> times;
         if (gl) {
             // The first build compiles the driver's shader variants: it is the cold one.
@@ -106,10 +100,14 @@ int run_bench(const hair_model& model, const light_space& light, const bench_opt
         r.min = times.front();
         r.max = times.back();
         r.median = times.size() % 2 ? times[times.size() / 2] : 0.5 * (times[times.size() / 2 - 1] + times[times.size() / 2]);
-        std::fprintf(stderr, " %.1f ms\n", r.median);
+        if (o.progress) std::fprintf(stderr, " %.1f ms\n", r.median);
         rows.push_back(r);
     }
+    return result;
+}
 
+int run_bench(const hair_model& model, const light_space& light, const bench_options& o, gl_backend* gl) {
+    const auto [rows, peak_known, baseline_kib] = measure_builds(model, light, o, gl);
     std::printf("Model `%s` (%zu strands, %zu segments), light `%s`, %dx%d, %u threads, ", o.model_name.c_str(), model.strand_count(),
                 model.segment_count(), o.light_name.c_str(), light.resolution(), light.resolution(), o.raster.exec.resolved());
     if (gl) std::printf("built on %s. ", gl->description().c_str());

@@ -104,14 +104,14 @@ double milliseconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-lit_model prepare_scene(const map_options& o, bool cpu_fragments) {
+lit_model prepare_scene(const map_options& o, bool cpu_fragments, const scene_source& source) {
     const auto light = parse_light(o.light);
     check_resolution(o.resolution);
     if (o.on_gl() && o.wide > 0.0f) throw usage_error("--wide needs --backend cpu: core GL draws lines one pixel wide");
     if (o.on_gl() && (o.box_filter || o.jitter || o.bias != 0.0f))
         throw usage_error("--filter, --jitter and --bias are CPU queries; the GLSL look-up has none: use --backend cpu");
     if (!o.on_gl() && !o.gl_path.empty()) throw usage_error("--gl-path chooses how --backend gl builds; add --backend gl");
-    lit_model s{load(o.model), {}, {}, {}, 0.0, nullptr};
+    lit_model s{source.model ? *source.model : load(o.model), {}, {}, {}, 0.0, nullptr};
     s.light = light_space::fit(light, s.model.bounds(), o.resolution);
     s.raster.exec = o.exec();
     s.raster.fixed_alpha = o.alpha;
@@ -122,7 +122,7 @@ lit_model prepare_scene(const map_options& o, bool cpu_fragments) {
         s.raster_ms = milliseconds_since(start);
     }
     if (o.on_gl()) {
-        s.gl = gl_backend::open(o.context, o.gl_path);
+        s.gl = source.context ? gl_backend::open_on(*source.context, o.gl_path) : gl_backend::open(o.context, o.gl_path);
         s.gl->set_model(s.model);
     }
     return s;

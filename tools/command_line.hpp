@@ -90,9 +90,16 @@ struct lit_model {
     std::unique_ptr<gl_backend> gl; ///< with --backend gl
 };
 
+/// Where a scene's model and GL context come from when not from the options (the Python module): a
+/// model in memory instead of loading o.model, a context of the caller's instead of opening one.
+struct scene_source {
+    const hairshadow::hair_model* model = nullptr;
+    hairshadow::gl::headless_context* context = nullptr;
+};
+
 /// Loads the model and fits the light; rasterises on the CPU where `cpu_fragments` (the exact
 /// reference of `compare`); opens the GL context with --backend gl.
-lit_model prepare_scene(const map_options& o, bool cpu_fragments);
+lit_model prepare_scene(const map_options& o, bool cpu_fragments, const scene_source& source = {});
 
 /// Builds a method's maps on the CPU straight from the model (tile by tile; the exact reference
 /// through a fragment buffer), for CPU queries. With `rebuild_ms`, builds twice and gives the time of

@@ -1,81 +1,21 @@
 // `hairshadow compare`: methods against the exact reference at the model's points, along each
 // texel's ray and in a rendered image, as a Markdown table (and CSV).
 #include "command_line.hpp"
-#include "compare_table.hpp"
+#include "compare_rows.hpp"
 #include "memory_chart.hpp"
 
 #include <cstdio>
-#include <sstream>
 
 namespace cli {
 
 using namespace hairshadow;
 
 namespace {
-/// What compare's image error looks at: the hair alone, lit by the map's light, from the figure's
-/// default camera (azimuth 25, elevation 10), 300 pixels square, supersampled 2x2; the exact map's
-/// render and the pixels the hair covers.
-class image_probe {
-public:
-    image_probe(const lit_model& s, const light_spec& light, const any_shadow_map& exact, const execution& exec) {
-        sc_.hair = s.model;
-        sc_.lights.push_back({light, glm::vec3(1.1f)});
-        cam_ = camera::framing(sc_.hair.bounds(), 25.0f, 10.0f, 300, 300, 1.15f);
-        options_.exec = exec;
-        options_.supersample = 2;
-        coverage_.resize(std::size_t(cam_.width) * std::size_t(cam_.height));
-        exact_ = render(exact, coverage_);
-    }
-    image_difference operator()(const any_shadow_map& map) const { return image_error(render(map), exact_, coverage_); }
-
-private:
-    image render(const any_shadow_map& map, std::span<float> coverage = {}) const {
-        const std::vector<lit_light> lights{{sc_.lights[0], query_of(map, options_.exec), {}}};
-        return render_cpu(sc_, cam_, lights, options_, coverage);
-    }
-    hairshadow::scene sc_;
-    camera cam_;
-    render_options options_;
-    image exact_;
-    std::vector<float> coverage_;
-};
-
-std::string compare_preamble(const map_options& o, const lit_model& s) {
-    std::ostringstream preamble;
-    preamble << "Model `" << o.model << "`, light `" << o.light << "`, " << o.resolution << "x" << o.resolution << ", " << s.model.point_count()
-             << " points, " << s.fragments.size() << " fragments (rasterised in " << std::lround(s.raster_ms) << " ms), " << o.exec().resolved()
-             << " threads. ";
-    if (s.gl) preamble << "Methods built on " << s.gl->description() << " and queried by their GLSL look-up; the reference on the CPU. ";
-    else preamble << "Build times are CPU rebuilds straight from the model (rasterise and build, tile by tile), the second of two builds. ";
-    preamble << "Errors are |T - T_exact| at the model's points; the curve error is the mean over texels of the mean |T - T_exact| "
-                "from each texel's first fragment to its last (64 depths a texel); the image error is the mean and 99th percentile "
-                "over hair pixels of |sRGB difference| from the exact map's render (the hair alone, 300x300, 2x2 supersampled, "
-                "azimuth 25, elevation 10).";
-    return preamble.str();
-}
-
 int run_compare(const map_options& o, const std::string& methods, const std::string& out_dir, const std::string& chart) {
     std::vector<method_spec> specs;
     for (auto part : detail::split(methods, ',')) specs.push_back(parse_method_for(std::string(part), o));
-    auto s = prepare_scene(o, true); // the exact reference is built on the CPU for either back end
-    const auto exec = o.exec();
-    const auto exact = make_shadow_map(parse_method("dsm"));
-    exact->build(s.fragments, s.light, exec);
-    std::vector<float> reference(s.model.point_count());
-    exact->transmittance(s.model.points, reference, o.query(), exec);
-    const image_probe images(s, parse_light(o.light), *exact, exec);
-    std::vector<compare_row> rows;
-    for (const auto& spec : specs) {
-        const auto result = evaluate(spec, s, o, s.model.points, true);
-        compare_row row{spec.text, result.layers, result.bytes, result.build_ms};
-        set_errors(row, result.transmittance, reference);
-        row.curve = transmittance_curve_error(*result.maps, *exact, s.fragments, 64, exec);
-        const auto seen = images(*result.maps);
-        row.image_mean = seen.mean;
-        row.image_p99 = seen.p99;
-        rows.push_back(row);
-    }
-    const auto [md, csv] = format_table(rows, compare_preamble(o, s));
+    const auto [rows, preamble] = compare_methods(o, specs);
+    const auto [md, csv] = format_table(rows, preamble);
     std::fputs(md.c_str(), stdout);
     if (!out_dir.empty()) write_table(out_dir, md, csv);
     if (!chart.empty()) {

@@ -23,14 +23,18 @@ public:
     gl_backend_impl(const std::string& kind, const std::string& path) {
         // Asks for core 3.3, which drivers answer with their newest core version; each method then
         // checks the version and limits it needs and names what is missing.
-        if (kind == "osmesa") context_ = std::make_unique<gl::osmesa_context>(3, 3);
-        else if (kind == "egl") context_ = std::make_unique<gl::egl_context>(3, 3);
+        if (kind == "osmesa") owned_ = std::make_unique<gl::osmesa_context>(3, 3);
+        else if (kind == "egl") owned_ = std::make_unique<gl::egl_context>(3, 3);
         else throw argument_error("unknown GL context '" + kind + "'; valid: osmesa, egl");
+        context_ = owned_.get();
         if (!gladLoadGL(context_->loader())) throw gl::gl_error("cannot load the GL functions of the " + kind + " context");
-        if (path == "compute") gl::require_compute_path("--gl-path compute", "use --gl-path raster");
-        else if (!path.empty() && path != "raster") throw argument_error("unknown GL build path '" + path + "'; valid: compute, raster");
-        path_ = path.empty() ? gl::default_build_path() : path == "compute" ? gl::build_path::compute : gl::build_path::raster;
+        choose_path(path);
     }
+    gl_backend_impl(gl::headless_context& context, const std::string& path) : context_(&context) {
+        context_->make_current();
+        choose_path(path);
+    }
+    void make_current() override { context_->make_current(); }
     std::string description() const override { return context_->description() + ", " + std::string(gl::to_string(path_)) + " build"; }
     void set_model(const hair_model& model) override { mesh_.emplace(model); }
     double build(const method_spec& spec, const light_space& light, const raster_options& options) override {
@@ -93,6 +97,11 @@ public:
     int peeled_layers() const override { return peeled_layers_; }
 
 private:
+    void choose_path(const std::string& path) {
+        if (path == "compute") gl::require_compute_path("--gl-path compute", "use --gl-path raster");
+        else if (!path.empty() && path != "raster") throw argument_error("unknown GL build path '" + path + "'; valid: compute, raster");
+        path_ = path.empty() ? gl::default_build_path() : path == "compute" ? gl::build_path::compute : gl::build_path::raster;
+    }
     std::unique_ptr<gl::any_gl_shadow_map> make(const method_spec& spec) const {
         auto maps = gl::make_gl_shadow_map(spec);
         maps->set_build_path(path_);
@@ -102,7 +111,8 @@ private:
         if (!maps_) throw argument_error("no maps built on GL");
         return *maps_;
     }
-    std::unique_ptr<gl::headless_context> context_;
+    std::unique_ptr<gl::headless_context> owned_; ///< the context this back end opened, if it did
+    gl::headless_context* context_ = nullptr;
     gl::build_path path_ = gl::build_path::raster;
     std::optional<gl::hair_mesh> mesh_;
     std::unique_ptr<gl::any_gl_shadow_map> maps_;
@@ -117,6 +127,10 @@ private:
 
 std::unique_ptr<gl_backend> gl_backend::open(const std::string& kind, const std::string& path) {
     return std::make_unique<gl_backend_impl>(kind, path);
+}
+
+std::unique_ptr<gl_backend> gl_backend::open_on(gl::headless_context& context, const std::string& path) {
+    return std::make_unique<gl_backend_impl>(context, path);
 }
 
 } // namespace cli

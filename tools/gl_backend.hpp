@@ -15,6 +15,10 @@
 #include <string>
 #include <vector>
 
+namespace hairshadow::gl {
+class headless_context;
+}
+
 namespace cli {
 
 class gl_backend {
@@ -23,7 +27,12 @@ public:
     /// or "raster"; "": compute wherever the context runs it); throws hairshadow::error when it cannot
     /// (gl::feature_error for a path the context lacks).
     static std::unique_ptr<gl_backend> open(const std::string& kind, const std::string& path = "");
+    /// The same on a context the caller made (and keeps alive longer than the back end), with GL
+    /// loaded; makes it current.
+    static std::unique_ptr<gl_backend> open_on(hairshadow::gl::headless_context& context, const std::string& path = "");
     virtual ~gl_backend() = default;
+    /// Makes the context current on the calling thread (for a program with several back ends).
+    virtual void make_current() = 0;
     /// "OpenGL <version> on <renderer>, <path> build".
     virtual std::string description() const = 0;
     /// Uploads the model that build() draws.

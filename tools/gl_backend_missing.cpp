@@ -8,4 +8,8 @@ std::unique_ptr<gl_backend> gl_backend::open(const std::string&, const std::stri
     throw hairshadow::error("this hairshadow was built without the GL back end (it needs python3-glad, libosmesa6-dev and libegl-dev)");
 }
 
+std::unique_ptr<gl_backend> gl_backend::open_on(hairshadow::gl::headless_context&, const std::string&) {
+    return open("", "");
+}
+
 } // namespace cli

@@ -80,7 +80,8 @@ public:
     const method_spec& spec() const noexcept { return spec_; }
     using map_queries<any_shadow_map>::transmittance;
 
-    /// The composition behind this map where it is `Method` (a shadow_method), else null: for code
+    /// The composition behind this map where it is `Method` (a shadow_method; for the exact reference,
+    /// once built, deep_shadow_map and, where compressed, compressed_deep_shadow_map), else null: for code
     /// that knows the type, such as the GL registry, which puts maps read back from GL into a map the
     /// CPU registry made rather than instantiating every CPU build a second time.
     template <class Method>
@@ -183,6 +184,14 @@ public:
     }
 
 private:
+    /// method_if gives the built deep_shadow_map (its fragments) and, where compressed, the
+    /// compressed_deep_shadow_map (its vertices).
+    void* method_address(const void* tag) noexcept override {
+        if (tag == &type_tag<deep_shadow_map> && exact_) return &*exact_;
+        if (tag == &type_tag<compressed_deep_shadow_map> && compressed_) return &*compressed_;
+        return nullptr;
+    }
+
     std::optional<float> tolerance_;   ///< Lokovic-Veach compression's, if compressed
     std::optional<rasterizer> raster_; ///< kept between builds from a model
     std::optional<deep_shadow_map> exact_;
