@@ -108,8 +108,8 @@ lit_model prepare_scene(const map_options& o, bool cpu_fragments, const scene_so
     const auto light = parse_light(o.light);
     check_resolution(o.resolution);
     if (o.on_gl() && o.wide > 0.0f) throw usage_error("--wide needs --backend cpu: core GL draws lines one pixel wide");
-    if (o.on_gl() && (o.box_filter || o.jitter || o.bias != 0.0f))
-        throw usage_error("--filter, --jitter and --bias are CPU queries; the GLSL look-up has none: use --backend cpu");
+    if (o.on_gl() && (o.box_filter || o.jitter))
+        throw usage_error("--filter and --jitter are CPU queries; the GLSL look-up has neither: use --backend cpu");
     if (!o.on_gl() && !o.gl_path.empty()) throw usage_error("--gl-path chooses how --backend gl builds; add --backend gl");
     lit_model s{source.model ? *source.model : load(o.model), {}, {}, {}, 0.0, nullptr};
     s.light = light_space::fit(light, s.model.bounds(), o.resolution);
@@ -144,7 +144,7 @@ method_result evaluate(const method_spec& spec, lit_model& s, const map_options&
     r.transmittance.resize(points.size());
     if (s.gl) {
         r.build_ms = s.gl->build(spec, s.light, s.raster);
-        r.transmittance = s.gl->transmittance(points);
+        r.transmittance = s.gl->transmittance(points, o.bias);
         r.bytes = s.gl->memory_bytes();
         r.layers = make_shadow_map(spec)->layer_count(); // the CPU twin's, unbuilt
         if (keep_maps) r.maps = s.gl->to_cpu();

@@ -76,7 +76,9 @@ public:
         }
         return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     }
-    std::vector<float> transmittance(std::span<const glm::vec3> points) override { return built().transmittance(points); }
+    std::vector<float> transmittance(std::span<const glm::vec3> points, float depth_bias) override {
+        return built().transmittance(points, depth_bias);
+    }
     std::unique_ptr<any_shadow_map> to_cpu() override { return built().to_cpu(); }
     std::size_t memory_bytes() override { return built().memory_bytes(); }
     image render_scene(const scene& sc, const camera& cam, const method_spec& spec, const std::vector<light_space>& spaces,

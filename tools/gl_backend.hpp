@@ -50,7 +50,7 @@ public:
     virtual double build_all(const std::vector<hairshadow::method_spec>& specs, const hairshadow::light_space& light,
                              const hairshadow::raster_options& options, bool shared) = 0;
     /// Transmittance at each point through the last built maps' GLSL look-up.
-    virtual std::vector<float> transmittance(std::span<const glm::vec3> points) = 0;
+    virtual std::vector<float> transmittance(std::span<const glm::vec3> points, float depth_bias) = 0;
     /// Bytes of the last built maps' textures.
     virtual std::size_t memory_bytes() = 0;
     /// Renders `sc` from `cam` on GL: each light's maps (one per frustum in `spaces`) built there and

@@ -13,13 +13,15 @@
 /// - they set the state their passes need (no scissor, blending, depth or stencil test, culling,
 ///   logic op or rasteriser discard; full colour masks; their own viewport, framebuffers, program,
 ///   vertex array, textures and no sampler objects), whatever the caller left;
-/// - errors the caller left unread are read and dropped first, so they neither fail a build nor pass
-///   for the library's own; the library's own are thrown as gl_error naming the pass. Each call's
-///   GL commands are in a KHR_debug group named "hairshadow: ...";
-/// - bind_lookup(program, first_unit, prefix) sets uniforms with glProgramUniform (the program need
-///   not be current) and binds Maps::texture_units textures from first_unit, with no sampler
-///   objects; it leaves the active texture unit as found. lookup_source(prefix) renames every name
-///   so that look-ups with different prefixes share one shader;
+/// - errors the caller left unread are read first, so they neither fail a build nor pass for the
+///   library's own, and raised again on the way out for the caller to read; the library's own are
+///   thrown as gl_error naming the pass. Each call's GL commands are in a KHR_debug group named
+///   "hairshadow: ...";
+/// - bind_lookup(program, first_unit, prefix, depth_bias) sets uniforms with glProgramUniform (the
+///   program need not be current) and binds Maps::texture_units textures from first_unit, with no
+///   sampler objects; it leaves the active texture unit as found, and throws argument_error naming
+///   a uniform the program lacks. lookup_source(prefix) renames every name so that look-ups with
+///   different prefixes share one shader;
 /// - no build reads anything back: the depth extent is reduced on the GPU. Framebuffers and programs
 ///   are made once per object and reused by every build.
 

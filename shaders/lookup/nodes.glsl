@@ -1,6 +1,7 @@
 // Look-up of adaptive volumetric shadow maps: the texel's nodes, two to an array layer, and T from
 // reconstruction/adaptive_nodes. The light's frustum and the range map (which says where a texel holds
-// no fragment) are lookup/light's.
+// no fragment) are lookup/light's. hs_nodes_transmittance(depths, omegas, depth) is the plain look-up
+// over fetched nodes that a port to another shading language calls (docs/texel_layouts.md).
 uniform sampler2DArray hs_nodes_texture;
 
 float hs_transmittance(vec3 world_pos) {

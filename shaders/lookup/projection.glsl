@@ -4,6 +4,18 @@
 // [0, total]. The range map and the light's frustum are lookup/light's.
 uniform sampler2DArray hs_sums_texture;
 
+// The plain look-up over a texel's sums as stored (fetched by the caller: a port to another shading
+// language calls it after its own fetches; docs/texel_layouts.md), its nearest and furthest fragment
+// (the range map's red and alpha) and the query's depth: T.
+float hs_projected_transmittance(float sums[HS_SUMS], float nearest, float furthest, float depth) {
+    hs_decode_sums(sums);
+    float total = hs_total_optical_depth(sums);
+    if (!(depth > nearest) || !(total > 0.0)) return 1.0;
+    if (depth > furthest) return exp(-total);
+    float tau = hs_series_optical_depth(sums, hs_position_in_range(nearest, furthest, depth));
+    return exp(-(tau > 0.0 ? min(tau, total) : 0.0)); // NaN (a singular moment matrix) casts none, as on the CPU
+}
+
 float hs_transmittance(vec3 world_pos) {
     ivec2 texel;
     float depth;
@@ -14,10 +26,5 @@ float hs_transmittance(vec3 world_pos) {
         vec4 v = texelFetch(hs_sums_texture, ivec3(texel, layer), 0);
         for (int c = 0; c < 4 && 4 * layer + c < HS_SUMS; ++c) sums[4 * layer + c] = v[c];
     }
-    hs_decode_sums(sums);
-    float total = hs_total_optical_depth(sums);
-    if (!(depth > range.x) || !(total > 0.0)) return 1.0;
-    if (depth > range.w) return exp(-total);
-    float tau = hs_series_optical_depth(sums, hs_position_in_range(range.x, range.w, depth));
-    return exp(-(tau > 0.0 ? min(tau, total) : 0.0)); // NaN (a singular moment matrix) casts none, as on the CPU
+    return hs_projected_transmittance(sums, range.x, range.w, depth);
 }

@@ -12,11 +12,13 @@ uniform float hs_max_fibres;
 uniform sampler2D hs_density_texture; // the texel's summed optical depth (r) and fragment count (g)
 #endif
 
-float hs_fibres_optical_depth(ivec2 texel, vec4 range, float depth) {
+// The plain form, over the texel's fetched values (a port's entry point, docs/texel_layouts.md):
+// `sums` is the density texel (r: summed optical depth, g: fragment count; unread without
+// HS_MEASURED_DENSITY), `range` the range map's texel.
+float hs_fibres_optical_depth_of(vec2 sums, vec4 range, float depth) {
     precise float behind = (depth - range.x) * (hs_lookup_far - hs_lookup_near);
     if (!(behind > 1e-5) || !(depth - range.x > 2.5e-7)) return 0.0;
 #ifdef HS_MEASURED_DENSITY
-    vec2 sums = texelFetch(hs_density_texture, texel, 0).rg;
     if (!(sums.g > 0.0)) return 0.0;
     precise float span = range.w - range.x;
     precise float fibres = span > 0.0 && depth <= range.w ? clamp((depth - range.x) / span * (sums.g - 1.0), 1.0, sums.g) : sums.g;
@@ -24,6 +26,15 @@ float hs_fibres_optical_depth(ivec2 texel, vec4 range, float depth) {
 #else
     return clamp(behind / hs_fibre_step, 1.0, hs_max_fibres) * hs_fibre_optical_depth;
 #endif
+}
+
+float hs_fibres_optical_depth(ivec2 texel, vec4 range, float depth) {
+#ifdef HS_MEASURED_DENSITY
+    vec2 sums = texelFetch(hs_density_texture, texel, 0).rg;
+#else
+    vec2 sums = vec2(0.0);
+#endif
+    return hs_fibres_optical_depth_of(sums, range, depth);
 }
 
 float hs_transmittance(vec3 world_pos) {

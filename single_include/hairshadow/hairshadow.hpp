@@ -712,6 +712,12 @@ public:
         return true;
     }
 
+    /// Jobs handed to workers so far (tests: a user's executor leaves it unchanged).
+    std::size_t jobs_started() {
+        std::lock_guard lock(mutex_);
+        return generation_;
+    }
+
 private:
     thread_pool() = default;
 
@@ -774,9 +780,23 @@ inline unsigned hardware_threads() noexcept {
 }
 } // namespace detail
 
-/// Thread count for the CPU kernels: 0 means every hardware thread.
+/// Where a parallel loop's workers run, for a program with threads of its own (an engine's job
+/// system): by default the library's own pool of persistent threads.
+class task_executor {
+public:
+    virtual ~task_executor() = default;
+    /// Calls job(context) at most `workers` times (each call a worker that takes chunks of the loop
+    /// until none is left), on whatever threads the executor chooses, at once or one after another,
+    /// and returns when every call has returned. A call beyond `workers` returns at once; chunks no
+    /// call took run on the calling thread after run returns. `job` does not throw.
+    virtual void run(unsigned workers, void (*job)(void*), void* context) = 0;
+};
+
+/// How the CPU kernels run: `threads` workers (0: every hardware thread), on `executor` when given
+/// (it must outlive the call), else on the library's pool. Results never depend on either.
 struct execution {
     unsigned threads = 0;
+    task_executor* executor = nullptr;
     friend bool operator==(const execution&, const execution&) = default;
 
     unsigned resolved() const noexcept { return threads != 0 ? threads : detail::hardware_threads(); }
@@ -813,6 +833,7 @@ void parallel_for_slots(std::size_t count, const execution& exec, Body&& body, s
     std::mutex failure_mutex;
     auto worker = [&] {
         const unsigned slot = next_slot.fetch_add(1);
+        if (slot >= threads) return; // an executor that called more workers than asked
         try {
             for (std::size_t c = next.fetch_add(1); c < chunks; c = next.fetch_add(1)) {
                 const std::size_t end = std::min(count, (c + 1) * grain);
@@ -824,7 +845,12 @@ void parallel_for_slots(std::size_t count, const execution& exec, Body&& body, s
             next.store(chunks);
         }
     };
-    if (!detail::thread_pool::instance().run(threads, worker)) worker(); // the pool is busy: this thread alone
+    if (exec.executor) {
+        exec.executor->run(threads, [](void* context) { (*static_cast<decltype(worker)*>(context))(); }, &worker);
+        if (next.load() < chunks) worker(); // fewer calls than workers took every chunk: a slot is left
+    } else if (!detail::thread_pool::instance().run(threads, worker)) {
+        worker(); // the pool is busy: this thread alone
+    }
     if (failure) std::rethrow_exception(failure);
 }
 
@@ -6948,7 +6974,7 @@ public:
     void glsl_uniforms(Set&& set) const {
         set("hs_fourier_margin", margin_);
         set("hs_fourier_span", span_);
-        for (int k = 1; k <= harmonics; ++k) set("hs_fourier_weight[" + std::to_string(k) + "]", weight_[std::size_t(k)]);
+        for (int k = 1; k <= harmonics; ++k) set("hs_fourier_weight", weight_[std::size_t(k)], k); // element k of the array
     }
 
 private:
@@ -7099,7 +7125,7 @@ public:
     /// The GLSL twin's uniforms (gl/maps/policy_glsl.hpp): the boundaries' fractions, as the CPU rounded them.
     template <class Set>
     void glsl_uniforms(Set&& set) const {
-        for (int k = 1; k <= K; ++k) set("hs_power_fraction[" + std::to_string(k) + "]", fractions_[std::size_t(k)]);
+        for (int k = 1; k <= K; ++k) set("hs_power_fraction", fractions_[std::size_t(k)], k); // element k of the array
     }
 
 private:
@@ -7760,7 +7786,7 @@ public:
         // The pull on moment 2k, the bias times the bias vector, computed here so that GL adds the
         // CPU's floats.
         for (int k = 1; k <= n; ++k)
-            set("hs_moment_pull[" + std::to_string(k - 1) + "]", bias() * bias_vector[std::size_t(2 * k)]);
+            set("hs_moment_pull", bias() * bias_vector[std::size_t(2 * k)], k - 1);
     }
 
 private:

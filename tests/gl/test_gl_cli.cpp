@@ -122,7 +122,7 @@ TEST_CASE("the GL back end refuses what only the CPU does, with a usage error", 
         const char* message;
     };
     for (const auto& [args, message] : {refusal{" --method dsm", "CPU-only"}, refusal{" --method osm:16 --filter", "--filter"},
-                                        refusal{" --method osm:16 --bias 0.01", "--bias"}, refusal{" --method osm:16 --wide 4", "--wide"},
+                                        refusal{" --method osm:16 --jitter", "--jitter"}, refusal{" --method osm:16 --wide 4", "--wide"},
                                         refusal{" --method osm:16 --context glx", "--context"}}) {
         CAPTURE(args);
         const auto r = test::run_cli("render " + model + " --backend gl" + args);

@@ -46,11 +46,10 @@ TEST_CASE("two prefixed look-ups of different methods and lights shade in one sh
         if (which == 0) key_cpu.transmittance(points, on_cpu);
         else fill_cpu.transmittance(points, on_cpu);
         std::size_t off = 0, shadowed = 0;
-        for (std::size_t i = 0; i < points.size(); ++i) off += std::abs(on_gpu[i] - on_cpu[i]) > 5e-5f, shadowed += on_cpu[i] < 0.9f;
+        for (std::size_t i = 0; i < points.size(); ++i) off += !(std::abs(on_gpu[i] - on_cpu[i]) <= 1e-5f), shadowed += on_cpu[i] < 0.9f;
         CAPTURE(which, off, shadowed, points.size());
         CHECK(shadowed * 4 > points.size());
-        // The model's own points lie on texel edges, where GL's and the CPU's rounding may pick neighbours.
-        CHECK(off * 200 < points.size());
+        CHECK(off == 0); // the look-up finds the CPU query's texel and depth, even on texel edges
     }
 }
 

@@ -76,7 +76,7 @@ void bind_maps(py::module_& m) {
     map.def("transmittance", &query_points, py::arg("points"), py::kw_only(), py::arg("box_filter") = false, py::arg("jitter") = false,
             py::arg("bias") = 0.0f, py::arg("threads") = 0u,
             "Transmittance at each of (M, 3) float32 world points, (M,) float32: 1 outside the map. On the CPU with the library's threads "
-            "(the GIL released); on GL by the method's GLSL look-up (no filter, jitter or bias there).");
+            "(the GIL released); on GL by the method's GLSL look-up (the bias too; no filter or jitter there).");
     map.def("transmittance_at", [](shadow_map_handle& h, int x, int y, const py::object& d) { return along_ray(h, x, y, d, false); },
             py::arg("x"), py::arg("y"), py::arg("depths"),
             "Transmittance at texel (x, y) and each linear depth (0..1): the curve along that texel's light ray (on GL, of the maps read back).");

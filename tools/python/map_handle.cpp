@@ -110,12 +110,13 @@ const any_shadow_map& shadow_map_handle::cpu_maps() {
 }
 
 void shadow_map_handle::transmittance(std::span<const glm::vec3> points, std::span<float> out, const query_options& options, const execution& exec) {
-    if (on_gl() && (options.box_filter || options.jitter || options.depth_bias != 0.0f))
-        throw argument_error("box_filter, jitter and bias are CPU queries; the GLSL look-up has none: use backend='cpu'");
+    if (on_gl() && (options.box_filter || options.jitter))
+        throw argument_error("box_filter and jitter are CPU queries; the GLSL look-up has neither: use backend='cpu'");
+    options.check();
     reading([&] {
         require_built();
         if (on_gl()) {
-            const auto t = gl_->transmittance(points);
+            const auto t = gl_->transmittance(points, options.depth_bias);
             std::copy(t.begin(), t.end(), out.begin());
         } else {
             map_->transmittance(points, out, options, exec);

@@ -23,9 +23,23 @@ inline unsigned hardware_threads() noexcept {
 }
 } // namespace detail
 
-/// Thread count for the CPU kernels: 0 means every hardware thread.
+/// Where a parallel loop's workers run, for a program with threads of its own (an engine's job
+/// system): by default the library's own pool of persistent threads.
+class task_executor {
+public:
+    virtual ~task_executor() = default;
+    /// Calls job(context) at most `workers` times (each call a worker that takes chunks of the loop
+    /// until none is left), on whatever threads the executor chooses, at once or one after another,
+    /// and returns when every call has returned. A call beyond `workers` returns at once; chunks no
+    /// call took run on the calling thread after run returns. `job` does not throw.
+    virtual void run(unsigned workers, void (*job)(void*), void* context) = 0;
+};
+
+/// How the CPU kernels run: `threads` workers (0: every hardware thread), on `executor` when given
+/// (it must outlive the call), else on the library's pool. Results never depend on either.
 struct execution {
     unsigned threads = 0;
+    task_executor* executor = nullptr;
     friend bool operator==(const execution&, const execution&) = default;
 
     unsigned resolved() const noexcept { return threads != 0 ? threads : detail::hardware_threads(); }
@@ -62,6 +76,7 @@ void parallel_for_slots(std::size_t count, const execution& exec, Body&& body, s
     std::mutex failure_mutex;
     auto worker = [&] {
         const unsigned slot = next_slot.fetch_add(1);
+        if (slot >= threads) return; // an executor that called more workers than asked
         try {
             for (std::size_t c = next.fetch_add(1); c < chunks; c = next.fetch_add(1)) {
                 const std::size_t end = std::min(count, (c + 1) * grain);
@@ -73,7 +88,12 @@ void parallel_for_slots(std::size_t count, const execution& exec, Body&& body, s
             next.store(chunks);
         }
     };
-    if (!detail::thread_pool::instance().run(threads, worker)) worker(); // the pool is busy: this thread alone
+    if (exec.executor) {
+        exec.executor->run(threads, [](void* context) { (*static_cast<decltype(worker)*>(context))(); }, &worker);
+        if (next.load() < chunks) worker(); // fewer calls than workers took every chunk: a slot is left
+    } else if (!detail::thread_pool::instance().run(threads, worker)) {
+        worker(); // the pool is busy: this thread alone
+    }
     if (failure) std::rethrow_exception(failure);
 }
 

@@ -1040,7 +1040,9 @@ float hs_transmittance(vec3 world_pos) {
 /// shaders/lookup/layers.glsl
 inline constexpr std::string_view lookup_layers = R"hs_glsl(// The stored layers of an interpolated method at the look-up's texel: hs_through_layer(k) is the
 // optical depth in front of the end of layer k. Layers are channels of a 2D array texture (four per
-// array layer); HS_CUMULATIVE layers hold it directly, histogram bins are summed.
+// array layer); HS_CUMULATIVE layers hold it directly, histogram bins are summed. A port to another
+// shading language fetches the same values itself and calls reconstruction/interpolation's
+// hs_interpolate_from (docs/texel_layouts.md).
 uniform sampler2DArray hs_layers_texture;
 ivec2 hs_lookup_texel;
 
@@ -1061,22 +1063,39 @@ float hs_through_layer(int k) {
 inline constexpr std::string_view lookup_light = R"hs_glsl(// Where a world point falls in the light's maps, shared by every method's hs_transmittance: its
 // texel, its linear depth and the texel's depth range. False outside the map or where the texel
 // holds no fragment: there the light is unshadowed. The range map is placement/common's.
+// The arithmetic is the CPU query's (light_space::project, map_queries::transmittance), operation
+// for operation and `precise` (no fused multiply-add, no reordering), so that the look-up finds the
+// CPU's texel and depth; divisions are GLSL's, correctly rounded on llvmpipe (GLSL allows a GPU
+// 2.5 ULP there, which can move a point lying within a rounding of a texel's edge).
 uniform mat4 hs_lookup_view_projection;
 uniform mat4 hs_lookup_view;
 uniform float hs_lookup_near;
 uniform float hs_lookup_far;
 uniform int hs_lookup_resolution;
+uniform float hs_lookup_depth_bias; // linear depth towards the light (query_options::depth_bias)
+
+// Row i of m * (p, 1), summed as light_space::row sums it: (m0 p.x + m1 p.y) + (m2 p.z + m3).
+float hs_lookup_row(mat4 m, int i, vec3 p) {
+    precise float r = (m[0][i] * p.x + m[1][i] * p.y) + (m[2][i] * p.z + m[3][i]);
+    return r;
+}
 
 bool hs_lookup_locate(vec3 world_pos, out ivec2 texel, out float depth, out vec4 range) {
-    vec4 clip = hs_lookup_view_projection * vec4(world_pos, 1.0);
-    vec2 window = (clip.xy / clip.w + 1.0) * (0.5 * float(hs_lookup_resolution));
+    precise float x = hs_lookup_row(hs_lookup_view_projection, 0, world_pos);
+    precise float y = hs_lookup_row(hs_lookup_view_projection, 1, world_pos);
+    precise float w = hs_lookup_row(hs_lookup_view_projection, 3, world_pos);
+    precise float half_resolution = 0.5 * float(hs_lookup_resolution);
+    precise vec2 window = vec2((x / w + 1.0) * half_resolution, (y / w + 1.0) * half_resolution);
     texel = ivec2(0);
     depth = 0.0;
     range = vec4(0.0);
-    if (!(clip.w > 0.0) || any(lessThan(window, vec2(0.0))) || any(greaterThanEqual(window, vec2(float(hs_lookup_resolution)))))
+    if (!(w > 0.0) || !(window.x >= 0.0) || !(window.y >= 0.0) || !(window.x < float(hs_lookup_resolution)) ||
+        !(window.y < float(hs_lookup_resolution)))
         return false;
     texel = ivec2(window);
-    depth = (-(hs_lookup_view * vec4(world_pos, 1.0)).z - hs_lookup_near) / (hs_lookup_far - hs_lookup_near);
+    precise float distance = -hs_lookup_row(hs_lookup_view, 2, world_pos);
+    precise float biased = (distance - hs_lookup_near) / (hs_lookup_far - hs_lookup_near) - hs_lookup_depth_bias;
+    depth = biased;
     range = texelFetch(hs_range_map, texel, 0);
     return range.x <= range.w;
 }
@@ -1085,7 +1104,8 @@ bool hs_lookup_locate(vec3 world_pos, out ivec2 texel, out float depth, out vec4
 /// shaders/lookup/nodes.glsl
 inline constexpr std::string_view lookup_nodes = R"hs_glsl(// Look-up of adaptive volumetric shadow maps: the texel's nodes, two to an array layer, and T from
 // reconstruction/adaptive_nodes. The light's frustum and the range map (which says where a texel holds
-// no fragment) are lookup/light's.
+// no fragment) are lookup/light's. hs_nodes_transmittance(depths, omegas, depth) is the plain look-up
+// over fetched nodes that a port to another shading language calls (docs/texel_layouts.md).
 uniform sampler2DArray hs_nodes_texture;
 
 float hs_transmittance(vec3 world_pos) {
@@ -1107,7 +1127,9 @@ float hs_transmittance(vec3 world_pos) {
 
 /// shaders/lookup/occupancy.glsl
 inline constexpr std::string_view lookup_occupancy = R"hs_glsl(// float hs_transmittance(vec3 world_pos) for occupancy maps: any user shader can call it after the
-// placement, accumulation and reconstruction snippets and lookup/occupancy_texels.
+// placement, accumulation and reconstruction snippets and lookup/occupancy_texels. The plain look-up
+// over fetched words and slabs, which a port to another shading language calls after its own fetches,
+// is reconstruction/occupancy_bitcount's hs_occupancy_optical_depth(p, bits, slabs) (docs/texel_layouts.md).
 float hs_transmittance(vec3 world_pos) {
     ivec2 texel;
     float depth;
@@ -1139,6 +1161,18 @@ inline constexpr std::string_view lookup_projection = R"hs_glsl(// Look-up of th
 // [0, total]. The range map and the light's frustum are lookup/light's.
 uniform sampler2DArray hs_sums_texture;
 
+// The plain look-up over a texel's sums as stored (fetched by the caller: a port to another shading
+// language calls it after its own fetches; docs/texel_layouts.md), its nearest and furthest fragment
+// (the range map's red and alpha) and the query's depth: T.
+float hs_projected_transmittance(float sums[HS_SUMS], float nearest, float furthest, float depth) {
+    hs_decode_sums(sums);
+    float total = hs_total_optical_depth(sums);
+    if (!(depth > nearest) || !(total > 0.0)) return 1.0;
+    if (depth > furthest) return exp(-total);
+    float tau = hs_series_optical_depth(sums, hs_position_in_range(nearest, furthest, depth));
+    return exp(-(tau > 0.0 ? min(tau, total) : 0.0)); // NaN (a singular moment matrix) casts none, as on the CPU
+}
+
 float hs_transmittance(vec3 world_pos) {
     ivec2 texel;
     float depth;
@@ -1149,12 +1183,7 @@ float hs_transmittance(vec3 world_pos) {
         vec4 v = texelFetch(hs_sums_texture, ivec3(texel, layer), 0);
         for (int c = 0; c < 4 && 4 * layer + c < HS_SUMS; ++c) sums[4 * layer + c] = v[c];
     }
-    hs_decode_sums(sums);
-    float total = hs_total_optical_depth(sums);
-    if (!(depth > range.x) || !(total > 0.0)) return 1.0;
-    if (depth > range.w) return exp(-total);
-    float tau = hs_series_optical_depth(sums, hs_position_in_range(range.x, range.w, depth));
-    return exp(-(tau > 0.0 ? min(tau, total) : 0.0)); // NaN (a singular moment matrix) casts none, as on the CPU
+    return hs_projected_transmittance(sums, range.x, range.w, depth);
 }
 )hs_glsl";
 
@@ -1930,11 +1959,13 @@ uniform float hs_max_fibres;
 uniform sampler2D hs_density_texture; // the texel's summed optical depth (r) and fragment count (g)
 #endif
 
-float hs_fibres_optical_depth(ivec2 texel, vec4 range, float depth) {
+// The plain form, over the texel's fetched values (a port's entry point, docs/texel_layouts.md):
+// `sums` is the density texel (r: summed optical depth, g: fragment count; unread without
+// HS_MEASURED_DENSITY), `range` the range map's texel.
+float hs_fibres_optical_depth_of(vec2 sums, vec4 range, float depth) {
     precise float behind = (depth - range.x) * (hs_lookup_far - hs_lookup_near);
     if (!(behind > 1e-5) || !(depth - range.x > 2.5e-7)) return 0.0;
 #ifdef HS_MEASURED_DENSITY
-    vec2 sums = texelFetch(hs_density_texture, texel, 0).rg;
     if (!(sums.g > 0.0)) return 0.0;
     precise float span = range.w - range.x;
     precise float fibres = span > 0.0 && depth <= range.w ? clamp((depth - range.x) / span * (sums.g - 1.0), 1.0, sums.g) : sums.g;
@@ -1942,6 +1973,15 @@ float hs_fibres_optical_depth(ivec2 texel, vec4 range, float depth) {
 #else
     return clamp(behind / hs_fibre_step, 1.0, hs_max_fibres) * hs_fibre_optical_depth;
 #endif
+}
+
+float hs_fibres_optical_depth(ivec2 texel, vec4 range, float depth) {
+#ifdef HS_MEASURED_DENSITY
+    vec2 sums = texelFetch(hs_density_texture, texel, 0).rg;
+#else
+    vec2 sums = vec2(0.0);
+#endif
+    return hs_fibres_optical_depth_of(sums, range, depth);
 }
 
 float hs_transmittance(vec3 world_pos) {
@@ -2017,12 +2057,28 @@ float hs_optical_depth(hs_layer_position p) { return max(hs_interpolate(p) - hs_
 inline constexpr std::string_view reconstruction_interpolation = R"hs_glsl(// Reconstruction by interpolation: linear optical depth inside the layer a depth falls in. The method
 // provides hs_through_layer(k), the optical depth in front of the end of layer k (a prefix sum for
 // histogram bins). Mirrors hairshadow::interpolation.
+
+// The optical depth a fraction of the way through a layer, from the optical depths in front of its
+// start (before) and its end (after).
+float hs_interpolate_between(float before, float after, float fraction) { return before + fraction * (after - before); }
+
+// The plain look-up over values fetched by the caller (a port to another shading language calls it
+// after its own fetches; docs/texel_layouts.md): before = hs_through_layer(p.index - 1), 0 for index 0,
+// and after = hs_through_layer(p.index); behind every layer (p.index >= HS_LAYERS) after =
+// hs_through_layer(HS_LAYERS - 1) and before is unused; in front of all (p.index < 0) neither is read.
+float hs_interpolate_from(hs_layer_position p, float before, float after) {
+    if (p.index < 0) return 0.0;
+    if (p.index >= HS_LAYERS) return after;
+    return hs_interpolate_between(before, after, p.fraction);
+}
+
+// The same fetching through hs_through_layer, only the layers it needs.
 float hs_interpolate(hs_layer_position p) {
     if (p.index < 0) return 0.0;
     if (p.index >= HS_LAYERS) return hs_through_layer(HS_LAYERS - 1);
     float before = p.index > 0 ? hs_through_layer(p.index - 1) : 0.0;
     float after = hs_through_layer(p.index);
-    return before + p.fraction * (after - before);
+    return hs_interpolate_between(before, after, p.fraction);
 }
 
 // The optical depth the look-up turns into T; a reconstruction built on this one defines its own

@@ -96,7 +96,7 @@ public:
     /// The GLSL twin's uniforms (gl/maps/policy_glsl.hpp): the boundaries' fractions, as the CPU rounded them.
     template <class Set>
     void glsl_uniforms(Set&& set) const {
-        for (int k = 1; k <= K; ++k) set("hs_power_fraction[" + std::to_string(k) + "]", fractions_[std::size_t(k)]);
+        for (int k = 1; k <= K; ++k) set("hs_power_fraction", fractions_[std::size_t(k)], k); // element k of the array
     }
 
 private:

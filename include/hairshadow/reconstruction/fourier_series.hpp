@@ -95,7 +95,7 @@ public:
     void glsl_uniforms(Set&& set) const {
         set("hs_fourier_margin", margin_);
         set("hs_fourier_span", span_);
-        for (int k = 1; k <= harmonics; ++k) set("hs_fourier_weight[" + std::to_string(k) + "]", weight_[std::size_t(k)]);
+        for (int k = 1; k <= harmonics; ++k) set("hs_fourier_weight", weight_[std::size_t(k)], k); // element k of the array
     }
 
 private:

@@ -167,7 +167,7 @@ public:
         // The pull on moment 2k, the bias times the bias vector, computed here so that GL adds the
         // CPU's floats.
         for (int k = 1; k <= n; ++k)
-            set("hs_moment_pull[" + std::to_string(k - 1) + "]", bias() * bias_vector[std::size_t(2 * k)]);
+            set("hs_moment_pull", bias() * bias_vector[std::size_t(2 * k)], k - 1);
     }
 
 private:

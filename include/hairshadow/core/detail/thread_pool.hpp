@@ -51,6 +51,12 @@ public:
         return true;
     }
 
+    /// Jobs handed to workers so far (tests: a user's executor leaves it unchanged).
+    std::size_t jobs_started() {
+        std::lock_guard lock(mutex_);
+        return generation_;
+    }
+
 private:
     thread_pool() = default;
 

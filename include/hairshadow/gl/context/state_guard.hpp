@@ -3,7 +3,8 @@
 /// The GL back end's state contract (README, "The GL state contract"): every entry point that draws,
 /// dispatches or reads back saves the GL state it may change and restores it on the way out, sets the
 /// state its passes depend on whatever the caller left, and lets the caller's unread GL errors
-/// neither fail it nor be mistaken for its own. One path for every GL 4.3+ context.
+/// neither fail it nor be mistaken for its own, leaving them for the caller to read after the call.
+/// One path for every GL 4.3+ context.
 
 #include <hairshadow/gl/context/context.hpp>
 #include <hairshadow/gl/context/error.hpp>
@@ -21,12 +22,71 @@ bool loaded(F* f) noexcept {
     return f != nullptr;
 }
 
-/// Reads and drops the errors GL has recorded (at most one of each kind, so the loop is short). The
-/// caller's errors are theirs: reading them first is the only way to tell the library's own apart.
-inline void clear_errors() noexcept {
-    for (int i = 0; i < 16 && glGetError() != GL_NO_ERROR; ++i) {
+/// The GL errors a caller left unread when a library call began: read first, since reading them is
+/// the only way to tell the library's own apart, and raised again when the call ends, so that the
+/// caller's glGetError still finds them (GL keeps one flag per kind, so the set is small).
+class pending_errors {
+public:
+    /// Reads every error flag GL has set. GL_OUT_OF_MEMORY leaves GL's state undefined (GL 4.6, 2.3.1):
+    /// the library does not build on it, and says so.
+    void take() {
+        for (GLenum e = glGetError(); e != GL_NO_ERROR && count_ < errors_.size(); e = glGetError()) {
+            if (e == GL_OUT_OF_MEMORY)
+                throw gl_error("GL_OUT_OF_MEMORY was pending before hairshadow's call: the GL state is undefined (GL 4.6, section 2.3.1)");
+            if (std::find(errors_.begin(), errors_.begin() + count_, e) == errors_.begin() + count_) errors_[count_++] = e;
+        }
     }
-}
+
+    /// Sets each flag again by a call that GL rejects with that error and otherwise ignores (GL 4.6,
+    /// 2.3.1: a command that raises an error has no other effect), with debug output off meanwhile so
+    /// that the caller's debug callback does not hear its errors twice. GL_STACK_UNDERFLOW is raised
+    /// only where the debug group stack is empty, GL_STACK_OVERFLOW only where it is full (elsewhere
+    /// raising them would pop or push a group of the caller's); GL_CONTEXT_LOST cannot be raised.
+    void raise_again() const noexcept {
+        if (count_ == 0) return;
+        const GLboolean debug_output = glIsEnabled(GL_DEBUG_OUTPUT);
+        glDisable(GL_DEBUG_OUTPUT);
+        for (std::size_t i = 0; i < count_; ++i) raise(errors_[i]);
+        if (debug_output) glEnable(GL_DEBUG_OUTPUT);
+    }
+
+private:
+    static void raise(GLenum e) noexcept {
+        switch (e) {
+        case GL_INVALID_ENUM: glEnable(GL_NONE); break;       // not a capability
+        case GL_INVALID_VALUE: glLineWidth(-1.0f); break;     // width <= 0
+        case GL_INVALID_OPERATION: glEndConditionalRender(); break; // none is active (the contract's precondition)
+        case GL_INVALID_FRAMEBUFFER_OPERATION: raise_framebuffer_error(); break;
+        case GL_STACK_UNDERFLOW: if (debug_group_depth() == 0) glPopDebugGroup(); break;
+        case GL_STACK_OVERFLOW: raise_stack_overflow(); break;
+        default: break;
+        }
+    }
+    static GLint debug_group_depth() noexcept {
+        GLint depth = 0;
+        glGetIntegerv(GL_DEBUG_GROUP_STACK_DEPTH, &depth);
+        return depth;
+    }
+    static void raise_stack_overflow() noexcept {
+        GLint max_depth = 0;
+        glGetIntegerv(GL_MAX_DEBUG_GROUP_STACK_DEPTH, &max_depth);
+        if (debug_group_depth() >= max_depth) glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, "hairshadow");
+    }
+    /// A clear of a framebuffer with no attachment and no default size, which is incomplete.
+    static void raise_framebuffer_error() noexcept {
+        GLint bound = 0;
+        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
+        GLuint fbo = 0;
+        glGenFramebuffers(1, &fbo);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+        glClear(GL_COLOR_BUFFER_BIT);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(bound));
+        glDeleteFramebuffers(1, &fbo);
+    }
+
+    std::array<GLenum, 8> errors_{};
+    std::size_t count_ = 0;
+};
 } // namespace detail
 
 /// Saves, when made, the GL state the library's passes and read-backs may change, and restores it
@@ -46,14 +106,21 @@ public:
     /// Texture units [0, saved_units) hold what the library's passes bind (up to 3) and what point
     /// queries bind for a look-up (up to 1 + 2 + 2 for 256 slices and 8 slabs).
     static constexpr int saved_units = 8;
+    /// Asks a guard to save every texture unit the context has (GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS,
+    /// at most max_saved_units): for calls that bind a caller's choice of units (point queries).
+    static constexpr int all_texture_units = -1, max_saved_units = 256;
     /// Indexed shader storage bindings and image units the passes use (the compute build's), restored.
     static constexpr GLuint saved_storage_bindings = 8, saved_images = 4;
 
-    /// Throws feature_error in a context older than GL 4.3, whose loader may lack the functions used here.
-    explicit state_guard(const char* label) {
-        require_version(4, 3, std::string("the GL back end (") + label + ")");
-        detail::clear_errors();
+    /// Throws feature_error in a context older than GL 4.3, whose loader may lack the functions used
+    /// here, and gl_error where the caller left GL_OUT_OF_MEMORY pending. Saves texture units
+    /// [0, texture_units), at least saved_units (all_texture_units: every one).
+    explicit state_guard(const char* label, int texture_units = saved_units) {
+        if (gl_version() < 43) require_version(4, 3, std::string("the GL back end (") + label + ")"); // the message only on failure
+        caller_errors_.take();
         push_debug_group(label);
+        if (texture_units == all_texture_units) glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &texture_units);
+        unit_count_ = std::clamp(texture_units, saved_units, max_saved_units);
         glGetIntegerv(GL_CURRENT_PROGRAM, &program_);
         glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_fbo_);
         glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_fbo_);
@@ -77,7 +144,7 @@ public:
             glGetIntegeri_v(GL_IMAGE_BINDING_FORMAT, i, &image.format);
         }
         glGetIntegerv(GL_ACTIVE_TEXTURE, &active_texture_);
-        for (int u = 0; u < saved_units; ++u) {
+        for (int u = 0; u < unit_count_; ++u) {
             glActiveTexture(GLenum(GL_TEXTURE0 + u));
             glGetIntegerv(GL_TEXTURE_BINDING_2D, &units_[std::size_t(u)].texture_2d);
             glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &units_[std::size_t(u)].texture_array);
@@ -144,7 +211,7 @@ public:
             glBindImageTexture(i, image, image ? b.level : 0, image ? b.layered : GL_FALSE, image ? b.layer : 0,
                                image ? GLenum(b.access) : GL_READ_ONLY, image ? GLenum(b.format) : GL_R8);
         }
-        for (int u = 0; u < saved_units; ++u) {
+        for (int u = 0; u < unit_count_; ++u) {
             const auto& unit = units_[std::size_t(u)];
             glActiveTexture(GLenum(GL_TEXTURE0 + u));
             glBindTexture(GL_TEXTURE_2D, live(unit.texture_2d, glIsTexture));
@@ -175,6 +242,7 @@ public:
         if (has_clip_control_) glClipControl(GLenum(clip_origin_), GLenum(clip_depth_));
 #endif
         if (pushed_group_) glPopDebugGroup();
+        caller_errors_.raise_again();
     }
 
     /// Sets the state every pass of the library depends on, whatever the caller left: no blending,
@@ -249,7 +317,8 @@ private:
     std::array<storage_binding, saved_storage_bindings> storage_{};
     std::array<image_binding, saved_images> images_{};
     GLint active_texture_ = GL_TEXTURE0;
-    std::array<unit_bindings, saved_units> units_{};
+    int unit_count_ = saved_units;
+    std::array<unit_bindings, max_saved_units> units_{};
     int viewports_ = 0, draw_buffers_ = 0;
     std::array<std::array<GLfloat, 4>, max_viewports> viewport_{};
     std::array<GLboolean, max_viewports> scissor_test_{};
@@ -262,6 +331,7 @@ private:
     bool has_clip_control_ = false;
     GLint clip_origin_ = 0, clip_depth_ = 0;
     bool pushed_group_ = false;
+    detail::pending_errors caller_errors_;
 };
 
 } // namespace hairshadow::gl

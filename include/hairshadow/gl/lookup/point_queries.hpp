@@ -35,7 +35,7 @@ void main() { hs_results[gl_VertexID] = hs_transmittance(hs_point); gl_Position 
         std::vector<float> out(points.size());
         if (points.empty()) return out;
         if (points.size() > std::size_t(std::numeric_limits<GLsizei>::max())) throw argument_error("too many points for one GL draw");
-        state_guard guard("hairshadow: point queries");
+        state_guard guard("hairshadow: point queries", state_guard::all_texture_units); // `bind` may bind any unit
         guard.set_pass_state();
         auto positions = make_buffer(), results = make_buffer();
         auto vao = make_vertex_array();

@@ -10,6 +10,7 @@
 #include <hairshadow/gl/maps/policy_glsl.hpp>
 #include <hairshadow/placement/clustered.hpp>
 
+#include <array>
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -137,10 +138,10 @@ private:
     }
     /// Attaches the 2 x targets layers of `t` as the colour targets, cleared to zero if asked.
     static void attach(const texture& t, bool clear) {
-        std::vector<GLenum> buffers;
+        std::array<GLenum, 2 * targets> buffers{}; // no allocation in a frame
         for (int i = 0; i < 2 * targets; ++i) {
             glFramebufferTextureLayer(GL_FRAMEBUFFER, GLenum(GL_COLOR_ATTACHMENT0 + i), t.get(), 0, i);
-            buffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
+            buffers[std::size_t(i)] = GLenum(GL_COLOR_ATTACHMENT0 + i);
         }
         glDrawBuffers(GLsizei(buffers.size()), buffers.data());
         if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) throw gl_error("cluster state: incomplete framebuffer");

@@ -40,7 +40,7 @@ public:
     static std::string lookup_source(std::string_view prefix = default_lookup_prefix) {
         std::string s = measured ? "#define HS_MEASURED_DENSITY\n" : "";
         for (auto piece : {shaders::placement_common, shaders::lookup_light, shaders::reconstruction_fibre_density}) s += piece;
-        return prefix_glsl(s, prefix);
+        return prefix_glsl(std::string(lookup_version_check) + s, prefix);
     }
 
     /// Builds the maps of `mesh` seen from `light`, with a light pass of their own.
@@ -128,17 +128,23 @@ public:
     }
 
     /// Sets the look-up's uniforms on `prog` (which need not be current) and binds its textures to
-    /// units [first_unit, first_unit + texture_units), with no sampler objects.
-    void bind_lookup(GLuint prog, int first_unit = 0, std::string_view prefix = default_lookup_prefix) const {
-        lookup_binder binder(prog, first_unit, prefix);
+    /// units [first_unit, first_unit + texture_units), with no sampler objects; `prefix` is the one
+    /// given to lookup_source, `depth_bias` the linear depth each point moves towards the light (as
+    /// query_options::depth_bias). The active texture unit and the current program are left as found.
+    /// Throws argument_error where `prog` is not a linked program or lacks one of the look-up's uniforms.
+    void bind_lookup(GLuint prog, int first_unit = 0, std::string_view prefix = default_lookup_prefix, float depth_bias = 0.0f) const {
+        lookup_binder binder(prog, first_unit, prefix, depth_bias);
         this->bind_light(binder);
-        const auto& fibres = reconstruction_.parameters();
-        binder.set("hs_fibre_step", fibres.fibre_step());
-        binder.set("hs_fibre_optical_depth", fibres.fibre_optical_depth());
-        // No cap is infinity on the CPU; GLSL need not keep an infinite uniform, and the largest float
-        // caps nothing a finite count reaches.
-        binder.set("hs_max_fibres", std::min(fibres.max_fibres, std::numeric_limits<float>::max()));
-        if constexpr (measured) binder.texture("hs_density_texture", GL_TEXTURE_2D, sums_.get());
+        if constexpr (measured) {
+            binder.texture("hs_density_texture", GL_TEXTURE_2D, sums_.get()); // the fixed density's uniforms go unread
+        } else {
+            const auto& fibres = reconstruction_.parameters();
+            binder.set("hs_fibre_step", fibres.fibre_step());
+            binder.set("hs_fibre_optical_depth", fibres.fibre_optical_depth());
+            // No cap is infinity on the CPU; GLSL need not keep an infinite uniform, and the largest
+            // float caps nothing a finite count reaches.
+            binder.set("hs_max_fibres", std::min(fibres.max_fibres, std::numeric_limits<float>::max()));
+        }
     }
 
     /// New fibre parameters for the look-up, without a rebuild: they are only uniforms (bind again).

@@ -18,6 +18,7 @@
 #include <hairshadow/gl/context/state_guard.hpp>
 #include <hairshadow/methods/published.hpp>
 
+#include <array>
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -91,7 +92,7 @@ protected:
     void begin_compute_pass(const light_pass& pass, GLuint prog) const {
         glUseProgram(prog);
         pass.compute()->bind_for_tiles(prog);
-        lookup_binder binder(prog, 0, default_lookup_prefix);
+        auto binder = lookup_binder::for_pass(prog, 0);
         binder.texture("hs_range_map", GL_TEXTURE_2D, range_->range.get());
         placement_glsl<P>::set_uniforms(binder, placement_);
     }
@@ -171,7 +172,7 @@ public:
                                               {shaders::lookup_layers, shaders::reconstruction_interpolation, reconstruction_source(), shaders::lookup_light,
                                                shaders::lookup_interpolation}))
             s += piece;
-        return prefix_glsl(s, prefix);
+        return prefix_glsl(std::string(lookup_version_check) + s, prefix);
     }
 
     /// Builds the maps of `mesh` seen from `light`, with a light pass of their own.
@@ -202,22 +203,23 @@ public:
         glBlendFunc(GL_ONE, GL_ONE);
         glUseProgram(layers_program_.get());
         set_light_uniforms(layers_program_.get(), this->light_, pass.options());
-        lookup_binder binder(layers_program_.get(), 0, default_lookup_prefix);
+        auto binder = lookup_binder::for_pass(layers_program_.get(), 0);
         binder.texture("hs_range_map", GL_TEXTURE_2D, range);
         placement_glsl<P>::set_uniforms(binder, this->placement_spec());
         state_.bind(binder);
         for (int base_layer = 0; base_layer < array_layers; base_layer += targets_per_pass_) {
-            std::vector<GLenum> buffers;
+            std::array<GLenum, 8> buffers{}; // no allocation in a frame
+            GLsizei used_buffers = 0;
             for (int t = 0; t < 8; ++t) {
                 const bool used = t < targets_per_pass_ && base_layer + t < array_layers;
                 if (used) glFramebufferTextureLayer(GL_FRAMEBUFFER, GLenum(GL_COLOR_ATTACHMENT0 + t), layers_.get(), 0, base_layer + t);
                 else glFramebufferTexture(GL_FRAMEBUFFER, GLenum(GL_COLOR_ATTACHMENT0 + t), 0, 0);
-                if (used) buffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + t));
+                if (used) buffers[std::size_t(used_buffers++)] = GLenum(GL_COLOR_ATTACHMENT0 + t);
             }
-            glDrawBuffers(GLsizei(buffers.size()), buffers.data());
+            glDrawBuffers(used_buffers, buffers.data());
             if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) throw gl_error("interpolated maps: incomplete framebuffer");
             const float zero[4] = {0, 0, 0, 0};
-            for (std::size_t t = 0; t < buffers.size(); ++t) glClearBufferfv(GL_COLOR, GLint(t), zero);
+            for (GLsizei t = 0; t < used_buffers; ++t) glClearBufferfv(GL_COLOR, t, zero);
             glUniform1i(glGetUniformLocation(layers_program_.get(), "hs_first_layer"), 4 * base_layer);
             pass.mesh().draw();
         }
@@ -270,9 +272,11 @@ public:
 
     /// Sets the look-up's uniforms on `prog` (which need not be current) and binds its textures to
     /// units [first_unit, first_unit + texture_units), with no sampler objects; `prefix` is the one
-    /// given to lookup_source. The active texture unit and the current program are left as found.
-    void bind_lookup(GLuint prog, int first_unit = 0, std::string_view prefix = default_lookup_prefix) const {
-        lookup_binder binder(prog, first_unit, prefix);
+    /// given to lookup_source, `depth_bias` the linear depth each point moves towards the light (as
+    /// query_options::depth_bias). The active texture unit and the current program are left as found.
+    /// Throws argument_error where `prog` is not a linked program or lacks one of the look-up's uniforms.
+    void bind_lookup(GLuint prog, int first_unit = 0, std::string_view prefix = default_lookup_prefix, float depth_bias = 0.0f) const {
+        lookup_binder binder(prog, first_unit, prefix, depth_bias);
         this->bind_light(binder);
         binder.texture("hs_layers_texture", GL_TEXTURE_2D_ARRAY, layers_.get());
         state_.bind(binder);

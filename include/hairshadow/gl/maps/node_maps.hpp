@@ -40,7 +40,7 @@ public:
     static std::string lookup_source(std::string_view prefix = default_lookup_prefix) {
         std::string s = defines();
         for (auto piece : {shaders::placement_common, shaders::reconstruction_adaptive_nodes, shaders::lookup_light, shaders::lookup_nodes}) s += piece;
-        return prefix_glsl(s, prefix);
+        return prefix_glsl(std::string(lookup_version_check) + s, prefix);
     }
 
     /// Builds the maps of `mesh` seen from `light`, with a light pass of their own.
@@ -127,9 +127,12 @@ public:
     }
 
     /// Sets the look-up's uniforms on `prog` (which need not be current) and binds its textures to
-    /// units [first_unit, first_unit + texture_units), with no sampler objects.
-    void bind_lookup(GLuint prog, int first_unit = 0, std::string_view prefix = default_lookup_prefix) const {
-        lookup_binder binder(prog, first_unit, prefix);
+    /// units [first_unit, first_unit + texture_units), with no sampler objects; `prefix` is the one
+    /// given to lookup_source, `depth_bias` the linear depth each point moves towards the light (as
+    /// query_options::depth_bias). The active texture unit and the current program are left as found.
+    /// Throws argument_error where `prog` is not a linked program or lacks one of the look-up's uniforms.
+    void bind_lookup(GLuint prog, int first_unit = 0, std::string_view prefix = default_lookup_prefix, float depth_bias = 0.0f) const {
+        lookup_binder binder(prog, first_unit, prefix, depth_bias);
         this->bind_light(binder);
         binder.texture("hs_nodes_texture", GL_TEXTURE_2D_ARRAY, nodes_.get());
     }

@@ -12,6 +12,8 @@
 #include <hairshadow/gl/shaders.generated.hpp>
 #include <hairshadow/methods/published.hpp>
 
+#include <algorithm>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -68,7 +70,7 @@ public:
                                               {shaders::reconstruction_occupancy_bitcount, shaders::lookup_light, shaders::lookup_occupancy_texels,
                                                shaders::lookup_occupancy}))
             s += piece;
-        return prefix_glsl(s, prefix);
+        return prefix_glsl(std::string(lookup_version_check) + s, prefix);
     }
 
     /// Builds the maps of `mesh` seen from `light`, with a light pass of their own.
@@ -91,9 +93,7 @@ public:
         glViewport(0, 0, allocated_, allocated_);
 
         // 1. Occupancy bits: OR of each fragment's slice bit.
-        std::vector<GLuint> targets;
-        for (auto& t : bits_) targets.push_back(t.get());
-        attach(targets);
+        attach(bits_);
         const GLuint zero_u[4] = {0, 0, 0, 0};
         for (int i = 0; i < bit_targets; ++i) glClearBufferuiv(GL_COLOR, i, zero_u);
         glEnable(GL_COLOR_LOGIC_OP);
@@ -103,9 +103,7 @@ public:
         check("occupancy maps: occupancy pass");
 
         // 2. Slabs: additive sums of optical depth.
-        targets.clear();
-        for (auto& t : slabs_) targets.push_back(t.get());
-        attach(targets);
+        attach(slabs_);
         const float zero_f[4] = {0, 0, 0, 0};
         for (int i = 0; i < slab_targets; ++i) glClearBufferfv(GL_COLOR, i, zero_f);
         glEnable(GL_BLEND);
@@ -151,12 +149,14 @@ public:
 
     /// Sets the look-up's uniforms on `prog` (which need not be current) and binds its textures to
     /// units [first_unit, first_unit + texture_units), with no sampler objects; `prefix` is the one
-    /// given to lookup_source. The active texture unit and the current program are left as found.
-    void bind_lookup(GLuint prog, int first_unit = 0, std::string_view prefix = default_lookup_prefix) const {
-        lookup_binder binder(prog, first_unit, prefix);
+    /// given to lookup_source, `depth_bias` the linear depth each point moves towards the light (as
+    /// query_options::depth_bias). The active texture unit and the current program are left as found.
+    /// Throws argument_error where `prog` is not a linked program or lacks one of the look-up's uniforms.
+    void bind_lookup(GLuint prog, int first_unit = 0, std::string_view prefix = default_lookup_prefix, float depth_bias = 0.0f) const {
+        lookup_binder binder(prog, first_unit, prefix, depth_bias);
         this->bind_light(binder);
-        for (int t = 0; t < bit_targets; ++t) binder.texture("hs_bits_texture[" + std::to_string(t) + "]", GL_TEXTURE_2D, bits_[std::size_t(t)].get());
-        for (int t = 0; t < slab_targets; ++t) binder.texture("hs_slabs_texture[" + std::to_string(t) + "]", GL_TEXTURE_2D, slabs_[std::size_t(t)].get());
+        for (int t = 0; t < bit_targets; ++t) binder.texture("hs_bits_texture", GL_TEXTURE_2D, bits_[std::size_t(t)].get(), t);
+        for (int t = 0; t < slab_targets; ++t) binder.texture("hs_slabs_texture", GL_TEXTURE_2D, slabs_[std::size_t(t)].get(), t);
     }
 
     /// Bytes of the textures the look-up reads: depth range (RGBA32F, one extra row), occupancy bits
@@ -207,18 +207,18 @@ private:
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
     }
 
-    static void attach(const std::vector<GLuint>& textures) {
-        std::vector<GLenum> buffers;
-        for (std::size_t i = 0; i < 8; ++i) glFramebufferTexture(GL_FRAMEBUFFER, GLenum(GL_COLOR_ATTACHMENT0 + i), i < textures.size() ? textures[i] : 0, 0);
-        for (std::size_t i = 0; i < textures.size(); ++i) buffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
-        glDrawBuffers(GLsizei(buffers.size()), buffers.data());
+    static void attach(const std::vector<texture>& textures) {
+        std::array<GLenum, 8> buffers{}; // no allocation in a frame; the constructor checked the count
+        for (std::size_t i = 0; i < 8; ++i) glFramebufferTexture(GL_FRAMEBUFFER, GLenum(GL_COLOR_ATTACHMENT0 + i), i < textures.size() ? textures[i].get() : 0, 0);
+        for (std::size_t i = 0; i < textures.size() && i < buffers.size(); ++i) buffers[i] = GLenum(GL_COLOR_ATTACHMENT0 + i);
+        glDrawBuffers(GLsizei(std::min<std::size_t>(textures.size(), buffers.size())), buffers.data());
         if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) throw gl_error("occupancy maps: incomplete framebuffer");
     }
 
     void draw(const program& p, const light_pass& pass) const {
         glUseProgram(p.get());
         set_light_uniforms(p.get(), this->light_, pass.options());
-        lookup_binder binder(p.get(), 0, default_lookup_prefix);
+        auto binder = lookup_binder::for_pass(p.get(), 0);
         binder.texture("hs_range_map", GL_TEXTURE_2D, this->range_->range.get());
         placement_glsl<P>::set_uniforms(binder, this->placement_spec());
         pass.mesh().draw();

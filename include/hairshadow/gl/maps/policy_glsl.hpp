@@ -65,10 +65,16 @@ std::string policy_defines() {
     else return "";
 }
 
-/// Sets a policy's uniforms (glsl_uniforms(set)) on a look-up binder, if it has any.
+/// Sets a policy's uniforms (glsl_uniforms(set)) on a look-up binder, if it has any: set(name, value)
+/// for a float, set(name, value, k) for element k of a float array (named without an allocation).
+/// `required`: a uniform the program lacks is refused as the binder refuses it; else skipped (a
+/// placement's uniforms, which a look-up that never locates a layer does not read: fibre density).
 template <class Policy>
-void set_policy_uniforms(const lookup_binder& binder, const Policy& policy) {
-    const auto set = [&](std::string_view name, float value) { binder.set(name, value); };
+void set_policy_uniforms(const lookup_binder& binder, const Policy& policy, bool required = true) {
+    const auto set = [&](std::string_view name, float value, int element = -1) {
+        if (required) binder.set(name, value, element);
+        else binder.set_if_active(name, value, element);
+    };
     if constexpr (requires { policy.glsl_uniforms(set); }) policy.glsl_uniforms(set);
 }
 
@@ -118,7 +124,7 @@ struct placement_glsl {
             return {library_snippet(name), state};
         }
     }
-    static void set_uniforms(const lookup_binder& binder, const P& placement) { detail::set_policy_uniforms(binder, placement); }
+    static void set_uniforms(const lookup_binder& binder, const P& placement) { detail::set_policy_uniforms(binder, placement, false); }
 };
 
 /// What an accumulation brings to a GL program (see the file's comment).

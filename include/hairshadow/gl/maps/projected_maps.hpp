@@ -13,6 +13,7 @@
 #include <hairshadow/gl/maps/interpolated_maps.hpp>
 #include <hairshadow/reconstruction/detail/depth_projection.hpp>
 
+#include <array>
 #include <algorithm>
 #include <string>
 #include <type_traits>
@@ -58,7 +59,7 @@ public:
         for (auto piece : {accumulation::source(), shaders::placement_common, reconstruction_source(), shaders::reconstruction_depth_projection,
                            shaders::lookup_light, shaders::lookup_projection})
             s += piece;
-        return prefix_glsl(s, prefix);
+        return prefix_glsl(std::string(lookup_version_check) + s, prefix);
     }
 
     /// Builds the maps of `mesh` seen from `light`, with a light pass of their own.
@@ -79,7 +80,7 @@ public:
                                                               reconstruction_source(), shaders::reconstruction_depth_projection},
                                                              shaders::compute_projection, "compute/projection");
             this->begin_compute_pass(pass, compute_program_.get());
-            detail::set_policy_uniforms(lookup_binder(compute_program_.get(), 1, default_lookup_prefix), reconstruction_);
+            detail::set_policy_uniforms(lookup_binder::for_pass(compute_program_.get(), 1), reconstruction_);
             glBindImageTexture(0, sums_.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, accumulation::texture_format);
             pass.compute()->dispatch_tiles();
             glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
@@ -88,26 +89,27 @@ public:
             return;
         }
         glBindFramebuffer(GL_FRAMEBUFFER, this->fbo_.get());
-        std::vector<GLenum> buffers;
+        std::array<GLenum, 8> buffers{}; // no allocation in a frame
+        GLsizei used_buffers = 0;
         for (int t = 0; t < 8; ++t) {
             if (t < array_layers) {
                 glFramebufferTextureLayer(GL_FRAMEBUFFER, GLenum(GL_COLOR_ATTACHMENT0 + t), sums_.get(), 0, t);
-                buffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + t));
+                buffers[std::size_t(used_buffers++)] = GLenum(GL_COLOR_ATTACHMENT0 + t);
             } else {
                 glFramebufferTexture(GL_FRAMEBUFFER, GLenum(GL_COLOR_ATTACHMENT0 + t), 0, 0);
             }
         }
-        glDrawBuffers(GLsizei(buffers.size()), buffers.data());
+        glDrawBuffers(used_buffers, buffers.data());
         if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) throw gl_error("projected maps: incomplete framebuffer");
         glViewport(0, 0, res, res);
         const float zero[4] = {0, 0, 0, 0};
-        for (std::size_t t = 0; t < buffers.size(); ++t) glClearBufferfv(GL_COLOR, GLint(t), zero);
+        for (GLsizei t = 0; t < used_buffers; ++t) glClearBufferfv(GL_COLOR, t, zero);
         glEnable(GL_BLEND);
         glBlendEquation(GL_FUNC_ADD);
         glBlendFunc(GL_ONE, GL_ONE);
         glUseProgram(raster_program_.get());
         set_light_uniforms(raster_program_.get(), this->light_, pass.options());
-        lookup_binder binder(raster_program_.get(), 0, default_lookup_prefix);
+        auto binder = lookup_binder::for_pass(raster_program_.get(), 0);
         binder.texture("hs_range_map", GL_TEXTURE_2D, this->range_->range.get());
         detail::set_policy_uniforms(binder, reconstruction_);
         pass.mesh().draw();
@@ -149,9 +151,12 @@ public:
     }
 
     /// Sets the look-up's uniforms on `prog` (which need not be current) and binds its textures to
-    /// units [first_unit, first_unit + texture_units), with no sampler objects.
-    void bind_lookup(GLuint prog, int first_unit = 0, std::string_view prefix = default_lookup_prefix) const {
-        lookup_binder binder(prog, first_unit, prefix);
+    /// units [first_unit, first_unit + texture_units), with no sampler objects; `prefix` is the one
+    /// given to lookup_source, `depth_bias` the linear depth each point moves towards the light (as
+    /// query_options::depth_bias). The active texture unit and the current program are left as found.
+    /// Throws argument_error where `prog` is not a linked program or lacks one of the look-up's uniforms.
+    void bind_lookup(GLuint prog, int first_unit = 0, std::string_view prefix = default_lookup_prefix, float depth_bias = 0.0f) const {
+        lookup_binder binder(prog, first_unit, prefix, depth_bias);
         this->bind_light(binder);
         binder.texture("hs_sums_texture", GL_TEXTURE_2D_ARRAY, sums_.get());
         detail::set_policy_uniforms(binder, reconstruction_);

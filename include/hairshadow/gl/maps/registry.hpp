@@ -27,15 +27,16 @@ public:
     virtual void build(const hair_mesh& mesh, const light_space& light, const raster_options& options = {}) = 0;
     /// The same from a light pass that has run, shared with other methods for its light.
     virtual void build(const light_pass& pass) = 0;
-    /// Transmittance at each point by the GLSL look-up hs_transmittance.
-    virtual std::vector<float> transmittance(std::span<const glm::vec3> points) = 0;
+    /// Transmittance at each point by the GLSL look-up hs_transmittance, each point moved `depth_bias`
+    /// towards the light (query_options::depth_bias); equal to the CPU query of the maps read back.
+    virtual std::vector<float> transmittance(std::span<const glm::vec3> points, float depth_bias = 0.0f) = 0;
     /// The maps read back for CPU queries (filters, jitter, stored maps).
     virtual std::unique_ptr<any_shadow_map> to_cpu() = 0;
     /// Bytes of the textures the look-up reads.
     virtual std::size_t memory_bytes() const = 0;
     /// The method's GLSL look-up and its binding (as gl::maps<Method>), for user shaders and the renderer.
     virtual std::string lookup_source(std::string_view prefix = default_lookup_prefix) const = 0;
-    virtual void bind_lookup(GLuint prog, int first_unit = 0, std::string_view prefix = default_lookup_prefix) const = 0;
+    virtual void bind_lookup(GLuint prog, int first_unit = 0, std::string_view prefix = default_lookup_prefix, float depth_bias = 0.0f) const = 0;
     /// Texture units bind_lookup binds.
     virtual int texture_units() const = 0;
     virtual const light_space& light() const = 0;
@@ -64,13 +65,15 @@ public:
         maps_.build(pass);
         glFinish();
     }
-    std::vector<float> transmittance(std::span<const glm::vec3> points) override {
+    std::vector<float> transmittance(std::span<const glm::vec3> points, float depth_bias) override {
         if (!queries_) queries_.emplace(maps_.lookup_source());
-        return queries_->run(points, [&](GLuint prog) { maps_.bind_lookup(prog); });
+        return queries_->run(points, [&](GLuint prog) { maps_.bind_lookup(prog, 0, default_lookup_prefix, depth_bias); });
     }
     std::size_t memory_bytes() const override { return maps_.memory_bytes(); }
     std::string lookup_source(std::string_view prefix) const override { return maps_.lookup_source(prefix); }
-    void bind_lookup(GLuint prog, int first_unit, std::string_view prefix) const override { maps_.bind_lookup(prog, first_unit, prefix); }
+    void bind_lookup(GLuint prog, int first_unit, std::string_view prefix, float depth_bias) const override {
+        maps_.bind_lookup(prog, first_unit, prefix, depth_bias);
+    }
     int texture_units() const override { return maps<Method>::texture_units; }
     const light_space& light() const override { return maps_.light(); }
     /// The maps read back, in a map of the CPU registry's making (make_shadow_map): where that registry

@@ -278,7 +278,7 @@ private:
         // The light's frustum (lookup/light.glsl, which the mesh's depth test reads) and no hair.
         const std::string no_hair =
             "uniform sampler2D hs_range_map;\n" + std::string(shaders::lookup_light) + "float hs_transmittance(vec3 world_pos) { return 1.0; }\n";
-        return make_entry(light, space, no_hair, [space](GLuint prog) { set_lookup_frustum(lookup_binder(prog, 0, default_lookup_prefix), space); }, bias);
+        return make_entry(light, space, no_hair, [space](GLuint prog) { set_lookup_frustum(lookup_binder::for_pass(prog, 0), space); }, bias);
     }
 
     /// The lights' passes; without lights, one of a black light, for the ambient terms.
