@@ -53,7 +53,7 @@ class engine_jobs final : public task_executor {
 public:
     enum class mode { threads, serial, extra, none };
     explicit engine_jobs(mode m) : mode_(m) {}
-    void run(unsigned workers, void (*job)(void*), void* context) override {
+    void run(unsigned workers, void (*job)(void*), void* context) noexcept override {
         ++runs;
         if (mode_ == mode::none) return;
         const unsigned calls = mode_ == mode::extra ? workers + 3 : workers;

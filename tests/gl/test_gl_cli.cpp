@@ -45,6 +45,16 @@ TEST_CASE("query --backend gl gives the CPU back end's transmittance", "[gl][cli
             REQUIRE(b.size() == a.size());
             for (std::size_t i = 0; i < a.size(); ++i) CHECK(b[i] == Approx(a[i]).margin(1e-4));
         }
+        // The depth bias on GL, as the CPU query takes it: points just behind a sheet move in front of it.
+        const auto cpu = test::run_cli(common + " --method " + method + " --bias 0.2");
+        const auto gl = test::run_cli(common + " --method " + method + " --bias 0.2 --backend gl --context osmesa");
+        const auto unbiased = test::run_cli(common + " --method " + method);
+        REQUIRE(cpu.status == 0);
+        REQUIRE(gl.status == 0);
+        const auto a = numbers(cpu.out), b = numbers(gl.out), c = numbers(unbiased.out);
+        REQUIRE(b.size() == a.size());
+        for (std::size_t i = 0; i < a.size(); ++i) CHECK(b[i] == Approx(a[i]).margin(1e-4));
+        CHECK(a != c);
     }
 }
 
@@ -121,13 +131,22 @@ TEST_CASE("the GL back end refuses what only the CPU does, with a usage error", 
         const char* args;
         const char* message;
     };
-    for (const auto& [args, message] : {refusal{" --method dsm", "CPU-only"}, refusal{" --method osm:16 --filter", "--filter"},
-                                        refusal{" --method osm:16 --jitter", "--jitter"}, refusal{" --method osm:16 --wide 4", "--wide"},
+    for (const auto& [args, message] : {refusal{" --method dsm", "CPU-only"}, refusal{" --method osm:16 --wide 4", "--wide"},
                                         refusal{" --method osm:16 --context glx", "--context"}}) {
         CAPTURE(args);
         const auto r = test::run_cli("render " + model + " --backend gl" + args);
         CHECK(r.status == 2);
         CHECK_THAT(r.err, Catch::Contains(message));
+    }
+    // The CPU queries' filter and jitter (options of query and compare), refused by the GL back end
+    // itself: the message is its own, not the option parser's.
+    test::temp_dir dir("gl_cli_refusals");
+    test::write_text(dir.file("points.txt"), "0 0 0\n");
+    for (const char* option : {"--filter", "--jitter"}) {
+        CAPTURE(option);
+        const auto r = test::run_cli("query " + model + " --points " + dir.file("points.txt") + " --backend gl --method osm:16 " + option);
+        CHECK(r.status == 2);
+        CHECK_THAT(r.err, Catch::Contains("the GLSL look-up has neither"));
     }
 }
 

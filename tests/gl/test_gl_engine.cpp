@@ -10,6 +10,7 @@
 #include "../test_support.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <set>
 #include <vector>
 
@@ -91,6 +92,7 @@ TEST_CASE("the caller's pending GL errors are still pending after a build, a rea
                                nullptr);
         glEnable(GLenum(0xFFFF));
         const int heard = messages;
+        CHECK(heard == 1); // the callback works: it heard the engine's error
         maps.build(mesh, s.light);
         CHECK(messages == heard);
         CHECK(read_errors() == std::set<GLenum>{GL_INVALID_ENUM});
@@ -98,6 +100,36 @@ TEST_CASE("the caller's pending GL errors are still pending after a build, a rea
         glDisable(GL_DEBUG_OUTPUT);
         glDisable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
         CHECK(read_errors().empty());
+    }
+    SECTION("each kind of error the engine can leave is still pending after a build, debug output as it was") {
+        const auto incomplete_clear = [] { // GL_INVALID_FRAMEBUFFER_OPERATION
+            GLuint fbo = 0;
+            glGenFramebuffers(1, &fbo);
+            glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+            glClear(GL_COLOR_BUFFER_BIT);
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            glDeleteFramebuffers(1, &fbo);
+        };
+        const std::vector<std::pair<GLenum, std::function<void()>>> kinds = {
+            {GL_INVALID_ENUM, [] { glEnable(GLenum(0xFFFF)); }},
+            {GL_INVALID_VALUE, [] { glLineWidth(-2.0f); }},
+            {GL_INVALID_OPERATION, [] { glEndQuery(GL_SAMPLES_PASSED); }}, // none active
+            {GL_INVALID_FRAMEBUFFER_OPERATION, incomplete_clear},
+            {GL_STACK_UNDERFLOW, [] { glPopDebugGroup(); }}, // only the default group on the stack
+        };
+        for (const bool debug_output : {false, true}) {
+            if (debug_output) glEnable(GL_DEBUG_OUTPUT);
+            for (const auto& [error, leave] : kinds) {
+                CAPTURE(error, debug_output);
+                leave();
+                REQUIRE(glGetError() == error); // the engine's call raised what it should
+                leave();
+                maps.build(mesh, s.light);
+                CHECK(read_errors() == std::set<GLenum>{error});
+                CHECK(bool(glIsEnabled(GL_DEBUG_OUTPUT)) == debug_output);
+            }
+            glDisable(GL_DEBUG_OUTPUT);
+        }
     }
 }
 

@@ -31,8 +31,13 @@ public:
     /// Calls job(context) at most `workers` times (each call a worker that takes chunks of the loop
     /// until none is left), on whatever threads the executor chooses, at once or one after another,
     /// and returns when every call has returned. A call beyond `workers` returns at once; chunks no
-    /// call took run on the calling thread after run returns. `job` does not throw.
-    virtual void run(unsigned workers, void (*job)(void*), void* context) = 0;
+    /// call took run on the calling thread after run returns. `job` does not throw, and run must not
+    /// (noexcept: the calls it has queued use the loop's stack). Two threads may call run at once
+    /// (two builds), and a job may call it again (a loop inside another's body): an executor whose
+    /// run waits for calls that can only start after the calling job returns would deadlock there;
+    /// one that runs them on the calling thread when its workers are busy (as the library's pool
+    /// does) is safe.
+    virtual void run(unsigned workers, void (*job)(void*), void* context) noexcept = 0;
 };
 
 /// How the CPU kernels run: `threads` workers (0: every hardware thread), on `executor` when given

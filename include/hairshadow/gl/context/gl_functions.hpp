@@ -39,7 +39,7 @@
 /// Every function is core OpenGL 4.5 or older (glClipControl is 4.5, asked for only on a 4.5 context;
 /// KHR_debug's groups are 4.3); the back end asks for a 4.3 context.
 
-#define HAIRSHADOW_GL_FUNCTION_COUNT 124
+#define HAIRSHADOW_GL_FUNCTION_COUNT 123
 
 /// X(glName, PFNGLNAMEPROC) for each GL function the library calls, sorted by name.
 #define HAIRSHADOW_GL_FUNCTIONS(X) \
@@ -94,7 +94,6 @@
     X(glEnable, PFNGLENABLEPROC) \
     X(glEnableVertexAttribArray, PFNGLENABLEVERTEXATTRIBARRAYPROC) \
     X(glEnablei, PFNGLENABLEIPROC) \
-    X(glEndConditionalRender, PFNGLENDCONDITIONALRENDERPROC) \
     X(glEndQuery, PFNGLENDQUERYPROC) \
     X(glFinish, PFNGLFINISHPROC) \
     X(glFramebufferParameteri, PFNGLFRAMEBUFFERPARAMETERIPROC) \

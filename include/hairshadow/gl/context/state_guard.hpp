@@ -30,18 +30,26 @@ public:
     /// Reads every error flag GL has set. GL_OUT_OF_MEMORY leaves GL's state undefined (GL 4.6, 2.3.1):
     /// the library does not build on it, and says so.
     void take() {
-        for (GLenum e = glGetError(); e != GL_NO_ERROR && count_ < errors_.size(); e = glGetError()) {
-            if (e == GL_OUT_OF_MEMORY)
-                throw gl_error("GL_OUT_OF_MEMORY was pending before hairshadow's call: the GL state is undefined (GL 4.6, section 2.3.1)");
-            if (std::find(errors_.begin(), errors_.begin() + count_, e) == errors_.begin() + count_) errors_[count_++] = e;
+        bool out_of_memory = false;
+        for (int read = 0; read < 16; ++read) { // bounded: a driver without a current context may repeat one error
+            const GLenum e = glGetError();
+            if (e == GL_NO_ERROR) break;
+            if (e == GL_OUT_OF_MEMORY) out_of_memory = true;
+            else if (count_ < errors_.size() && std::find(errors_.begin(), errors_.begin() + count_, e) == errors_.begin() + count_) errors_[count_++] = e;
+        }
+        if (out_of_memory) {
+            raise_again(); // the others stay the caller's; GL_OUT_OF_MEMORY itself cannot be raised again
+            count_ = 0;
+            throw gl_error("GL_OUT_OF_MEMORY was pending before hairshadow's call (read, and so cleared): the GL state is undefined (GL 4.6, section 2.3.1)");
         }
     }
 
     /// Sets each flag again by a call that GL rejects with that error and otherwise ignores (GL 4.6,
     /// 2.3.1: a command that raises an error has no other effect), with debug output off meanwhile so
     /// that the caller's debug callback does not hear its errors twice. GL_STACK_UNDERFLOW is raised
-    /// only where the debug group stack is empty, GL_STACK_OVERFLOW only where it is full (elsewhere
-    /// raising them would pop or push a group of the caller's); GL_CONTEXT_LOST cannot be raised.
+    /// only where the debug group stack holds the default group alone, GL_STACK_OVERFLOW only where
+    /// it is full (elsewhere raising them would pop or push a group of the caller's); GL_CONTEXT_LOST
+    /// cannot be raised.
     void raise_again() const noexcept {
         if (count_ == 0) return;
         const GLboolean debug_output = glIsEnabled(GL_DEBUG_OUTPUT);
@@ -55,9 +63,9 @@ private:
         switch (e) {
         case GL_INVALID_ENUM: glEnable(GL_NONE); break;       // not a capability
         case GL_INVALID_VALUE: glLineWidth(-1.0f); break;     // width <= 0
-        case GL_INVALID_OPERATION: glEndConditionalRender(); break; // none is active (the contract's precondition)
+        case GL_INVALID_OPERATION: glBeginQuery(GL_SAMPLES_PASSED, 0); break; // query name 0
         case GL_INVALID_FRAMEBUFFER_OPERATION: raise_framebuffer_error(); break;
-        case GL_STACK_UNDERFLOW: if (debug_group_depth() == 0) glPopDebugGroup(); break;
+        case GL_STACK_UNDERFLOW: if (debug_group_depth() <= 1) glPopDebugGroup(); break; // the default group counts
         case GL_STACK_OVERFLOW: raise_stack_overflow(); break;
         default: break;
         }
@@ -89,6 +97,21 @@ private:
 };
 } // namespace detail
 
+/// Keeps the caller's unread GL errors apart for a scope: read when made, raised again when
+/// destroyed, so that a check() inside reports only the library's own. Nested keepers hold nothing
+/// (the outer one took them). The state guard holds one; the renderer's entry points, which change
+/// state by design, hold one of their own.
+class caller_errors_kept {
+public:
+    caller_errors_kept() { errors_.take(); }
+    ~caller_errors_kept() { errors_.raise_again(); }
+    caller_errors_kept(const caller_errors_kept&) = delete;
+    caller_errors_kept& operator=(const caller_errors_kept&) = delete;
+
+private:
+    detail::pending_errors errors_;
+};
+
 /// Saves, when made, the GL state the library's passes and read-backs may change, and restores it
 /// when destroyed (also when a pass throws):
 /// - bindings: program, draw and read framebuffers, vertex array, array buffer, the shader storage
@@ -117,7 +140,6 @@ public:
     /// [0, texture_units), at least saved_units (all_texture_units: every one).
     explicit state_guard(const char* label, int texture_units = saved_units) {
         if (gl_version() < 43) require_version(4, 3, std::string("the GL back end (") + label + ")"); // the message only on failure
-        caller_errors_.take();
         push_debug_group(label);
         if (texture_units == all_texture_units) glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &texture_units);
         unit_count_ = std::clamp(texture_units, saved_units, max_saved_units);
@@ -242,7 +264,6 @@ public:
         if (has_clip_control_) glClipControl(GLenum(clip_origin_), GLenum(clip_depth_));
 #endif
         if (pushed_group_) glPopDebugGroup();
-        caller_errors_.raise_again();
     }
 
     /// Sets the state every pass of the library depends on, whatever the caller left: no blending,
@@ -313,6 +334,7 @@ private:
         GLint64 start = 0, size = 0;
     };
 
+    caller_errors_kept caller_errors_; // first: taken before anything else, raised again after everything is restored
     GLint program_ = 0, draw_fbo_ = 0, read_fbo_ = 0, vao_ = 0, array_buffer_ = 0, storage_buffer_ = 0, pack_buffer_ = 0;
     std::array<storage_binding, saved_storage_bindings> storage_{};
     std::array<image_binding, saved_images> images_{};
@@ -331,7 +353,6 @@ private:
     bool has_clip_control_ = false;
     GLint clip_origin_ = 0, clip_depth_ = 0;
     bool pushed_group_ = false;
-    detail::pending_errors caller_errors_;
 };
 
 } // namespace hairshadow::gl

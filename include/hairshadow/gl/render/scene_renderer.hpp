@@ -11,6 +11,7 @@
 #include <hairshadow/gl/lookup/lookup_binding.hpp>
 #include <hairshadow/gl/passes/hair_mesh.hpp>
 #include <hairshadow/gl/context/objects.hpp>
+#include <hairshadow/gl/context/state_guard.hpp>
 #include <hairshadow/gl/shaders.generated.hpp>
 #include <hairshadow/gl/render/transparent_hair.hpp>
 #include <hairshadow/shading/camera.hpp>
@@ -100,6 +101,7 @@ public:
     /// `with_hair` false draws the mesh alone (the hair still shadows it). Always opaque hair.
     /// Without lights, the mesh and hair show their ambient terms, as on the CPU.
     void draw(const camera& cam, bool with_hair = true) const {
+        const caller_errors_kept kept; // the caller's unread errors stay theirs, and fail nothing here
         const auto& lights = passes();
         glEnable(GL_DEPTH_TEST);
         glEnable(GL_MULTISAMPLE);
@@ -133,6 +135,7 @@ public:
     /// the lines' coverage) into framebuffer `target` (0: the window's), over the whole viewport.
     /// With transparent hair (set_transparency), the passes of gl::transparent_hair draw it instead.
     void render_into(const camera& cam, GLuint target, int samples = 8) const {
+        const caller_errors_kept kept; // the caller's unread errors stay theirs, and fail nothing here
         camera::check_image_size(cam.width, cam.height);
         // State a caller may have left that would keep the new buffers from being cleared.
         glDepthMask(GL_TRUE);
@@ -161,6 +164,7 @@ public:
 
     /// Renders off screen with `samples` multisamples and reads the image back.
     image render(const camera& cam, int samples = 8) const {
+        const caller_errors_kept kept; // the caller's unread errors stay theirs, and fail nothing here
         camera::check_image_size(cam.width, cam.height);
         const auto [single, resolved] = linear_target(cam.width, cam.height);
         render_into(cam, resolved.get(), samples);
@@ -180,6 +184,7 @@ public:
     /// Draws the scene into framebuffer `target` (0: the window's) encoded as sRGB for display: the
     /// multisampled render resolved into a linear texture, then encoded by a full-screen pass.
     void present(const camera& cam, GLuint target, int samples = 4) {
+        const caller_errors_kept kept; // the caller's unread errors stay theirs, and fail nothing here
         camera::check_image_size(cam.width, cam.height);
         if (!present_program_.get()) {
             const auto vs = compile_stage(GL_VERTEX_SHADER, {}, {shaders::passes_fullscreen_vertex}, "passes/fullscreen_vertex");
@@ -294,6 +299,7 @@ private:
     /// The mesh's linear depth from `space`, nearest by MIN blending into R32F.
     /// Leaves the bound framebuffer and the viewport as it found them (draw() may make its light here).
     texture draw_mesh_depth(const light_space& space) const {
+        const caller_errors_kept kept; // the caller's unread errors stay theirs, and fail nothing here
         GLint bound = 0, viewport[4] = {0, 0, 0, 0};
         glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
         glGetIntegerv(GL_VIEWPORT, viewport);
@@ -374,6 +380,7 @@ private:
     /// Each light's radiance of each hair point towards `cam`, in a shader storage buffer: light k's
     /// of point i at vec4 k * points + i (render/hair_colour); the ambient term is the blend's.
     buffer hair_colours(const camera& cam) const {
+        const caller_errors_kept kept; // the caller's unread errors stay theirs, and fail nothing here
         const std::size_t points = scene_.hair.point_count();
         if (points > std::size_t(std::numeric_limits<GLsizei>::max()) || lights_.size() * points > std::size_t(std::numeric_limits<GLint>::max()))
             throw argument_error("too many hair points for one GL draw");

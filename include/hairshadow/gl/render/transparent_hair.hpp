@@ -10,6 +10,7 @@
 
 #include <hairshadow/gl/context/context.hpp>
 #include <hairshadow/gl/context/objects.hpp>
+#include <hairshadow/gl/context/state_guard.hpp>
 #include <hairshadow/gl/shaders.generated.hpp>
 #include <hairshadow/shading/camera.hpp>
 #include <hairshadow/shading/transparency.hpp>
@@ -60,6 +61,7 @@ public:
     /// Returns the number of depth-peeling layers (transparency::exact; one draw of the hair each,
     /// and two more), else 0.
     int blend(transparency mode, const camera_hair& hair, const camera& cam, float opacity, float line_width, GLuint target) {
+        const caller_errors_kept kept; // the caller's unread errors stay theirs, and fail nothing here
         if (mode == transparency::none) throw argument_error("transparent_hair::blend needs a transparency mode");
         if (!(opacity > 0.0f && opacity <= 1.0f)) throw argument_error("hair opacity must be in (0, 1]");
         if (!(line_width > 0.0f && line_width <= 64.0f)) throw argument_error("hair line width must be in (0, 64] pixels");
