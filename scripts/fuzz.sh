@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 seconds="${1:-60}"
 jobs="${FUZZ_JOBS:-2}"
 build="${FUZZ_BUILD_DIR:-build-fuzz}"
-targets=(hair data tfx obj points procedural_spec light_spec method_spec)
+targets=(hair data tfx obj points procedural_spec light_spec method_spec deep_exr)
 
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
     -DHAIRSHADOW_FUZZ=ON -DHAIRSHADOW_BUILD_TOOLS=OFF -DHAIRSHADOW_BUILD_EXAMPLES=OFF -DHAIRSHADOW_BUILD_BENCH=OFF \

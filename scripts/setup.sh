@@ -6,7 +6,7 @@
 #   bash scripts/setup.sh main   only what the command line needs (the main job: the figure)
 set -euo pipefail
 main=(build-essential cmake ninja-build pkg-config python3 libglm-dev libstb-dev libcli11-dev python3-glad libosmesa6-dev libegl-dev
-      libgl1-mesa-dri)
+      libgl1-mesa-dri libopenexr-dev)
 rest=(catch2 libbenchmark-dev glslang-tools libglfw3-dev xvfb xauth clang libclang-rt-14-dev python3-dev pybind11-dev python3-numpy python3-pytest
       python3-matplotlib)
 case "${1:-all}" in

@@ -111,3 +111,80 @@ TEST_CASE("batch queries equal single queries and points outside the map are lit
     CHECK(dsm.transmittance(glm::vec3(100, 0, 0)) == 1.0f);
     CHECK(dsm.memory_bytes() >= dsm.fragment_count() * 8);
 }
+
+namespace {
+/// Lokovic & Veach's exact map computed here from the whole-map fragment buffer, the way it was
+/// built before the streamed build: each texel's fragments stably sorted by depth, optical depth
+/// summed in double. The streamed build must give these bits.
+void require_equals_buffer_build(const deep_shadow_map& streamed, const fragment_buffer& fragments) {
+    REQUIRE(streamed.fragment_count() == fragments.size());
+    const int res = fragments.resolution();
+    std::vector<fragment> sorted;
+    for (int y = 0; y < res; ++y)
+        for (int x = 0; x < res; ++x) {
+            const auto in = fragments.texel(x, y);
+            sorted.assign(in.begin(), in.end());
+            std::stable_sort(sorted.begin(), sorted.end(), [](const fragment& a, const fragment& b) { return a.depth < b.depth; });
+            const auto d = streamed.depths(x, y), o = streamed.optical_depths(x, y);
+            REQUIRE(d.size() == sorted.size());
+            double omega = 0.0;
+            for (std::size_t i = 0; i < sorted.size(); ++i) {
+                omega -= std::log1p(-double(sorted[i].alpha));
+                if (d[i] != sorted[i].depth || o[i] != float(omega)) FAIL("texel (" << x << ", " << y << ") fragment " << i << " differs");
+            }
+        }
+}
+
+bool same_vertices(const compressed_deep_shadow_map& a, const compressed_deep_shadow_map& b) {
+    const int res = a.light().resolution();
+    for (int y = 0; y < res; ++y)
+        for (int x = 0; x < res; ++x) {
+            const auto va = a.vertices(x, y), vb = b.vertices(x, y);
+            if (va.size() != vb.size()) return false;
+            for (std::size_t i = 0; i < va.size(); ++i)
+                if (va[i].depth != vb[i].depth || va[i].transmittance != vb[i].transmittance) return false;
+        }
+    return true;
+}
+} // namespace
+
+TEST_CASE("the streamed exact map equals the map of the whole fragment buffer, bit for bit, for any threads and tiles", "[reference][streamed]") {
+    const auto sintel = read_tfx(test::sintel_hair());
+    const auto curly = make_procedural({.style = hair_style::curly, .strands = 300, .segments = 24});
+    struct scene {
+        const hair_model* model;
+        light_spec light;
+        int resolution;
+    };
+    for (const scene& s : {scene{&sintel, light_spec::directional({0, -1, -1}), 160}, scene{&sintel, light_spec::point({0.4f, 0.6f, 0.9f}), 96},
+                           scene{&curly, light_spec::directional({1, -1, 0}), 200}}) {
+        const auto ls = light_space::fit(s.light, s.model->bounds(), s.resolution);
+        for (const float wide : {0.0f, 2.5f}) {
+            raster_options o;
+            o.wide_line_width = wide;
+            const fragment_buffer fragments = rasterize(*s.model, ls, o);
+            for (const unsigned threads : {1u, 2u, 5u})
+                for (const int tile : {16, 64, 200}) {
+                    CAPTURE(s.resolution, wide, threads, tile);
+                    o.exec.threads = threads, o.tile_size = tile;
+                    std::size_t reports = 0, last = 0;
+                    const deep_shadow_map streamed(*s.model, ls, o, [&](std::size_t done, std::size_t total) { ++reports, last = total; (void)done; });
+                    CHECK(reports == last);
+                    CHECK(reports == detail::map_tiling(s.resolution, tile).tile_count());
+                    require_equals_buffer_build(streamed, fragments);
+                    const compressed_deep_shadow_map from_exact(streamed, 0.01f), streamed_compressed(*s.model, ls, 0.01f, o);
+                    CHECK(streamed_compressed.fragment_count() == fragments.size());
+                    CHECK(same_vertices(streamed_compressed, from_exact));
+                }
+        }
+    }
+}
+
+TEST_CASE("streamed builds refuse bad options and tolerances", "[reference][streamed][errors]") {
+    const auto scene = test::make_sheets(2, 32);
+    raster_options o;
+    o.tile_size = 4;
+    CHECK_THROWS_AS(deep_shadow_map(scene.model, scene.light, o), argument_error);
+    CHECK_THROWS_AS(compressed_deep_shadow_map(scene.model, scene.light, 0.0f), argument_error);
+    CHECK_THROWS_AS(compressed_deep_shadow_map(scene.model, scene.light, std::nanf("")), argument_error);
+}

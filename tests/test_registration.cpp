@@ -70,3 +70,23 @@ TEST_CASE("a spec's accumulation is a parameter: named last, only where the fami
     CHECK_THROWS_WITH(parse_method_spec("adsm:8bit"), Catch::Contains(":8bit applies to osm, dc, dom, occ, fom or ue"));
     CHECK_THROWS_WITH(parse_method_spec("frob:3"), Catch::Contains("unknown method 'frob'"));
 }
+
+TEST_CASE("the exact map through the registry builds streamed, with the buffer build's hash", "[reference][streamed]") {
+    const auto m = read_tfx(test::sintel_hair());
+    const auto ls = light_space::fit(light_spec::directional({0, -1, -1}), m.bounds(), 128);
+    for (const char* spec : {"dsm", "dsm:0.02"}) {
+        CAPTURE(spec);
+        const auto streamed = make_shadow_map(spec), buffered = make_shadow_map(spec);
+        streamed->build(m, ls);
+        buffered->build(rasterize(m, ls), ls, {});
+        CHECK(streamed->maps_hash() == buffered->maps_hash());
+        // A rebuild reuses the workspace (another light first, so that nothing is left over by chance).
+        streamed->build(m, light_space::fit(light_spec::point({0.5f, 0.8f, 0.9f}), m.bounds(), 96));
+        streamed->build(m, ls);
+        CHECK(streamed->maps_hash() == buffered->maps_hash());
+        CHECK(streamed->fragment_count() == buffered->fragment_count());
+        CHECK(streamed->fragment_count() > 0);
+        // Compressed from the model, the exact map is never kept.
+        CHECK((streamed->method_if<deep_shadow_map>() == nullptr) == (std::string(spec) != "dsm"));
+    }
+}

@@ -133,5 +133,6 @@ command add_compare_command(CLI::App& app, map_options& o);
 command add_bench_command(CLI::App& app, map_options& o);
 command add_animate_command(CLI::App& app, map_options& o);
 command add_figure_command(CLI::App& app, map_options& o);
+command add_export_command(CLI::App& app, map_options& o);
 
 } // namespace cli

@@ -11,10 +11,10 @@ namespace cli {
 using namespace hairshadow;
 
 namespace {
-int run_compare(const map_options& o, const std::string& methods, const std::string& out_dir, const std::string& chart) {
+int run_compare(const map_options& o, const std::string& methods, const std::string& out_dir, const std::string& chart, const std::string& reference) {
     std::vector<method_spec> specs;
     for (auto part : detail::split(methods, ',')) specs.push_back(parse_method_for(std::string(part), o));
-    const auto [rows, preamble] = compare_methods(o, specs);
+    const auto [rows, preamble] = compare_methods(o, specs, {}, reference);
     const auto [md, csv] = format_table(rows, preamble);
     std::fputs(md.c_str(), stdout);
     if (!out_dir.empty()) write_table(out_dir, md, csv);
@@ -32,6 +32,7 @@ struct compare_args {
     std::string methods = example_spec_list(in_compare); // the registered families' comparison examples
     std::string out_dir;
     std::string chart;
+    std::string reference;
 };
 } // namespace
 
@@ -45,7 +46,10 @@ command add_compare_command(CLI::App& app, map_options& o) {
     cmd->add_option("--methods", a->methods, "comma-separated method specs")->capture_default_str();
     cmd->add_option("--out", a->out_dir, "also write compare.md and compare.csv into this folder");
     cmd->add_option("--chart", a->chart, "also write a chart of image error against bytes per texel (SVG), and print each family's best within budgets of 4-64 bytes a texel");
-    return {cmd, [&o, a] { return run_compare(o, a->methods, a->out_dir, a->chart); }};
+    cmd->add_option("--reference", a->reference,
+                    "measure against this deep OpenEXR image (hairshadow export) instead of the exact map built here; the file's own light "
+                    "maps the model's points, even where it differs from --light and --res (the curve error, texel by texel, is then not measured)");
+    return {cmd, [&o, a] { return run_compare(o, a->methods, a->out_dir, a->chart, a->reference); }};
 }
 
 } // namespace cli

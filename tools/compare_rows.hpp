@@ -18,6 +18,10 @@ struct comparison {
 
 /// Builds the exact map on the CPU and each of `specs` on o's back end, and measures each method's
 /// errors against it (compare_row's columns); the model and GL context from `source` where given.
-comparison compare_methods(const map_options& o, const std::vector<hairshadow::method_spec>& specs, const scene_source& source = {});
+/// With `reference_file`, the reference is that deep OpenEXR image (io/deep_exr.hpp) instead, its
+/// own light mapping the points; where that light is not the one fitted here, the curve error (which
+/// compares texel by texel) is NaN and the preamble says why.
+comparison compare_methods(const map_options& o, const std::vector<hairshadow::method_spec>& specs, const scene_source& source = {},
+                           const std::string& reference_file = {});
 
 } // namespace cli

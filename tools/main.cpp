@@ -18,7 +18,8 @@ int main(int argc, char** argv) {
     app.add_option("--threads", o.threads, "worker threads; 0 = all cores");
     const cli::command commands[] = {cli::add_info_command(app, o),    cli::add_query_command(app, o),   cli::add_render_command(app, o),
                                      cli::add_memory_command(app, o),  cli::add_compare_command(app, o), cli::add_bench_command(app, o),
-                                     cli::add_animate_command(app, o), cli::add_figure_command(app, o)};
+                                     cli::add_animate_command(app, o), cli::add_figure_command(app, o),
+                                     cli::add_export_command(app, o)};
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -488,12 +488,42 @@ struct texel_depth {
     float depth;
 };
 
+/// Everything a light_space holds, as a file stores it (io/deep_exr.hpp): light_space::parts() and
+/// light_space::from_parts() give the same light back, bit for bit.
+struct light_space_parts {
+    int resolution = 1;
+    light_type type = light_type::directional;
+    glm::mat4 view{1.0f}, projection{1.0f}, view_projection{1.0f};
+    float near_plane = 0.0f, far_plane = 1.0f;
+    float half_extent = 1.0f;
+};
+
 /// The frustum and resolution of one shadow map.
 class light_space {
 public:
     /// Fits the light's frustum to `bounds` at `resolution` texels per side. Throws argument_error for a
     /// zero or non-finite direction, an out-of-range resolution, or a point light inside the bounds.
     HAIRSHADOW_DECL static light_space fit(const light_spec& light, const aabb& bounds, int resolution);
+
+    /// The light stored elsewhere (a file's header). Throws argument_error for an out-of-range
+    /// resolution, a non-finite matrix, near >= far or a non-positive or non-finite half extent.
+    static light_space from_parts(const light_space_parts& p) {
+        check_resolution(p.resolution);
+        if (p.type != light_type::directional && p.type != light_type::point && p.type != light_type::spot) throw argument_error("unknown light type");
+        for (const glm::mat4* m : {&p.view, &p.projection, &p.view_projection})
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r)
+                    if (!std::isfinite((*m)[c][r])) throw argument_error("the light's matrices are not finite");
+        if (!std::isfinite(p.near_plane) || !std::isfinite(p.far_plane) || !(p.far_plane > p.near_plane))
+            throw argument_error("the light's near and far planes are not finite, increasing distances");
+        if (!(p.half_extent > 0.0f) || !std::isfinite(p.half_extent)) throw argument_error("the light's half extent is not positive and finite");
+        light_space ls;
+        ls.resolution_ = p.resolution, ls.type_ = p.type;
+        ls.view_ = p.view, ls.projection_ = p.projection, ls.view_projection_ = p.view_projection;
+        ls.near_ = p.near_plane, ls.far_ = p.far_plane, ls.half_extent_ = p.half_extent;
+        return ls;
+    }
+    light_space_parts parts() const noexcept { return {resolution_, type_, view_, projection_, view_projection_, near_, far_, half_extent_}; }
 
     int resolution() const noexcept { return resolution_; }
     light_type type() const noexcept { return type_; }
@@ -1421,8 +1451,10 @@ struct procedural_options {
     float clump_strength = 0.85f;     ///< clumped: pull towards the clump's centre at the tip, 0..1
 };
 
-/// Most points a generator makes: 2^25, 384 MiB of positions (the 1.5M-segment curly model has 1.51M).
-inline constexpr std::size_t max_procedural_points = std::size_t(1) << 25;
+/// Most points a generator makes: 2^27, 1.5 GiB of positions: room for a film-scale groom of 100M
+/// segments (the streamed exact map's test of scale) and nothing a spec of a few bytes should ask for
+/// beyond it (the 1.5M-segment curly model has 1.51M points).
+inline constexpr std::size_t max_procedural_points = std::size_t(1) << 27;
 /// Most clumps of the clumped style.
 inline constexpr std::size_t max_procedural_clumps = 4096;
 
@@ -9216,48 +9248,292 @@ inline std::string example_spec_list(spec_lists list) {
 /// optical depth Omega(z) = sum over fragments in front of z of -ln(1 - alpha_i) and the transmittance
 /// T = exp(-Omega) are exact at any depth. This is what infinitely many opacity slices, or depth
 /// peeling, would give; every method is measured against it.
+///
+/// Built from a model, the map is streamed (section 3 of the paper builds it tile by tile too): each
+/// tile's fragments are made, sorted into its texels' functions and stored, and the tile's memory
+/// reused, so no buffer of the whole map's fragments exists. Built from a fragment buffer, it is the
+/// same map, bit for bit.
+
+// ---- begin hairshadow/reference/detail/streamed_fragments.hpp
+/// @file
+/// The exact map's fragments, tile by tile: a model's segments binned into the map's tiles (as every
+/// other method's build does), each tile's fragments made, grouped by texel in segment order, and
+/// handed to the map's builder, then the tile's memory reused for the next. No buffer of the whole
+/// map's fragments is ever made: working memory is a tile's fragments per thread.
+
+// ---- begin hairshadow/reference/detail/tile_lists.hpp
+/// @file
+/// Per-texel lists stored tile by tile: each square tile of the map owns one block, so a tile built
+/// from its fragments is written once, whole, without knowing any other tile's size. The exact and
+/// compressed deep shadow maps keep their texels' functions here.
 
 
 #include <algorithm>
-#include <cmath>
-#include <utility>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace hairshadow::detail {
+
+/// The square tiles of a map: tile t covers texels [x0, x1) x [y0, y1), row-major.
+struct map_tiling {
+    int resolution = 0;
+    int tile = 64;
+    int tiles_x = 0;
+
+    map_tiling() = default;
+    map_tiling(int res, int tile_size) : resolution(res), tile(tile_size), tiles_x((res + tile_size - 1) / tile_size) {}
+
+    std::size_t tile_count() const noexcept { return std::size_t(tiles_x) * std::size_t(tiles_x); }
+    std::size_t tile_of(int x, int y) const noexcept { return std::size_t(y / tile) * std::size_t(tiles_x) + std::size_t(x / tile); }
+    int x0(std::size_t t) const noexcept { return int(t % std::size_t(tiles_x)) * tile; }
+    int y0(std::size_t t) const noexcept { return int(t / std::size_t(tiles_x)) * tile; }
+    int width(std::size_t t) const noexcept { return std::min(resolution, x0(t) + tile) - x0(t); }
+    int height(std::size_t t) const noexcept { return std::min(resolution, y0(t) + tile) - y0(t); }
+};
+
+/// `Arrays` parallel lists per texel (the exact map: depths and optical depths), of T. Tile t's block
+/// holds its texels' lists one after another, each array in turn: array k of a tile with n entries
+/// starts at k n. A texel keeps where its list starts in its tile's block and how long it is.
+template <class T, std::size_t Arrays = 1>
+class tile_lists {
+public:
+    tile_lists() = default;
+    explicit tile_lists(const map_tiling& tiling)
+        : tiling_(tiling), begin_(std::size_t(tiling.resolution) * std::size_t(tiling.resolution)), count_(begin_.size()), blocks_(tiling.tile_count()) {}
+
+    const map_tiling& tiling() const noexcept { return tiling_; }
+
+    /// Array k of texel (x, y)'s list.
+    std::span<const T> list(int x, int y, std::size_t k = 0) const noexcept {
+        const std::size_t texel = std::size_t(y) * std::size_t(tiling_.resolution) + std::size_t(x);
+        const std::vector<T>& block = blocks_[tiling_.tile_of(x, y)];
+        return {block.data() + k * (block.size() / Arrays) + begin_[texel], count_[texel]};
+    }
+
+    /// Writes tile t's block: `lengths[i]` entries for the tile's i-th texel (row-major within the
+    /// tile), then fill(block, n) writes them, array k of texel i at k n + (the lengths before i).
+    /// Throws argument_error where a tile would hold more than 2^32 - 1 entries an array.
+    template <class Lengths, class Fill>
+    void write_tile(std::size_t t, const Lengths& lengths, Fill&& fill) {
+        const int x0 = tiling_.x0(t), y0 = tiling_.y0(t), w = tiling_.width(t), h = tiling_.height(t);
+        std::uint64_t n = 0;
+        for (int j = 0; j < h; ++j)
+            for (int i = 0; i < w; ++i) {
+                const std::size_t texel = std::size_t(y0 + j) * std::size_t(tiling_.resolution) + std::size_t(x0 + i);
+                const std::uint64_t length = lengths[std::size_t(j) * std::size_t(w) + std::size_t(i)];
+                if (n + length > std::numeric_limits<std::uint32_t>::max())
+                    throw argument_error("one tile of the deep shadow map would hold more than 2^32 entries; use a smaller tile size");
+                begin_[texel] = std::uint32_t(n), count_[texel] = std::uint32_t(length);
+                n += length;
+            }
+        std::vector<T> block(std::size_t(n) * Arrays);
+        fill(block, std::size_t(n));
+        blocks_[t] = std::move(block); // tiles are written by several threads at once, each its own
+
+    }
+
+    /// Entries an array, in all.
+    std::size_t size() const noexcept {
+        std::size_t n = 0;
+        for (const auto& block : blocks_) n += block.size() / Arrays;
+        return n;
+    }
+    std::size_t memory_bytes() const noexcept {
+        return (begin_.size() + count_.size()) * sizeof(std::uint32_t) + blocks_.size() * sizeof(std::vector<T>) + size() * Arrays * sizeof(T);
+    }
+
+private:
+    map_tiling tiling_;
+    std::vector<std::uint32_t> begin_, count_;
+    std::vector<std::vector<T>> blocks_;
+};
+
+} // namespace hairshadow::detail
+// ---- end hairshadow/reference/detail/tile_lists.hpp
+
+#include <algorithm>
+#include <cstdint>
+#include <functional>
+#include <mutex>
 #include <span>
 #include <vector>
 
 namespace hairshadow {
+
+/// Called as tiles of a streamed build finish: (tiles done, tiles in all), from one thread at a time.
+using build_progress = std::function<void(std::size_t done, std::size_t total)>;
+
+namespace detail {
+
+/// One tile's fragments grouped by texel: texel i of the tile (row-major) has fragments
+/// [offsets[i], offsets[i + 1]), in the order of the segments that made them.
+struct grouped_tile {
+    std::span<const std::uint32_t> offsets;
+    std::span<const fragment> fragments;
+    std::span<const fragment> texel(std::size_t i) const noexcept { return fragments.subspan(offsets[i], offsets[i + 1] - offsets[i]); }
+};
+
+/// A slot's working memory for grouping one tile's fragments; kept from tile to tile.
+struct tile_fragment_scratch {
+    std::vector<std::uint32_t> texel_of; ///< each made fragment's texel within the tile
+    std::vector<fragment> made, grouped;
+    std::vector<std::uint32_t> offsets;
+
+    std::size_t memory_bytes() const noexcept {
+        return (texel_of.capacity() + offsets.capacity()) * sizeof(std::uint32_t) + (made.capacity() + grouped.capacity()) * sizeof(fragment);
+    }
+};
+
+/// Makes tile t's fragments exactly as the rasterizer does (the same shading, the same order within
+/// a texel: segment order) and groups them by texel, a counting sort that keeps that order.
+inline grouped_tile group_tile_fragments(const segment_bins& bins, std::size_t t, tile_fragment_scratch& g) {
+    const texel_rect rect = bins.tile_rect(t);
+    const std::size_t w = std::size_t(rect.x1 - rect.x0), texels = w * std::size_t(rect.y1 - rect.y0);
+    g.texel_of.clear(), g.made.clear();
+    g.offsets.assign(texels + 1, 0);
+    bins.for_each_fragment(t, [&](const segment_shader& s, int x, int y, float param, float weight) HAIRSHADOW_ALWAYS_INLINE {
+        if (param < 0.0f) param = s.parameter(x, y);
+        const std::uint32_t i = std::uint32_t(std::size_t(y - rect.y0) * w + std::size_t(x - rect.x0));
+        ++g.offsets[i + 1];
+        g.texel_of.push_back(i);
+        g.made.push_back(s.shade(param, weight));
+    });
+    if (g.made.size() > std::numeric_limits<std::uint32_t>::max())
+        throw argument_error("one tile of the map makes more than 2^32 fragments; use a smaller tile size");
+    for (std::size_t i = 0; i < texels; ++i) g.offsets[i + 1] += g.offsets[i];
+    g.grouped.resize(g.made.size());
+    for (std::size_t f = 0; f < g.made.size(); ++f) g.grouped[g.offsets[g.texel_of[f]]++] = g.made[f];
+    for (std::size_t i = texels; i > 0; --i) g.offsets[i] = g.offsets[i - 1]; // the cursors ended where the next texel begins
+    g.offsets[0] = 0;
+    return {g.offsets, g.grouped};
+}
+
+} // namespace detail
+
+/// The working memory of the streamed exact maps' builds: the binned segments and each thread's tile
+/// of fragments. A map built once frees it with the build; a caller that rebuilds (a renderer, the
+/// registry's exact map) passes one to keep it, and touches no new pages on the next build.
+struct streamed_workspace {
+    detail::segment_bins bins;
+    std::vector<detail::tile_fragment_scratch> tiles;
+    std::size_t memory_bytes() const noexcept {
+        std::size_t n = bins.memory_bytes();
+        for (const auto& t : tiles) n += t.memory_bytes();
+        return n;
+    }
+};
+
+namespace detail {
+
+/// Bins `model`'s segments into `light`'s map in tiles of options.tile_size and calls
+/// build(slot, t, grouped_tile) for every tile, the largest first, on options.exec's threads; `slot`
+/// tells apart the threads running at once (for the builder's own scratch: streamed_slots of it).
+/// Tiles are map_tiling(light.resolution(), options.tile_size)'s. Reports each finished tile to
+/// `progress`. Throws argument_error for bad options.
+template <class Build>
+void stream_tiles(streamed_workspace& w, const hair_model& model, const light_space& light, const raster_options& options, const build_progress& progress,
+                  Build&& build) {
+    segment_bins& bins = w.bins;
+    bins.prepare(model, light, options, false);
+    const std::size_t tiles = bins.tile_count();
+    auto& scratch = w.tiles;
+    scratch.resize(std::max<std::size_t>(scratch.size(), parallel_slots(tiles, options.exec)));
+    std::size_t done = 0; // counted under the lock, so that reports come in order
+    std::mutex report;
+    parallel_for_slots(tiles, options.exec, [&](unsigned slot, std::size_t i) {
+        const std::size_t t = bins.tiles_by_load()[i];
+        build(slot, t, group_tile_fragments(bins, t, scratch[slot]));
+        if (progress) {
+            std::lock_guard lock(report);
+            progress(++done, tiles);
+        }
+    });
+}
+
+/// Slots of builder scratch that stream_tiles may use.
+inline unsigned streamed_slots(const light_space& light, const raster_options& options) noexcept {
+    return parallel_slots(map_tiling(light.resolution(), options.tile_size).tile_count(), options.exec);
+}
+
+} // namespace detail
+} // namespace hairshadow
+// ---- end hairshadow/reference/detail/streamed_fragments.hpp
+
+#include <algorithm>
+#include <cmath>
+#include <span>
+#include <utility>
+#include <vector>
+
+namespace hairshadow {
+
+namespace detail {
+/// Scratch for sorting one texel's fragments, kept from texel to texel.
+using depth_order = std::vector<std::pair<float, std::uint32_t>>;
+
+/// Sorts one texel's fragments by depth (equal depths keep their order, for any thread count) and
+/// writes their depths and the optical depth behind each (inclusive prefix sums, in double).
+inline void sort_texel(std::span<const fragment> in, depth_order& order, float* depths, float* optical_depths) {
+    order.resize(in.size());
+    for (std::size_t i = 0; i < in.size(); ++i) order[i] = {in[i].depth, std::uint32_t(i)};
+    std::sort(order.begin(), order.end());
+    double omega = 0.0;
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        omega -= std::log1p(-double(in[order[i].second].alpha));
+        depths[i] = order[i].first;
+        optical_depths[i] = float(omega);
+    }
+}
+
+/// Tile t's texels' fragments, from a whole-map fragment buffer.
+struct buffer_tile {
+    const fragment_buffer& fragments;
+    const map_tiling& tiling;
+    std::size_t t;
+    std::span<const fragment> texel(std::size_t i) const noexcept {
+        const int w = tiling.width(t);
+        return fragments.texel(tiling.x0(t) + int(i % std::size_t(w)), tiling.y0(t) + int(i / std::size_t(w)));
+    }
+};
+} // namespace detail
 
 /// Per-texel sorted fragment lists with cumulative optical depth.
 class deep_shadow_map : public map_queries<deep_shadow_map> {
 public:
     /// Sorts every texel's fragments by depth (ties keep segment order) and accumulates optical depth.
     deep_shadow_map(const fragment_buffer& fragments, const light_space& light, const execution& exec = {})
-        : light_(light), offsets_(fragments.offsets()), depths_(fragments.size()), optical_depths_(fragments.size()) {
+        : light_(light), lists_(detail::map_tiling(light.resolution(), buffer_tile_size)) {
         if (fragments.resolution() != light.resolution()) throw argument_error("fragment buffer and light differ in resolution");
-        parallel_for(fragments.texel_count(), exec, [&](std::size_t t) {
-            const auto in = fragments.texel(t);
-            if (in.empty()) return;
-            // Sort (depth, arrival) pairs: equal depths keep segment order, for any thread count.
-            thread_local std::vector<std::pair<float, std::uint32_t>> order;
-            order.resize(in.size());
-            for (std::size_t i = 0; i < in.size(); ++i) order[i] = {in[i].depth, std::uint32_t(i)};
-            std::sort(order.begin(), order.end());
-            double omega = 0.0;
-            const std::size_t base = offsets_[t];
-            for (std::size_t i = 0; i < order.size(); ++i) {
-                omega -= std::log1p(-double(in[order[i].second].alpha));
-                depths_[base + i] = order[i].first;
-                optical_depths_[base + i] = float(omega);
-            }
-        }, 1024);
+        std::vector<scratch> slots(parallel_slots(lists_.tiling().tile_count(), exec));
+        parallel_for_slots(lists_.tiling().tile_count(), exec, [&](unsigned slot, std::size_t t) {
+            build_tile(t, detail::buffer_tile{fragments, lists_.tiling(), t}, slots[slot]);
+        });
+    }
+
+    /// Streams `model`'s fragments tile by tile into the map (options.tile_size texels a side), never
+    /// holding more than one tile's fragments a thread; the same map as from rasterize(model, light,
+    /// options). `progress` hears each finished tile; `workspace`, where given, keeps the working
+    /// memory for the next build. Throws argument_error for bad options.
+    deep_shadow_map(const hair_model& model, const light_space& light, const raster_options& options = {}, const build_progress& progress = {},
+                    streamed_workspace* workspace = nullptr)
+        : light_(light), lists_(detail::map_tiling(light.resolution(), options.tile_size)) {
+        streamed_workspace own;
+        std::vector<scratch> slots(detail::streamed_slots(light, options));
+        detail::stream_tiles(workspace ? *workspace : own, model, light, options, progress, [&](unsigned slot, std::size_t t, const detail::grouped_tile& tile) {
+            build_tile(t, tile, slots[slot]);
+        });
     }
 
     const light_space& light() const noexcept { return light_; }
     int resolution() const noexcept { return light_.resolution(); }
 
     /// Sorted depths of texel (x, y)'s fragments.
-    std::span<const float> depths(int x, int y) const noexcept { return slice(depths_, x, y); }
+    std::span<const float> depths(int x, int y) const noexcept { return lists_.list(x, y, 0); }
     /// Optical depth behind each of texel (x, y)'s fragments (inclusive prefix sums).
-    std::span<const float> optical_depths(int x, int y) const noexcept { return slice(optical_depths_, x, y); }
+    std::span<const float> optical_depths(int x, int y) const noexcept { return lists_.list(x, y, 1); }
 
     /// Exact optical depth at `depth` in texel (x, y): the fragments strictly in front count.
     float optical_depth(int x, int y, float depth) const noexcept {
@@ -9267,27 +9543,39 @@ public:
     }
     using map_queries<deep_shadow_map>::transmittance;
 
-    std::size_t fragment_count() const noexcept { return depths_.size(); }
-    /// Bytes held by the map: offsets, depths and optical depths.
-    std::size_t memory_bytes() const noexcept {
-        return offsets_.size() * sizeof(std::uint64_t) + depths_.size() * sizeof(float) + optical_depths_.size() * sizeof(float);
-    }
+    std::size_t fragment_count() const noexcept { return lists_.size(); }
+    /// Bytes held by the map: each texel's place in its tile's block, depths and optical depths.
+    std::size_t memory_bytes() const noexcept { return lists_.memory_bytes(); }
 
 private:
-    std::span<const float> slice(const std::vector<float>& v, int x, int y) const noexcept {
-        const std::size_t t = std::size_t(y) * std::size_t(light_.resolution()) + std::size_t(x);
-        return {v.data() + offsets_[t], std::size_t(offsets_[t + 1] - offsets_[t])};
+    static constexpr int buffer_tile_size = 64;
+    struct scratch {
+        std::vector<std::uint64_t> lengths;
+        detail::depth_order order;
+    };
+
+    template <class Tile>
+    void build_tile(std::size_t t, const Tile& tile, scratch& s) {
+        const std::size_t texels = std::size_t(lists_.tiling().width(t)) * std::size_t(lists_.tiling().height(t));
+        s.lengths.resize(texels);
+        for (std::size_t i = 0; i < texels; ++i) s.lengths[i] = tile.texel(i).size();
+        lists_.write_tile(t, s.lengths, [&](std::vector<float>& block, std::size_t n) {
+            std::size_t at = 0;
+            for (std::size_t i = 0; i < texels; ++i) {
+                detail::sort_texel(tile.texel(i), s.order, block.data() + at, block.data() + n + at);
+                at += s.lengths[i];
+            }
+        });
     }
 
     light_space light_;
-    std::vector<std::uint64_t> offsets_;
-    std::vector<float> depths_;
-    std::vector<float> optical_depths_;
+    detail::tile_lists<float, 2> lists_; ///< depths (array 0) and optical depths (array 1)
 };
 
 } // namespace hairshadow
 // ---- end hairshadow/reference/deep_shadow_map.hpp
 
+#include <atomic>
 #include <limits>
 
 namespace hairshadow {
@@ -9366,45 +9654,90 @@ class compressed_deep_shadow_map : public map_queries<compressed_deep_shadow_map
 public:
     /// Compresses every texel of `exact` so that |T_compressed - T_exact| <= tolerance at every depth.
     compressed_deep_shadow_map(const deep_shadow_map& exact, float tolerance, const execution& exec = {})
-        : light_(exact.light()), tolerance_(tolerance) {
-        if (!(tolerance > 0.0f && tolerance < 1.0f)) throw argument_error("compression tolerance must be in (0, 1)");
-        const int res = exact.resolution();
-        const std::size_t texels = std::size_t(res) * std::size_t(res);
-        std::vector<std::vector<transmittance_vertex>> per_texel(texels);
-        parallel_for(texels, exec, [&](std::size_t t) {
-            const int x = int(t % std::size_t(res)), y = int(t / std::size_t(res));
-            const auto depths = exact.depths(x, y);
-            if (depths.empty()) return;
-            std::vector<transmittance_vertex> steps;
-            detail::exact_steps(depths, exact.optical_depths(x, y), steps);
-            detail::compress_function(steps, tolerance, per_texel[t]);
-        }, 1024);
-        offsets_.assign(texels + 1, 0);
-        for (std::size_t t = 0; t < texels; ++t) offsets_[t + 1] = offsets_[t] + per_texel[t].size();
-        vertices_.resize(offsets_.back());
-        parallel_for(texels, exec, [&](std::size_t t) { std::copy(per_texel[t].begin(), per_texel[t].end(), vertices_.begin() + std::ptrdiff_t(offsets_[t])); }, 4096);
+        : light_(exact.light()), tolerance_(checked(tolerance)), fragments_(exact.fragment_count()), lists_(detail::map_tiling(exact.resolution(), tile_size)) {
+        std::vector<scratch> slots(parallel_slots(lists_.tiling().tile_count(), exec));
+        parallel_for_slots(lists_.tiling().tile_count(), exec, [&](unsigned slot, std::size_t t) {
+            auto& s = slots[slot];
+            build_tile(t, s, [&](std::size_t i) {
+                const int w = lists_.tiling().width(t);
+                const int x = lists_.tiling().x0(t) + int(i % std::size_t(w)), y = lists_.tiling().y0(t) + int(i / std::size_t(w));
+                detail::exact_steps(exact.depths(x, y), exact.optical_depths(x, y), s.steps);
+            });
+        });
+    }
+
+    /// Streams `model`'s fragments tile by tile, compressing each texel's exact function as it is
+    /// made (deep_shadow_map's streamed build, then Lokovic & Veach's compression): the same map as
+    /// compressing deep_shadow_map(model, light, options), without ever holding it. Peak memory is
+    /// this map plus one tile's fragments a thread; `workspace`, where given, keeps the working memory
+    /// for the next build. Throws argument_error for a tolerance outside (0, 1) or bad options.
+    compressed_deep_shadow_map(const hair_model& model, const light_space& light, float tolerance, const raster_options& options = {},
+                               const build_progress& progress = {}, streamed_workspace* workspace = nullptr)
+        : light_(light), tolerance_(checked(tolerance)), lists_(detail::map_tiling(light.resolution(), options.tile_size)) {
+        streamed_workspace own;
+        std::vector<scratch> slots(detail::streamed_slots(light, options));
+        std::atomic<std::size_t> fragments{0};
+        detail::stream_tiles(workspace ? *workspace : own, model, light, options, progress, [&](unsigned slot, std::size_t t, const detail::grouped_tile& tile) {
+            auto& s = slots[slot];
+            build_tile(t, s, [&](std::size_t i) {
+                const auto in = tile.texel(i);
+                s.depths.resize(in.size()), s.optical_depths.resize(in.size());
+                detail::sort_texel(in, s.order, s.depths.data(), s.optical_depths.data());
+                detail::exact_steps(s.depths, s.optical_depths, s.steps);
+            });
+            fragments.fetch_add(tile.fragments.size(), std::memory_order_relaxed);
+        });
+        fragments_ = fragments.load();
     }
 
     const light_space& light() const noexcept { return light_; }
     float tolerance() const noexcept { return tolerance_; }
     /// Vertices of texel (x, y)'s function.
-    std::span<const transmittance_vertex> vertices(int x, int y) const noexcept {
-        const std::size_t t = std::size_t(y) * std::size_t(light_.resolution()) + std::size_t(x);
-        return {vertices_.data() + offsets_[t], std::size_t(offsets_[t + 1] - offsets_[t])};
-    }
+    std::span<const transmittance_vertex> vertices(int x, int y) const noexcept { return lists_.list(x, y); }
     /// Transmittance at `depth` in texel (x, y), continuous from the left at steps as the exact map is.
     float transmittance(int x, int y, float depth) const noexcept { return detail::transmittance_at(vertices(x, y), depth); }
     /// -ln of the compressed transmittance, so that queries filter it like every other map.
     float optical_depth(int x, int y, float depth) const noexcept { return -std::log(std::max(transmittance(x, y, depth), 1e-30f)); }
     using map_queries<compressed_deep_shadow_map>::transmittance;
-    std::size_t vertex_count() const noexcept { return vertices_.size(); }
-    std::size_t memory_bytes() const noexcept { return offsets_.size() * sizeof(std::uint64_t) + vertices_.size() * sizeof(transmittance_vertex); }
+    std::size_t vertex_count() const noexcept { return lists_.size(); }
+    /// The exact map's fragments that the functions were made from.
+    std::size_t fragment_count() const noexcept { return fragments_; }
+    std::size_t memory_bytes() const noexcept { return lists_.memory_bytes(); }
 
 private:
+    static constexpr int tile_size = 64;
+    struct scratch {
+        detail::depth_order order;
+        std::vector<float> depths, optical_depths;
+        std::vector<transmittance_vertex> steps, vertices; ///< a texel's exact steps; the tile's compressed functions
+        std::vector<std::uint64_t> lengths;
+    };
+
+    static float checked(float tolerance) {
+        if (!(tolerance > 0.0f && tolerance < 1.0f)) throw argument_error("compression tolerance must be in (0, 1)");
+        return tolerance;
+    }
+
+    /// Compresses each texel of tile t (exact_steps_of(i) leaves texel i's steps in s.steps) and
+    /// stores the tile.
+    template <class ExactSteps>
+    void build_tile(std::size_t t, scratch& s, ExactSteps&& exact_steps_of) {
+        const std::size_t texels = std::size_t(lists_.tiling().width(t)) * std::size_t(lists_.tiling().height(t));
+        s.vertices.clear();
+        s.lengths.resize(texels);
+        for (std::size_t i = 0; i < texels; ++i) {
+            const std::size_t before = s.vertices.size();
+            exact_steps_of(i);
+            detail::compress_function(s.steps, tolerance_, s.vertices);
+            s.lengths[i] = s.vertices.size() - before;
+        }
+        lists_.write_tile(t, s.lengths, [&](std::vector<transmittance_vertex>& block, std::size_t) { std::copy(s.vertices.begin(), s.vertices.end(), block.begin()); });
+    }
+
     light_space light_;
     float tolerance_;
-    std::vector<std::uint64_t> offsets_;
-    std::vector<transmittance_vertex> vertices_;
+    std::size_t fragments_ = 0;
+    detail::tile_lists<transmittance_vertex> lists_;
 };
 
 } // namespace hairshadow

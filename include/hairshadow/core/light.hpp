@@ -121,12 +121,42 @@ struct texel_depth {
     float depth;
 };
 
+/// Everything a light_space holds, as a file stores it (io/deep_exr.hpp): light_space::parts() and
+/// light_space::from_parts() give the same light back, bit for bit.
+struct light_space_parts {
+    int resolution = 1;
+    light_type type = light_type::directional;
+    glm::mat4 view{1.0f}, projection{1.0f}, view_projection{1.0f};
+    float near_plane = 0.0f, far_plane = 1.0f;
+    float half_extent = 1.0f;
+};
+
 /// The frustum and resolution of one shadow map.
 class light_space {
 public:
     /// Fits the light's frustum to `bounds` at `resolution` texels per side. Throws argument_error for a
     /// zero or non-finite direction, an out-of-range resolution, or a point light inside the bounds.
     HAIRSHADOW_DECL static light_space fit(const light_spec& light, const aabb& bounds, int resolution);
+
+    /// The light stored elsewhere (a file's header). Throws argument_error for an out-of-range
+    /// resolution, a non-finite matrix, near >= far or a non-positive or non-finite half extent.
+    static light_space from_parts(const light_space_parts& p) {
+        check_resolution(p.resolution);
+        if (p.type != light_type::directional && p.type != light_type::point && p.type != light_type::spot) throw argument_error("unknown light type");
+        for (const glm::mat4* m : {&p.view, &p.projection, &p.view_projection})
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r)
+                    if (!std::isfinite((*m)[c][r])) throw argument_error("the light's matrices are not finite");
+        if (!std::isfinite(p.near_plane) || !std::isfinite(p.far_plane) || !(p.far_plane > p.near_plane))
+            throw argument_error("the light's near and far planes are not finite, increasing distances");
+        if (!(p.half_extent > 0.0f) || !std::isfinite(p.half_extent)) throw argument_error("the light's half extent is not positive and finite");
+        light_space ls;
+        ls.resolution_ = p.resolution, ls.type_ = p.type;
+        ls.view_ = p.view, ls.projection_ = p.projection, ls.view_projection_ = p.view_projection;
+        ls.near_ = p.near_plane, ls.far_ = p.far_plane, ls.half_extent_ = p.half_extent;
+        return ls;
+    }
+    light_space_parts parts() const noexcept { return {resolution_, type_, view_, projection_, view_projection_, near_, far_, half_extent_}; }
 
     int resolution() const noexcept { return resolution_; }
     light_type type() const noexcept { return type_; }

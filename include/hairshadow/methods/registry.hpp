@@ -52,8 +52,8 @@ inline std::uint64_t fnv1a(const void* bytes, std::size_t size, std::uint64_t h 
 class any_shadow_map : public map_queries<any_shadow_map> {
 public:
     virtual ~any_shadow_map() = default;
-    /// Builds straight from the model: tile by tile for the methods, through a fragment buffer for
-    /// the exact reference. Keeps working memory for the next build.
+    /// Builds straight from the model, tile by tile (the exact reference streamed: no buffer of the
+    /// map's fragments). The methods keep their working memory for the next build.
     virtual void build(const hair_model& model, const light_space& light, const raster_options& options = {}) = 0;
     virtual void build(const fragment_buffer& fragments, const light_space& light, const execution& exec = {}) = 0;
     virtual float optical_depth(int x, int y, float depth) const = 0;
@@ -138,36 +138,42 @@ private:
 class reference_map final : public any_shadow_map {
 public:
     reference_map(method_spec spec, exact_reference reference) : any_shadow_map(std::move(spec)), tolerance_(reference.tolerance) {}
+    /// Streamed tile by tile from the model: the compressed map never holds the exact one.
     void build(const hair_model& model, const light_space& light, const raster_options& options) override {
-        if (!raster_ || !(raster_->options() == options)) raster_.emplace(options);
-        build((*raster_)(model, light), light, options.exec);
+        exact_.reset(), compressed_.reset(); // the old map's memory is free before the new one is made
+        if (tolerance_) compressed_.emplace(model, light, *tolerance_, options, build_progress{}, &workspace_);
+        else exact_.emplace(model, light, options, build_progress{}, &workspace_);
     }
     void build(const fragment_buffer& fragments, const light_space& light, const execution& exec) override {
-        compressed_.reset();
+        exact_.reset(), compressed_.reset();
         exact_.emplace(fragments, light, exec);
         if (tolerance_) compressed_.emplace(*exact_, *tolerance_, exec);
     }
     float optical_depth(int x, int y, float depth) const override {
-        if (!exact_) return 0.0f; // not built: no shadow, like an unbuilt shadow_method
-        return compressed_ ? compressed_->optical_depth(x, y, depth) : exact_->optical_depth(x, y, depth);
+        if (compressed_) return compressed_->optical_depth(x, y, depth);
+        return exact_ ? exact_->optical_depth(x, y, depth) : 0.0f; // not built: no shadow, like an unbuilt shadow_method
     }
     const light_space& light() const override {
+        if (compressed_) return compressed_->light();
         if (!exact_) throw argument_error("the exact map has no light before build()");
         return exact_->light();
     }
     std::size_t memory_bytes() const override {
-        if (!exact_) return 0;
-        return compressed_ ? compressed_->memory_bytes() : exact_->memory_bytes();
+        if (compressed_) return compressed_->memory_bytes();
+        return exact_ ? exact_->memory_bytes() : 0;
     }
     int layer_count() const override { return 0; }
     std::optional<std::size_t> memory_bytes_at(int) const override { return std::nullopt; }
     int stored_maps() const override { return 0; }
-    std::size_t fragment_count() const override { return exact_ ? exact_->fragment_count() : 0; }
+    std::size_t fragment_count() const override {
+        if (compressed_) return compressed_->fragment_count();
+        return exact_ ? exact_->fragment_count() : 0;
+    }
     float stored_optical_depth(int, int, int) const override { return 0.0f; }
     std::uint64_t maps_hash() const override {
         std::uint64_t h = detail::fnv1a(nullptr, 0);
-        if (!exact_) return h;
-        const int res = exact_->resolution();
+        if (!exact_ && !compressed_) return h;
+        const int res = light().resolution();
         for (int y = 0; y < res; ++y)
             for (int x = 0; x < res; ++x) {
                 if (compressed_) {
@@ -184,8 +190,8 @@ public:
     }
 
 private:
-    /// method_if gives the built deep_shadow_map (its fragments) and, where compressed, the
-    /// compressed_deep_shadow_map (its vertices).
+    /// method_if gives the built deep_shadow_map (its fragments; only where built from a fragment
+    /// buffer or not compressed) and, where compressed, the compressed_deep_shadow_map (its vertices).
     void* method_address(const void* tag) noexcept override {
         if (tag == &type_tag<deep_shadow_map> && exact_) return &*exact_;
         if (tag == &type_tag<compressed_deep_shadow_map> && compressed_) return &*compressed_;
@@ -193,7 +199,7 @@ private:
     }
 
     std::optional<float> tolerance_;   ///< Lokovic-Veach compression's, if compressed
-    std::optional<rasterizer> raster_; ///< kept between builds from a model
+    streamed_workspace workspace_;     ///< kept between builds from a model
     std::optional<deep_shadow_map> exact_;
     std::optional<compressed_deep_shadow_map> compressed_;
 };

@@ -35,8 +35,10 @@ struct procedural_options {
     float clump_strength = 0.85f;     ///< clumped: pull towards the clump's centre at the tip, 0..1
 };
 
-/// Most points a generator makes: 2^25, 384 MiB of positions (the 1.5M-segment curly model has 1.51M).
-inline constexpr std::size_t max_procedural_points = std::size_t(1) << 25;
+/// Most points a generator makes: 2^27, 1.5 GiB of positions: room for a film-scale groom of 100M
+/// segments (the streamed exact map's test of scale) and nothing a spec of a few bytes should ask for
+/// beyond it (the 1.5M-segment curly model has 1.51M points).
+inline constexpr std::size_t max_procedural_points = std::size_t(1) << 27;
 /// Most clumps of the clumped style.
 inline constexpr std::size_t max_procedural_clumps = 4096;
 

@@ -6,6 +6,7 @@
 
 #include <hairshadow/reference/deep_shadow_map.hpp>
 
+#include <atomic>
 #include <limits>
 
 namespace hairshadow {
@@ -84,45 +85,90 @@ class compressed_deep_shadow_map : public map_queries<compressed_deep_shadow_map
 public:
     /// Compresses every texel of `exact` so that |T_compressed - T_exact| <= tolerance at every depth.
     compressed_deep_shadow_map(const deep_shadow_map& exact, float tolerance, const execution& exec = {})
-        : light_(exact.light()), tolerance_(tolerance) {
-        if (!(tolerance > 0.0f && tolerance < 1.0f)) throw argument_error("compression tolerance must be in (0, 1)");
-        const int res = exact.resolution();
-        const std::size_t texels = std::size_t(res) * std::size_t(res);
-        std::vector<std::vector<transmittance_vertex>> per_texel(texels);
-        parallel_for(texels, exec, [&](std::size_t t) {
-            const int x = int(t % std::size_t(res)), y = int(t / std::size_t(res));
-            const auto depths = exact.depths(x, y);
-            if (depths.empty()) return;
-            std::vector<transmittance_vertex> steps;
-            detail::exact_steps(depths, exact.optical_depths(x, y), steps);
-            detail::compress_function(steps, tolerance, per_texel[t]);
-        }, 1024);
-        offsets_.assign(texels + 1, 0);
-        for (std::size_t t = 0; t < texels; ++t) offsets_[t + 1] = offsets_[t] + per_texel[t].size();
-        vertices_.resize(offsets_.back());
-        parallel_for(texels, exec, [&](std::size_t t) { std::copy(per_texel[t].begin(), per_texel[t].end(), vertices_.begin() + std::ptrdiff_t(offsets_[t])); }, 4096);
+        : light_(exact.light()), tolerance_(checked(tolerance)), fragments_(exact.fragment_count()), lists_(detail::map_tiling(exact.resolution(), tile_size)) {
+        std::vector<scratch> slots(parallel_slots(lists_.tiling().tile_count(), exec));
+        parallel_for_slots(lists_.tiling().tile_count(), exec, [&](unsigned slot, std::size_t t) {
+            auto& s = slots[slot];
+            build_tile(t, s, [&](std::size_t i) {
+                const int w = lists_.tiling().width(t);
+                const int x = lists_.tiling().x0(t) + int(i % std::size_t(w)), y = lists_.tiling().y0(t) + int(i / std::size_t(w));
+                detail::exact_steps(exact.depths(x, y), exact.optical_depths(x, y), s.steps);
+            });
+        });
+    }
+
+    /// Streams `model`'s fragments tile by tile, compressing each texel's exact function as it is
+    /// made (deep_shadow_map's streamed build, then Lokovic & Veach's compression): the same map as
+    /// compressing deep_shadow_map(model, light, options), without ever holding it. Peak memory is
+    /// this map plus one tile's fragments a thread; `workspace`, where given, keeps the working memory
+    /// for the next build. Throws argument_error for a tolerance outside (0, 1) or bad options.
+    compressed_deep_shadow_map(const hair_model& model, const light_space& light, float tolerance, const raster_options& options = {},
+                               const build_progress& progress = {}, streamed_workspace* workspace = nullptr)
+        : light_(light), tolerance_(checked(tolerance)), lists_(detail::map_tiling(light.resolution(), options.tile_size)) {
+        streamed_workspace own;
+        std::vector<scratch> slots(detail::streamed_slots(light, options));
+        std::atomic<std::size_t> fragments{0};
+        detail::stream_tiles(workspace ? *workspace : own, model, light, options, progress, [&](unsigned slot, std::size_t t, const detail::grouped_tile& tile) {
+            auto& s = slots[slot];
+            build_tile(t, s, [&](std::size_t i) {
+                const auto in = tile.texel(i);
+                s.depths.resize(in.size()), s.optical_depths.resize(in.size());
+                detail::sort_texel(in, s.order, s.depths.data(), s.optical_depths.data());
+                detail::exact_steps(s.depths, s.optical_depths, s.steps);
+            });
+            fragments.fetch_add(tile.fragments.size(), std::memory_order_relaxed);
+        });
+        fragments_ = fragments.load();
     }
 
     const light_space& light() const noexcept { return light_; }
     float tolerance() const noexcept { return tolerance_; }
     /// Vertices of texel (x, y)'s function.
-    std::span<const transmittance_vertex> vertices(int x, int y) const noexcept {
-        const std::size_t t = std::size_t(y) * std::size_t(light_.resolution()) + std::size_t(x);
-        return {vertices_.data() + offsets_[t], std::size_t(offsets_[t + 1] - offsets_[t])};
-    }
+    std::span<const transmittance_vertex> vertices(int x, int y) const noexcept { return lists_.list(x, y); }
     /// Transmittance at `depth` in texel (x, y), continuous from the left at steps as the exact map is.
     float transmittance(int x, int y, float depth) const noexcept { return detail::transmittance_at(vertices(x, y), depth); }
     /// -ln of the compressed transmittance, so that queries filter it like every other map.
     float optical_depth(int x, int y, float depth) const noexcept { return -std::log(std::max(transmittance(x, y, depth), 1e-30f)); }
     using map_queries<compressed_deep_shadow_map>::transmittance;
-    std::size_t vertex_count() const noexcept { return vertices_.size(); }
-    std::size_t memory_bytes() const noexcept { return offsets_.size() * sizeof(std::uint64_t) + vertices_.size() * sizeof(transmittance_vertex); }
+    std::size_t vertex_count() const noexcept { return lists_.size(); }
+    /// The exact map's fragments that the functions were made from.
+    std::size_t fragment_count() const noexcept { return fragments_; }
+    std::size_t memory_bytes() const noexcept { return lists_.memory_bytes(); }
 
 private:
+    static constexpr int tile_size = 64;
+    struct scratch {
+        detail::depth_order order;
+        std::vector<float> depths, optical_depths;
+        std::vector<transmittance_vertex> steps, vertices; ///< a texel's exact steps; the tile's compressed functions
+        std::vector<std::uint64_t> lengths;
+    };
+
+    static float checked(float tolerance) {
+        if (!(tolerance > 0.0f && tolerance < 1.0f)) throw argument_error("compression tolerance must be in (0, 1)");
+        return tolerance;
+    }
+
+    /// Compresses each texel of tile t (exact_steps_of(i) leaves texel i's steps in s.steps) and
+    /// stores the tile.
+    template <class ExactSteps>
+    void build_tile(std::size_t t, scratch& s, ExactSteps&& exact_steps_of) {
+        const std::size_t texels = std::size_t(lists_.tiling().width(t)) * std::size_t(lists_.tiling().height(t));
+        s.vertices.clear();
+        s.lengths.resize(texels);
+        for (std::size_t i = 0; i < texels; ++i) {
+            const std::size_t before = s.vertices.size();
+            exact_steps_of(i);
+            detail::compress_function(s.steps, tolerance_, s.vertices);
+            s.lengths[i] = s.vertices.size() - before;
+        }
+        lists_.write_tile(t, s.lengths, [&](std::vector<transmittance_vertex>& block, std::size_t) { std::copy(s.vertices.begin(), s.vertices.end(), block.begin()); });
+    }
+
     light_space light_;
     float tolerance_;
-    std::vector<std::uint64_t> offsets_;
-    std::vector<transmittance_vertex> vertices_;
+    std::size_t fragments_ = 0;
+    detail::tile_lists<transmittance_vertex> lists_;
 };
 
 } // namespace hairshadow

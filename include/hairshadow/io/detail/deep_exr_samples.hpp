@@ -1,0 +1,152 @@
+#pragma once
+/// @file
+/// Deep samples from shadow maps (io/deep_exr.hpp): the exact map's fragments as point samples, a
+/// compressed map's piecewise-linear functions as point and volume samples, and the compositing of
+/// OpenEXR's "Interpreting OpenEXR Deep Pixels" for the alpha channel alone. Needs no OpenEXR.
+
+#include <hairshadow/core/light.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <concepts>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace hairshadow {
+
+/// One deep sample: a point sample where z_back == z, else a volume sample over [z, z_back] whose
+/// alpha builds up inside it as for a uniform extinction (OpenEXR's rule: 1 - (1 - alpha)^fraction).
+struct deep_sample {
+    float z;
+    float z_back;
+    float alpha;
+};
+
+/// What write_deep_exr needs of the exact map (reference/deep_shadow_map.hpp): io/ ranks below
+/// reference/, so the writer takes any type of that shape.
+template <class Map>
+concept exact_deep_map = requires(const Map& m) {
+    { m.light() } -> std::convertible_to<const light_space&>;
+    { m.depths(0, 0) } -> std::convertible_to<std::span<const float>>;
+    { m.optical_depths(0, 0) } -> std::convertible_to<std::span<const float>>;
+};
+
+/// What write_deep_exr needs of a compressed map (reference/compressed_deep_shadow_map.hpp).
+template <class Map>
+concept compressed_deep_map = requires(const Map& m) {
+    { m.light() } -> std::convertible_to<const light_space&>;
+    { m.tolerance() } -> std::convertible_to<float>;
+    { m.vertices(0, 0)[0].depth } -> std::convertible_to<float>;
+    { m.vertices(0, 0)[0].transmittance } -> std::convertible_to<float>;
+};
+
+namespace detail {
+
+/// Optical depth -ln(1 - alpha) of a whole sample (infinite where alpha is 1).
+inline double sample_optical_depth(const deep_sample& s) noexcept { return -std::log1p(-double(s.alpha)); }
+
+/// The part of sample `s` in front of `depth`, as optical depth: a point sample counts whole when it
+/// lies strictly in front (the exact map's rule), a volume sample by the fraction of it in front.
+inline double optical_depth_in_front(const deep_sample& s, float depth) noexcept {
+    if (!(s.z < depth)) return 0.0;
+    if (!(s.z_back > depth)) return sample_optical_depth(s);
+    const double fraction = (double(depth) - double(s.z)) / (double(s.z_back) - double(s.z));
+    return s.alpha >= 1.0f ? sample_optical_depth(s) : fraction * sample_optical_depth(s);
+}
+
+/// One texel of the exact map as point samples, front to back: alpha = 1 - exp(-(omega_i - omega_{i-1}))
+/// from the cumulative optical depths, in double. Fragments at one depth become one sample (their
+/// alphas combined), so that no two point samples coincide and the image is tidy; the exact map
+/// counts such fragments together anyway (strictly in front or not).
+inline void exact_texel_samples(std::span<const float> depths, std::span<const float> optical_depths, std::vector<deep_sample>& out) {
+    double before = 0.0;
+    for (std::size_t i = 0; i < depths.size(); ++i) {
+        if (i + 1 < depths.size() && depths[i + 1] == depths[i]) continue;
+        const double omega = optical_depths[i];
+        out.push_back({depths[i], depths[i], float(-std::expm1(-(omega - before)))});
+        before = omega;
+    }
+}
+
+/// The largest gap, inside one volume sample, between the linear function from p to q and OpenEXR's
+/// exponential one p (q/p)^f (f the fraction of the sample in front). Both are monotone between p and
+/// q, so the gap is at most |p - q|. For p, q > 0, g(f) = p (q/p)^f is convex with
+/// g''(f) = g(f) ln^2(q/p) <= max(p, q) ln^2(q/p), and the chord of a convex function lies at most
+/// max|g''| / 8 above it over a unit interval (the error bound of linear interpolation), so the gap is
+/// at most max(p, q) ln^2(q/p) / 8.
+inline double volume_gap_bound(double p, double q) noexcept {
+    const double hi = std::max(p, q), lo = std::min(p, q);
+    if (!(lo > 0.0)) return hi - lo;
+    const double l = std::log(hi / lo);
+    return std::min(hi - lo, hi * l * l / 8.0);
+}
+
+/// Sub-pieces a linear piece from value a to b needs so that every one is within `budget` of its
+/// volume sample (volume_gap_bound): doubled until it holds; |a - b| / budget pieces always suffice.
+inline std::uint32_t volume_pieces(double a, double b, double budget) noexcept {
+    const double most = std::max(1.0, std::ceil(std::abs(a - b) / budget));
+    for (std::uint32_t n = 1;; n *= 2) {
+        if (double(n) >= most || n >= (1u << 24)) return n;
+        bool fits = true;
+        for (std::uint32_t k = 0; k < n && fits; ++k)
+            fits = volume_gap_bound(a + (b - a) * double(k) / double(n), a + (b - a) * double(k + 1) / double(n)) <= budget;
+        if (fits) return n;
+    }
+}
+
+/// Builds the samples of one compressed texel: `level` is the transmittance the samples so far
+/// composite to (with their float alphas), so that rounding does not drift; each sample's alpha takes
+/// it to the function's next value. The function is clamped at 0 (a compressed function may dip just
+/// below it and rise again, within its tolerance); an alpha stops at the float below 1, so that the
+/// level never becomes 0 and the next sample (its alpha negative) can take it back up exactly.
+class compressed_texel_writer {
+public:
+    compressed_texel_writer(std::vector<deep_sample>& out, double budget) : out_(out), budget_(budget) {}
+
+    void step(float z, double target) { emit(z, z, target); }
+
+    /// The linear piece from (z0, a) to (z1, b), z0 < z1, as volume samples within the budget.
+    void slope(float z0, double a, float z1, double b) {
+        if (std::max(a, 0.0) == std::max(b, 0.0)) return;
+        const std::uint32_t n = volume_pieces(std::max(a, 0.0), std::max(b, 0.0), budget_);
+        float front = z0;
+        for (std::uint32_t k = 1; k <= n; ++k) {
+            const float back = k == n ? z1 : float(double(z0) + (double(z1) - double(z0)) * double(k) / double(n));
+            if (!(back > front)) continue; // fewer float depths than pieces: each piece is then one float step
+            emit(front, back, a + (b - a) * (double(back) - double(z0)) / (double(z1) - double(z0)));
+            front = back;
+        }
+    }
+
+private:
+    void emit(float z, float z_back, double target) {
+        if (target <= 0.0 && level_ < 1e-6) return; // zero already, within 1e-6: going lower would only risk overflowing the rise after
+        const float alpha = std::min(float(1.0 - std::max(target, 0.0) / level_), std::nextafter(1.0f, 0.0f));
+        if (alpha == 0.0f) return;
+        out_.push_back({z, z_back, alpha});
+        level_ *= 1.0 - double(alpha);
+    }
+    std::vector<deep_sample>& out_;
+    double budget_;
+    double level_ = 1.0;
+};
+
+/// One texel of a compressed map (vertices: depth, transmittance; equal depths a vertical step; 1 up
+/// to the first vertex, continuous from the left at steps) as samples: each step a point sample at
+/// its depth, each sloped piece volume samples within `budget` of it.
+template <class Vertices>
+void compressed_texel_samples(const Vertices& v, double budget, std::vector<deep_sample>& out) {
+    compressed_texel_writer writer(out, budget);
+    for (std::size_t i = 0; i < v.size();) {
+        std::size_t j = i;
+        while (j + 1 < v.size() && v[j + 1].depth == v[i].depth) ++j;
+        const double left = i == 0 ? 1.0 : double(v[i].transmittance);
+        if (double(v[j].transmittance) != left) writer.step(v[i].depth, v[j].transmittance);
+        if (j + 1 < v.size()) writer.slope(v[j].depth, v[j].transmittance, v[j + 1].depth, v[j + 1].transmittance);
+        i = j + 1;
+    }
+}
+
+} // namespace detail
+} // namespace hairshadow

@@ -1,0 +1,88 @@
+#pragma once
+/// @file
+/// A walk over an OpenEXR header's bytes before OpenEXR reads it (io/deep_exr.hpp): OpenEXR 3.1
+/// allocates a string attribute's declared size before reading it (a few bytes of a hostile file
+/// then ask for gigabytes), and reads some types by their own layout whatever size they declare.
+/// The walk follows OpenEXR's reading: a channel list up to its empty name, fixed-size types only at
+/// their size, a preview at 8 + 4 w h bytes, anything else at its declared size; every size must fit
+/// in the bytes left. Needs no OpenEXR.
+
+#include <hairshadow/core/error.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace hairshadow::detail {
+
+class exr_header_walk {
+public:
+    exr_header_walk(std::span<const unsigned char> bytes, const std::string& file) : b_(bytes), file_(file) {}
+
+    /// Walks the header; returns its version field. Refuses multi-part files (a map is one part).
+    int run() {
+        if (b_.size() < 8) fail("too short for an OpenEXR header");
+        const int version = int(u32(4));
+        if (version & 0x1000) fail("a multi-part OpenEXR file; only single-part deep scanline images are read");
+        at_ = 8;
+        for (;;) {
+            need(1);
+            if (b_[at_] == 0) return version;
+            name();
+            const std::string_view type = name();
+            need(4);
+            const std::uint32_t size = u32(at_);
+            at_ += 4;
+            value(type, size);
+        }
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& why) const { throw io_error(file_, why); }
+    void need(std::uint64_t n) const {
+        if (n > b_.size() - at_) fail("the header runs past the end of the file");
+    }
+    std::uint32_t u32(std::size_t at) const {
+        return std::uint32_t(b_[at]) | std::uint32_t(b_[at + 1]) << 8 | std::uint32_t(b_[at + 2]) << 16 | std::uint32_t(b_[at + 3]) << 24;
+    }
+    std::string_view name() {
+        const auto first = b_.begin() + std::ptrdiff_t(at_);
+        const auto end = std::find(first, std::min(b_.end(), first + 256), 0);
+        if (end == b_.end() || end == first + 256) fail("an attribute name in the header is not terminated");
+        at_ = std::size_t(end - b_.begin()) + 1;
+        return {reinterpret_cast<const char*>(&*first), std::size_t(end - first)};
+    }
+    static std::uint32_t fixed_size(std::string_view type) {
+        constexpr std::pair<std::string_view, std::uint32_t> sizes[] = {
+            {"int", 4}, {"float", 4}, {"double", 8}, {"box2i", 16}, {"box2f", 16}, {"v2i", 8}, {"v2f", 8}, {"v2d", 16}, {"v3i", 12}, {"v3f", 12},
+            {"v3d", 24}, {"m33f", 36}, {"m44f", 64}, {"m33d", 72}, {"m44d", 128}, {"compression", 1}, {"lineOrder", 1}, {"envmap", 1},
+            {"deepImageState", 1}, {"chromaticities", 32}, {"rational", 8}, {"timecode", 8}, {"keycode", 28}, {"tiledesc", 9}};
+        for (const auto& [name, size] : sizes)
+            if (name == type) return size;
+        return 0;
+    }
+    void value(std::string_view type, std::uint32_t size) {
+        if (type == "chlist") { // entries (name, 16 bytes) up to an empty name, as OpenEXR reads them
+            for (;;) {
+                need(1);
+                if (b_[at_] == 0) return void(++at_);
+                name();
+                need(16);
+                at_ += 16;
+            }
+        }
+        need(size);
+        if (const auto fixed = fixed_size(type); fixed && size != fixed) fail("a '" + std::string(type) + "' attribute of " + std::to_string(size) + " bytes");
+        if (type == "preview" && (size < 8 || std::uint64_t(u32(at_)) * u32(at_ + 4) * 4 + 8 != size)) fail("a preview image of the wrong size");
+        at_ += size;
+    }
+
+    std::span<const unsigned char> b_;
+    const std::string& file_;
+    std::size_t at_ = 0;
+};
+
+} // namespace hairshadow::detail
