@@ -121,27 +121,50 @@ TEST_CASE("deep exr: the exact map's samples composite, by OpenEXR's reader, to 
     }
 }
 
-TEST_CASE("deep exr: a compressed map's point and volume samples composite to its functions", "[deep_exr][compression]") {
+namespace {
+/// The running minimum over [0, depth] of a compressed texel's function clamped at 0: what its file
+/// holds (detail::falling_envelope). A piecewise-linear function's minimum over [0, depth] lies at a
+/// vertex in front of depth or at depth itself.
+double falling_envelope_at(const compressed_deep_shadow_map& map, int x, int y, float depth) {
+    double least = std::max(0.0, double(map.transmittance(x, y, depth)));
+    for (const auto& v : map.vertices(x, y))
+        if (v.depth < depth) least = std::min(least, std::max(0.0, double(v.transmittance)));
+    return std::min(least, 1.0);
+}
+} // namespace
+
+TEST_CASE("deep exr: a compressed map's point and volume samples composite to its falling envelope", "[deep_exr][compression]") {
     test::temp_dir dir("deep_exr_compressed");
+    const auto& exact = sintel(96).exact;
     for (float tolerance : {0.005f, 0.05f}) {
-        const compressed_deep_shadow_map map(sintel(96).exact, tolerance);
+        const compressed_deep_shadow_map map(exact, tolerance);
         write_deep_exr(dir.file("map.exr"), map);
         const auto img = read_with_openexr(dir.file("map.exr"));
         CHECK(img.state == Imf::DIS_TIDY);
-        double worst = 0.0;
+        double worst = 0.0, worst_exact = 0.0;
+        std::size_t rises = 0, probes = 0;
         for (int y = 0; y < img.res; ++y)
             for (int x = 0; x < img.res; ++x) {
                 const auto& s = img.texels[std::size_t(y) * std::size_t(img.res) + std::size_t(x)];
                 REQUIRE(tidy(s));
+                for (const auto& sample : s) REQUIRE((sample.alpha >= 0.0f && sample.alpha <= 1.0f)); // OpenEXR's rule for alpha
                 const auto v = map.vertices(x, y);
-                for (std::size_t i = 0; i < v.size(); ++i)
-                    for (float depth : {v[i].depth, i + 1 < v.size() ? 0.5f * (v[i].depth + v[i + 1].depth) : v[i].depth + 0.01f}) {
-                        const double expected = std::exp(-double(map.optical_depth(x, y, depth))); // the map's queries: T clamped at 0
-                        worst = std::max(worst, std::abs(composite(s, depth) - expected));
+                for (std::size_t i = 0; i < v.size(); ++i) {
+                    if (i > 0 && v[i].transmittance > v[i - 1].transmittance) ++rises;
+                    // The vertices, and 15 depths inside each piece: inside the volume samples, not only at their ends.
+                    const float next = i + 1 < v.size() ? v[i + 1].depth : v[i].depth + 0.01f;
+                    for (int k = 0; k < 16; ++k) {
+                        const float depth = v[i].depth + (next - v[i].depth) * float(k) / 16.0f;
+                        worst = std::max(worst, std::abs(composite(s, depth) - falling_envelope_at(map, x, y, depth)));
+                        ++probes;
                     }
+                }
+                for (float d : exact.depths(x, y)) worst_exact = std::max(worst_exact, std::abs(composite(s, d) - double(exact.transmittance(x, y, d))));
             }
-        CAPTURE(tolerance);
-        CHECK(worst <= tolerance / 16.0 + 2e-6); // the volume samples' budget (write_deep_exr), and float rounding
+        CAPTURE(tolerance, probes, rises);
+        CHECK(rises > 0); // the compressed functions do rise here and there: the envelope is tested where it differs
+        CHECK(worst <= tolerance / 16.0 + 2e-6);              // the volume samples' budget (write_deep_exr), and float rounding
+        CHECK(worst_exact <= tolerance * (1.0 + 1.0 / 16.0) + 2e-6); // and so within the map's tolerance of the exact map
     }
 }
 
@@ -196,11 +219,13 @@ TEST_CASE("deep exr: read back, the file answers as the maps do, and keeps the l
     const auto cback = read_deep_exr(dir.file("compressed.exr"));
     CHECK(cback.method() == "dsm:0.01");
     CHECK(cback.tolerance() == 0.01f);
-    c.transmittance(s.model.points, want);
+    // The file holds the compressed functions' falling envelope (alphas in [0, 1]), within the
+    // tolerance and 1/16 of it of the exact map, at every model point.
+    s.exact.transmittance(s.model.points, want);
     cback.transmittance(s.model.points, got);
     float worst = 0.0f;
     for (std::size_t i = 0; i < want.size(); ++i) worst = std::max(worst, std::abs(want[i] - got[i]));
-    CHECK(worst <= 0.01f / 16.0f + 2e-6f);
+    CHECK(worst <= 0.01f * (1.0f + 1.0f / 16.0f) + 2e-6f);
 }
 
 namespace {
@@ -277,7 +302,9 @@ TEST_CASE("deep exr: bad files are typed errors", "[deep_exr][hostile]") {
     write_deep_by_hand(dir.file("nan.exr"), 8, {"Z", "A"}, true, std::nanf(""));
     CHECK_THAT(read_error(dir.file("nan.exr")), Catch::Contains("not finite"));
     write_deep_by_hand(dir.file("alpha.exr"), 8, {"Z", "A"}, true, 1.5f);
-    CHECK_THAT(read_error(dir.file("alpha.exr")), Catch::Contains("above 1"));
+    CHECK_THAT(read_error(dir.file("alpha.exr")), Catch::Contains("outside [0, 1]"));
+    write_deep_by_hand(dir.file("negative.exr"), 8, {"Z", "A"}, true, -0.5f);
+    CHECK_THAT(read_error(dir.file("negative.exr")), Catch::Contains("outside [0, 1]"));
     write_deep_by_hand(dir.file("other.exr"), 8, {"Z", "A", "R"}, true, 0.25f); // another program's file, with the light
     CHECK(read_error(dir.file("other.exr")).empty());
     CHECK(read_deep_exr(dir.file("other.exr")).transmittance(1, 1, 0.5f) == Approx(0.75f)); // strictly in front only

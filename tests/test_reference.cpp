@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 
 using namespace hairshadow;
 
@@ -183,8 +184,11 @@ TEST_CASE("the streamed exact map equals the map of the whole fragment buffer, b
 TEST_CASE("streamed builds refuse bad options and tolerances", "[reference][streamed][errors]") {
     const auto scene = test::make_sheets(2, 32);
     raster_options o;
-    o.tile_size = 4;
-    CHECK_THROWS_AS(deep_shadow_map(scene.model, scene.light, o), argument_error);
+    for (const int tile : {4, 0, -1, 1025, std::numeric_limits<int>::max()}) { // no division by zero, no overflow: the options are checked first
+        o.tile_size = tile;
+        CHECK_THROWS_AS(deep_shadow_map(scene.model, scene.light, o), argument_error);
+        CHECK_THROWS_AS(compressed_deep_shadow_map(scene.model, scene.light, 0.01f, o), argument_error);
+    }
     CHECK_THROWS_AS(compressed_deep_shadow_map(scene.model, scene.light, 0.0f), argument_error);
     CHECK_THROWS_AS(compressed_deep_shadow_map(scene.model, scene.light, std::nanf("")), argument_error);
 }

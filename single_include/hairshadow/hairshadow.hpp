@@ -9284,7 +9284,13 @@ struct map_tiling {
     int tiles_x = 0;
 
     map_tiling() = default;
-    map_tiling(int res, int tile_size) : resolution(res), tile(tile_size), tiles_x((res + tile_size - 1) / tile_size) {}
+    /// Throws argument_error for a tile size below 1 (the streamed builds check raster_options first).
+    map_tiling(int res, int tile_size) : resolution(res), tile(positive(tile_size)), tiles_x(int((res + (long long)tile_size - 1) / tile_size)) {}
+
+    static int positive(int tile_size) {
+        if (tile_size < 1) throw argument_error("tile size must be at least 1");
+        return tile_size;
+    }
 
     std::size_t tile_count() const noexcept { return std::size_t(tiles_x) * std::size_t(tiles_x); }
     std::size_t tile_of(int x, int y) const noexcept { return std::size_t(y / tile) * std::size_t(tiles_x) + std::size_t(x / tile); }
@@ -9453,6 +9459,13 @@ void stream_tiles(streamed_workspace& w, const hair_model& model, const light_sp
     });
 }
 
+/// The tile size of `options`, once the options are checked (argument_error where they are bad): the
+/// map's tiling is made from it before stream_tiles bins anything.
+inline int checked_tile_size(const raster_options& options) {
+    options.check();
+    return options.tile_size;
+}
+
 /// Slots of builder scratch that stream_tiles may use.
 inline unsigned streamed_slots(const light_space& light, const raster_options& options) noexcept {
     return parallel_slots(map_tiling(light.resolution(), options.tile_size).tile_count(), options.exec);
@@ -9519,7 +9532,7 @@ public:
     /// memory for the next build. Throws argument_error for bad options.
     deep_shadow_map(const hair_model& model, const light_space& light, const raster_options& options = {}, const build_progress& progress = {},
                     streamed_workspace* workspace = nullptr)
-        : light_(light), lists_(detail::map_tiling(light.resolution(), options.tile_size)) {
+        : light_(light), lists_(detail::map_tiling(light.resolution(), detail::checked_tile_size(options))) {
         streamed_workspace own;
         std::vector<scratch> slots(detail::streamed_slots(light, options));
         detail::stream_tiles(workspace ? *workspace : own, model, light, options, progress, [&](unsigned slot, std::size_t t, const detail::grouped_tile& tile) {
@@ -9673,7 +9686,7 @@ public:
     /// for the next build. Throws argument_error for a tolerance outside (0, 1) or bad options.
     compressed_deep_shadow_map(const hair_model& model, const light_space& light, float tolerance, const raster_options& options = {},
                                const build_progress& progress = {}, streamed_workspace* workspace = nullptr)
-        : light_(light), tolerance_(checked(tolerance)), lists_(detail::map_tiling(light.resolution(), options.tile_size)) {
+        : light_(light), tolerance_(checked(tolerance)), lists_(detail::map_tiling(light.resolution(), detail::checked_tile_size(options))) {
         streamed_workspace own;
         std::vector<scratch> slots(detail::streamed_slots(light, options));
         std::atomic<std::size_t> fragments{0};

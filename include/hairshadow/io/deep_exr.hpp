@@ -15,10 +15,12 @@
 ///   - The exact map: one point sample per fragment depth (fragments at one depth merged), Z = the
 ///     fragment's depth, A = 1 - exp(-(omega_i - omega_{i-1})) from the cumulative optical depths, in
 ///     double; compositing gives exp(-omega) within 1e-6 at every depth.
-///   - A compressed map: its piecewise-linear functions, a vertical step as a point sample, a sloped
-///     piece as volume samples, subdivided until each is within tolerance / 16 of the line
-///     (detail::volume_gap_bound proves the bound); so within the map's tolerance of the exact map
-///     and 1/16 of it of the compressed function (where that function dips below 0, the image holds 0, within 1e-6).
+///   - A compressed map: the falling envelope of its piecewise-linear functions (their running
+///     minimum, clamped at 0: a compressed function may rise a little, an alpha must lie in [0, 1];
+///     detail::falling_envelope), a vertical step as a point sample, a sloped piece as volume samples,
+///     subdivided until each is within tolerance / 16 of the line (detail::volume_gap_bound proves the
+///     bound); so within the map's tolerance (and 1/16 of it) of the exact map, and within 1/16 of
+///     the tolerance of the envelope.
 ///   - Any other map (write_sampled_deep_exr: any method of the registry): its optical depth omega
 ///     sampled at N + 1 uniform depths i / N over [0, 1], one volume sample an interval, alpha taking
 ///     the composited transmittance to exp(-omega) at the interval's back (detail::sampled_texel_samples).

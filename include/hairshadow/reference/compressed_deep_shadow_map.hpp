@@ -104,7 +104,7 @@ public:
     /// for the next build. Throws argument_error for a tolerance outside (0, 1) or bad options.
     compressed_deep_shadow_map(const hair_model& model, const light_space& light, float tolerance, const raster_options& options = {},
                                const build_progress& progress = {}, streamed_workspace* workspace = nullptr)
-        : light_(light), tolerance_(checked(tolerance)), lists_(detail::map_tiling(light.resolution(), options.tile_size)) {
+        : light_(light), tolerance_(checked(tolerance)), lists_(detail::map_tiling(light.resolution(), detail::checked_tile_size(options))) {
         streamed_workspace own;
         std::vector<scratch> slots(detail::streamed_slots(light, options));
         std::atomic<std::size_t> fragments{0};

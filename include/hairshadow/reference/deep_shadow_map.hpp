@@ -74,7 +74,7 @@ public:
     /// memory for the next build. Throws argument_error for bad options.
     deep_shadow_map(const hair_model& model, const light_space& light, const raster_options& options = {}, const build_progress& progress = {},
                     streamed_workspace* workspace = nullptr)
-        : light_(light), lists_(detail::map_tiling(light.resolution(), options.tile_size)) {
+        : light_(light), lists_(detail::map_tiling(light.resolution(), detail::checked_tile_size(options))) {
         streamed_workspace own;
         std::vector<scratch> slots(detail::streamed_slots(light, options));
         detail::stream_tiles(workspace ? *workspace : own, model, light, options, progress, [&](unsigned slot, std::size_t t, const detail::grouped_tile& tile) {

@@ -115,11 +115,12 @@ inline void read_samples(Imf::DeepScanLineInputFile& in, int res, const std::str
         for (auto& s : c.samples) s.z_back = s.z;
 }
 
-/// Refuses non-finite depths and alphas, and alphas above 1; a ZBack in front of Z makes a point sample.
+/// Refuses non-finite depths and alphas, and alphas outside [0, 1] (OpenEXR's rule for alpha); a ZBack
+/// in front of Z makes a point sample.
 inline void check_samples(std::vector<deep_sample>& samples, const std::string& file) {
     for (auto& s : samples) {
         if (!std::isfinite(s.z) || !std::isfinite(s.z_back)) throw io_error(file, "a sample's Z or ZBack is not finite");
-        if (!std::isfinite(s.alpha) || !(s.alpha <= 1.0f)) throw io_error(file, "a sample's A is not finite or is above 1");
+        if (!(s.alpha >= 0.0f && s.alpha <= 1.0f)) throw io_error(file, "a sample's A is not finite or is outside [0, 1]");
         if (s.z_back < s.z) s.z_back = s.z;
     }
 }

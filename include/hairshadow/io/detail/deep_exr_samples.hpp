@@ -95,21 +95,57 @@ inline std::uint32_t volume_pieces(double a, double b, double budget) noexcept {
     }
 }
 
-/// Builds the samples of one compressed texel: `level` is the transmittance the samples so far
-/// composite to (with their float alphas), so that rounding does not drift; each sample's alpha takes
-/// it to the function's next value. The function is clamped at 0 (a compressed function may dip just
-/// below it and rise again, within its tolerance); an alpha stops at the float below 1, so that the
-/// level never becomes 0 and the next sample (its alpha negative) can take it back up exactly.
+/// A vertex of a texel's falling envelope (falling_envelope).
+struct envelope_vertex {
+    float depth;
+    double transmittance;
+};
+
+/// The running minimum of a compressed function clamped at 0, as vertices of the same form (equal
+/// depths a vertical step, 1 before the first). A compressed function may rise a little where its
+/// greedy segments overshoot, but a sample's alpha must lie in [0, 1] (OpenEXR's "Interpreting
+/// OpenEXR Deep Pixels"), so a composite can only fall. The exact function never rises, so wherever
+/// the compressed one is within the tolerance of it, so is this envelope: min over z' <= z of c(z')
+/// is at most c(z) <= T(z) + eps and at least min T(z') - eps = T(z) - eps.
+template <class Vertices>
+void falling_envelope(const Vertices& v, std::vector<envelope_vertex>& out) {
+    out.clear();
+    double least = 1.0; // the running minimum so far
+    for (std::size_t i = 0; i < v.size(); ++i) {
+        float z = v[i].depth;
+        const double raw = double(v[i].transmittance);
+        if (out.empty()) out.push_back({z, least}); // the value before the first vertex: 1
+        if (!(std::max(raw, 0.0) < least)) continue; // at or above the running minimum: the envelope stays flat
+        float start = z;                              // where the envelope leaves `least`
+        if (i > 0 && v[i - 1].depth < z) {            // a sloped piece from the last vertex, linear in the raw values
+            const float z0 = v[i - 1].depth;
+            const double before = double(v[i - 1].transmittance);
+            const auto depth_where = [&](double value) { // where the piece takes `value`, between its ends
+                return std::clamp(float(double(z0) + (double(z) - double(z0)) * (before - value) / (before - raw)), z0, z);
+            };
+            start = before > least ? depth_where(least) : z0;
+            if (raw < 0.0) z = depth_where(0.0); // clamped at 0 from where the piece crosses it, not from its end
+        }
+        if (out.back().depth < start) out.push_back({start, least});
+        out.push_back({z, std::max(raw, 0.0)});
+        least = std::max(raw, 0.0);
+    }
+}
+
+/// Builds the samples of one texel's falling envelope: `level` is the transmittance the samples so
+/// far composite to (with their float alphas), so that rounding does not drift; each sample's alpha,
+/// in [0, 1), takes it to the envelope's next value (never up: a target above the level, by
+/// rounding, gives no sample). An alpha stops at the float below 1, so that the level never becomes 0.
 class compressed_texel_writer {
 public:
     compressed_texel_writer(std::vector<deep_sample>& out, double budget) : out_(out), budget_(budget) {}
 
     void step(float z, double target) { emit(z, z, target); }
 
-    /// The linear piece from (z0, a) to (z1, b), z0 < z1, as volume samples within the budget.
+    /// The linear piece from (z0, a) to (z1, b), z0 < z1, a >= b >= 0, as volume samples within the budget.
     void slope(float z0, double a, float z1, double b) {
-        if (std::max(a, 0.0) == std::max(b, 0.0)) return;
-        const std::uint32_t n = volume_pieces(std::max(a, 0.0), std::max(b, 0.0), budget_);
+        if (a == b) return;
+        const std::uint32_t n = volume_pieces(a, b, budget_);
         float front = z0;
         for (std::uint32_t k = 1; k <= n; ++k) {
             const float back = k == n ? z1 : float(double(z0) + (double(z1) - double(z0)) * double(k) / double(n));
@@ -121,9 +157,9 @@ public:
 
 private:
     void emit(float z, float z_back, double target) {
-        if (target <= 0.0 && level_ < 1e-6) return; // zero already, within 1e-6: going lower would only risk overflowing the rise after
-        const float alpha = std::min(float(1.0 - std::max(target, 0.0) / level_), std::nextafter(1.0f, 0.0f));
-        if (alpha == 0.0f) return;
+        if (!(target < level_)) return;
+        const float alpha = std::min(float(1.0 - target / level_), std::nextafter(1.0f, 0.0f));
+        if (!(alpha > 0.0f)) return;
         out_.push_back({z, z_back, alpha});
         level_ *= 1.0 - double(alpha);
     }
@@ -133,16 +169,18 @@ private:
 };
 
 /// One texel of a compressed map (vertices: depth, transmittance; equal depths a vertical step; 1 up
-/// to the first vertex, continuous from the left at steps) as samples: each step a point sample at
-/// its depth, each sloped piece volume samples within `budget` of it.
+/// to the first vertex, continuous from the left at steps) as samples of its falling envelope: each
+/// step a point sample at its depth, each sloped piece volume samples within `budget` of it.
 template <class Vertices>
-void compressed_texel_samples(const Vertices& v, double budget, std::vector<deep_sample>& out) {
+void compressed_texel_samples(const Vertices& vertices, double budget, std::vector<deep_sample>& out) {
+    std::vector<envelope_vertex> v;
+    falling_envelope(vertices, v);
     compressed_texel_writer writer(out, budget);
     for (std::size_t i = 0; i < v.size();) {
         std::size_t j = i;
         while (j + 1 < v.size() && v[j + 1].depth == v[i].depth) ++j;
-        const double left = i == 0 ? 1.0 : double(v[i].transmittance);
-        if (double(v[j].transmittance) != left) writer.step(v[i].depth, v[j].transmittance);
+        const double left = v[i].transmittance;
+        if (v[j].transmittance != left) writer.step(v[i].depth, v[j].transmittance);
         if (j + 1 < v.size()) writer.slope(v[j].depth, v[j].transmittance, v[j + 1].depth, v[j + 1].transmittance);
         i = j + 1;
     }

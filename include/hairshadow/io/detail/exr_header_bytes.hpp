@@ -50,8 +50,9 @@ private:
     }
     std::string_view name() {
         const auto first = b_.begin() + std::ptrdiff_t(at_);
-        const auto end = std::find(first, std::min(b_.end(), first + 256), 0);
-        if (end == b_.end() || end == first + 256) fail("an attribute name in the header is not terminated");
+        const auto last = first + std::ptrdiff_t(std::min<std::size_t>(256, b_.size() - at_)); // never past the end of the bytes
+        const auto end = std::find(first, last, 0);
+        if (end == last) fail("an attribute name in the header is not terminated");
         at_ = std::size_t(end - b_.begin()) + 1;
         return {reinterpret_cast<const char*>(&*first), std::size_t(end - first)};
     }
@@ -76,7 +77,10 @@ private:
         }
         need(size);
         if (const auto fixed = fixed_size(type); fixed && size != fixed) fail("a '" + std::string(type) + "' attribute of " + std::to_string(size) + " bytes");
-        if (type == "preview" && (size < 8 || std::uint64_t(u32(at_)) * u32(at_ + 4) * 4 + 8 != size)) fail("a preview image of the wrong size");
+        if (type == "preview") { // width x height RGBA bytes after the two sizes: no product that can wrap
+            const std::uint64_t w = size < 8 ? 0 : u32(at_), h = size < 8 ? 0 : u32(at_ + 4);
+            if (size < 8 || (w != 0 && h > (size - 8) / 4 / w) || w * h * 4 + 8 != size) fail("a preview image of the wrong size");
+        }
         at_ += size;
     }
 

@@ -112,6 +112,13 @@ void stream_tiles(streamed_workspace& w, const hair_model& model, const light_sp
     });
 }
 
+/// The tile size of `options`, once the options are checked (argument_error where they are bad): the
+/// map's tiling is made from it before stream_tiles bins anything.
+inline int checked_tile_size(const raster_options& options) {
+    options.check();
+    return options.tile_size;
+}
+
 /// Slots of builder scratch that stream_tiles may use.
 inline unsigned streamed_slots(const light_space& light, const raster_options& options) noexcept {
     return parallel_slots(map_tiling(light.resolution(), options.tile_size).tile_count(), options.exec);

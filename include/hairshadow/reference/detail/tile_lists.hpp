@@ -22,7 +22,13 @@ struct map_tiling {
     int tiles_x = 0;
 
     map_tiling() = default;
-    map_tiling(int res, int tile_size) : resolution(res), tile(tile_size), tiles_x((res + tile_size - 1) / tile_size) {}
+    /// Throws argument_error for a tile size below 1 (the streamed builds check raster_options first).
+    map_tiling(int res, int tile_size) : resolution(res), tile(positive(tile_size)), tiles_x(int((res + (long long)tile_size - 1) / tile_size)) {}
+
+    static int positive(int tile_size) {
+        if (tile_size < 1) throw argument_error("tile size must be at least 1");
+        return tile_size;
+    }
 
     std::size_t tile_count() const noexcept { return std::size_t(tiles_x) * std::size_t(tiles_x); }
     std::size_t tile_of(int x, int y) const noexcept { return std::size_t(y / tile) * std::size_t(tiles_x) + std::size_t(x / tile); }
