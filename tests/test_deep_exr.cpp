@@ -14,6 +14,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 using namespace hairshadow;
@@ -168,23 +169,33 @@ TEST_CASE("deep exr: a compressed map's point and volume samples composite to it
     }
 }
 
-TEST_CASE("deep exr: a volume sample's exponential stays within the bound of the line it stands for", "[deep_exr]") {
+TEST_CASE("deep exr: a volume sample's exponential stays within the bound of the line it stands for, in few pieces", "[deep_exr]") {
     random_stream rng(3);
+    std::vector<double> cuts;
     for (int i = 0; i < 2000; ++i) {
-        const double p = rng.uniform(), q = rng.uniform(), budget = 1e-4 + 0.01 * rng.uniform();
-        const auto n = detail::volume_pieces(p, q, budget);
-        double gap = 0.0;
-        for (std::uint32_t k = 0; k < n; ++k) {
-            const double a = p + (q - p) * double(k) / double(n), b = p + (q - p) * double(k + 1) / double(n);
+        const double x = rng.uniform(), y = i % 4 == 0 ? 0.0 : rng.uniform(), budget = 1e-5 + 0.01 * rng.uniform();
+        const double p = std::max(x, y), q = std::min(x, y); // falling, to 0 a quarter of the time
+        detail::volume_cuts(p, q, budget, cuts);
+        REQUIRE(cuts.back() == q);
+        double gap = 0.0, a = p;
+        for (const double b : cuts) {
+            REQUIRE(b <= a);
             for (int j = 1; j < 16; ++j) {
-                const double f = j / 16.0, exponential = b > 0 && a > 0 ? a * std::pow(b / a, f) : (j == 0 ? a : 0.0);
+                const double f = j / 16.0, exponential = b > 0 && a > 0 ? a * std::pow(b / a, f) : 0.0;
                 const double own = std::abs(a + f * (b - a) - exponential);
                 CHECK(own <= detail::volume_gap_bound(a, b) * (1 + 1e-9) + 1e-15);
                 gap = std::max(gap, own);
             }
+            a = b;
         }
         CHECK(gap <= budget * (1 + 1e-9));
+        CAPTURE(p, q, budget);
+        CHECK(double(cuts.size()) <= 1.01 * std::sqrt(p / (2.0 * budget)) + 4.0); // geometric cuts; equal ones needed (p - q) / budget
     }
+    detail::volume_cuts(0.5, 0.0, 0.01 / 16.0, cuts); // a slope down to T = 0 at tolerance 0.01: 800 equal cuts
+    CHECK(cuts.size() <= 24);
+    detail::volume_cuts(1.0, 0.0, 0.0, cuts); // no budget: held to 2^-24, still a bounded count
+    CHECK(cuts.size() <= 3000);
 }
 
 TEST_CASE("deep exr: read back, the file answers as the maps do, and keeps the light bit for bit", "[deep_exr]") {
@@ -192,9 +203,7 @@ TEST_CASE("deep exr: read back, the file answers as the maps do, and keeps the l
     const auto& s = sintel(96);
     write_deep_exr(dir.file("exact.exr"), s.exact);
     const auto back = read_deep_exr(dir.file("exact.exr"));
-    const auto a = back.light().parts(), b = s.light.parts();
-    CHECK((a.resolution == b.resolution && a.type == b.type && a.view == b.view && a.projection == b.projection &&
-           a.view_projection == b.view_projection && a.near_plane == b.near_plane && a.far_plane == b.far_plane && a.half_extent == b.half_extent));
+    CHECK(back.light().parts() == s.light.parts());
     CHECK(back.method() == "dsm");
     CHECK_FALSE(back.tolerance());
     std::vector<float> want(s.model.point_count()), got(s.model.point_count());
@@ -329,11 +338,40 @@ TEST_CASE("deep exr: a file claiming more samples than its bytes hold is refused
     test::write_bytes(dir.file("counts.exr"), bytes); // OpenEXR sees the counts disagree with the chunk's data size
     CHECK_FALSE(read_error(dir.file("counts.exr")).empty());
     // The chunk's unpacked size (the 8 bytes before its table) made to agree: OpenEXR would then
-    // allocate them, so the reader's bound on the file's bytes refuses them first.
+    // allocate them, so the reader's bound on a chunk's bytes refuses them first.
     const std::uint64_t unpacked = std::uint64_t(huge) * 8;
     for (std::size_t i : tables) std::memcpy(&bytes[i - 8], &unpacked, 8);
     test::write_bytes(dir.file("huge.exr"), bytes);
-    CHECK_THAT(read_error(dir.file("huge.exr")), Catch::Contains("samples, more than its"));
+    CHECK_THAT(read_error(dir.file("huge.exr")), Catch::Contains("bytes unpacked from"));
+}
+
+TEST_CASE("deep exr: a chunk declaring more bytes than the file has is refused before OpenEXR allocates them", "[deep_exr][hostile]") {
+    test::temp_dir dir("deep_exr_chunks");
+    write_deep_by_hand(dir.file("small.exr"), 4, {"Z", "A"}, true, 0.5f, Imf::NO_COMPRESSION);
+    const auto good = test::read_bytes(dir.file("small.exr"));
+    REQUIRE(read_error(dir.file("small.exr")).empty());
+    const std::string name = dir.file("small.exr"); // the walk keeps a reference to the name
+    detail::exr_header_walk walk(good, name);
+    walk.run();
+    const std::size_t table = walk.end(); // four offsets, one a scanline
+    std::uint64_t first = 0;
+    std::memcpy(&first, &good[table], 8);
+    REQUIRE(first == table + 32);
+    const auto patched = [&](std::size_t at, std::uint64_t value) {
+        auto bytes = good;
+        std::memcpy(&bytes[at], &value, 8);
+        test::write_bytes(dir.file("bad.exr"), bytes);
+        return read_error(dir.file("bad.exr"));
+    };
+    // OpenEXR 3.1 would allocate the packed data size (2 GiB here) of a chunk with no samples before reading it.
+    CHECK_THAT(patched(std::size_t(first) + 12, 0x7fffffffu), Catch::Contains("chunk 0 declares"));
+    CHECK_THAT(patched(std::size_t(first) + 4, 0x7fffffffu), Catch::Contains("chunk 0 declares")); // the sample count table's size
+    CHECK_THAT(patched(table + 8, good.size() + 100), Catch::Contains("chunk 1's offset points outside the file"));
+    CHECK_THAT(patched(table + 24, 0), Catch::Contains("chunk 3's offset points outside the file")); // an incomplete file's table
+    CHECK_THAT(patched(table, table), Catch::Contains("chunk 0's offset points outside the file")); // inside the table itself
+    std::vector<unsigned char> cut(good.begin(), good.begin() + std::ptrdiff_t(table + 12)); // the table itself cut short
+    test::write_bytes(dir.file("cut.exr"), cut);
+    CHECK_FALSE(read_error(dir.file("cut.exr")).empty());
 }
 
 TEST_CASE("deep exr: export, then compare against the file, prints compare's table", "[deep_exr][cli]") {

@@ -2,6 +2,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <limits>
 
 using namespace hairshadow;
@@ -72,4 +73,28 @@ TEST_CASE("light specs parse and reject bad grammar", "[light][errors]") {
     CHECK(s.spot_half_angle_degrees == 25.0f);
     for (const char* bad : {"dir", "dir:1,2", "dir:a,b,c", "sun:0,1,0", "point:1,2,3:4", "dir:1,2,inf"})
         CHECK_THROWS_AS(parse_light_spec(bad), argument_error);
+}
+
+TEST_CASE("a light's parts make the same light again, and any change makes another", "[light]") {
+    for (const light_spec& spec : {light_spec::directional({0, -1, -1}), light_spec::point({0, 4, 3}), light_spec::spot({0, 4, 3}, {0, -1, -0.5f}, 40.0f)}) {
+        const auto light = light_space::fit(spec, unit_box(), 96);
+        const auto again = light_space::from_parts(light.parts());
+        CHECK(again.parts() == light.parts());
+        const auto a = again.project({0.3f, -0.2f, 0.1f}), b = light.project({0.3f, -0.2f, 0.1f});
+        CHECK((a.window == b.window && a.depth == b.depth && a.w == b.w)); // bit for bit
+        auto p = light.parts();
+        p.near_plane = std::nextafter(p.near_plane, -1.0f);
+        CHECK_FALSE(p == light.parts());
+        p = light.parts();
+        p.view[3][1] += 1e-3f;
+        CHECK_FALSE(p == light.parts());
+        p.view[3][1] = std::numeric_limits<float>::quiet_NaN();
+        CHECK_THROWS_AS(light_space::from_parts(p), argument_error);
+        p = light.parts();
+        p.far_plane = p.near_plane;
+        CHECK_THROWS_AS(light_space::from_parts(p), argument_error);
+        p = light.parts();
+        p.resolution = 0;
+        CHECK_THROWS_AS(light_space::from_parts(p), argument_error);
+    }
 }

@@ -5,7 +5,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 using namespace hairshadow;
@@ -102,6 +104,19 @@ TEST_CASE("a compression tolerance outside (0, 1) is refused", "[reference][comp
     CHECK_THROWS_AS(compressed_deep_shadow_map(dsm, std::nanf("")), argument_error);
 }
 
+TEST_CASE("the exact steps' transmittance is std::exp's, bit for bit, where it underflows too", "[reference][compression]") {
+    std::size_t zeros = 0;
+    for (float omega = 80.0f; omega < 112.0f; omega = std::nextafter(omega, 200.0f)) { // every float in [80, 112)
+        const float want = std::exp(-omega), got = detail::exact_transmittance(omega);
+        if (std::bit_cast<std::uint32_t>(want) != std::bit_cast<std::uint32_t>(got)) FAIL("omega " << omega << ": " << got << " against " << want);
+        zeros += got == 0.0f;
+    }
+    CHECK(zeros > 0);
+    for (const float omega : {0.0f, -0.0f, 1e-30f, 0.5f, 20.0f, std::numeric_limits<float>::infinity()})
+        CHECK(std::bit_cast<std::uint32_t>(detail::exact_transmittance(omega)) == std::bit_cast<std::uint32_t>(std::exp(-omega)));
+    CHECK(std::isnan(detail::exact_transmittance(std::nanf(""))));
+}
+
 TEST_CASE("batch queries equal single queries and points outside the map are lit", "[reference]") {
     const auto m = make_procedural({.style = hair_style::curly, .strands = 400, .segments = 24});
     const auto ls = light_space::fit(light_spec::directional({0, -1, 0}), m.bounds(), 128);
@@ -179,6 +194,19 @@ TEST_CASE("the streamed exact map equals the map of the whole fragment buffer, b
                 }
         }
     }
+}
+
+TEST_CASE("many threads write the streamed map's tiles apart (small enough for ThreadSanitizer)", "[reference][streamed][parallel]") {
+    const auto curly = make_procedural({.style = hair_style::curly, .strands = 200, .segments = 16});
+    const auto ls = light_space::fit(light_spec::directional({1, -1, 0}), curly.bounds(), 64);
+    raster_options o;
+    o.tile_size = 16;
+    const fragment_buffer fragments = rasterize(curly, ls, o);
+    o.exec.threads = 4;
+    const deep_shadow_map streamed(curly, ls, o);
+    require_equals_buffer_build(streamed, fragments);
+    const compressed_deep_shadow_map from_exact(streamed, 0.01f), streamed_compressed(curly, ls, 0.01f, o);
+    CHECK(same_vertices(streamed_compressed, from_exact));
 }
 
 TEST_CASE("streamed builds refuse bad options and tolerances", "[reference][streamed][errors]") {

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 #include <vector>
 
 namespace test {
@@ -18,10 +19,12 @@ inline std::string shared_dir() { return HAIRSHADOW_SHARED_DIR; }
 inline std::string sintel_hair() { return shared_dir() + "/data/sintel/sintel_hair.16points.tfx"; }
 inline std::string sintel_head() { return shared_dir() + "/data/sintel/sintel_head.obj"; }
 
-/// A fresh directory for one test's files, removed at the end of the test.
+/// A fresh directory for one test's files, removed at the end of the test; the process id in its
+/// name keeps two runs of the suite at once (ctest -j, a sanitizer build beside a plain one) apart.
 class temp_dir {
 public:
-    explicit temp_dir(const std::string& name) : path_(std::filesystem::temp_directory_path() / ("hairshadow_test_" + name)) {
+    explicit temp_dir(const std::string& name)
+        : path_(std::filesystem::temp_directory_path() / ("hairshadow_test_" + name + "_" + std::to_string(::getpid()))) {
         std::filesystem::remove_all(path_);
         std::filesystem::create_directories(path_);
     }

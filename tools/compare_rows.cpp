@@ -78,11 +78,6 @@ std::vector<compare_row> measure(const map_options& o, const std::vector<method_
     return rows;
 }
 
-bool same_light(const light_space& a, const light_space& b) {
-    const auto p = a.parts(), q = b.parts();
-    return p.resolution == q.resolution && p.type == q.type && p.view == q.view && p.projection == q.projection && p.view_projection == q.view_projection &&
-           p.near_plane == q.near_plane && p.far_plane == q.far_plane && p.half_extent == q.half_extent;
-}
 } // namespace
 
 comparison compare_methods(const map_options& o, const std::vector<method_spec>& specs, const scene_source& source, const std::string& reference_file) {
@@ -97,7 +92,7 @@ comparison compare_methods(const map_options& o, const std::vector<method_spec>&
         c.preamble = compare_preamble(o, s);
         return c;
     }
-    const bool same = same_light(file->light(), s.light);
+    const bool same = file->light().parts() == s.light.parts();
     c.rows = measure(o, specs, s, *file, same);
     c.preamble = compare_preamble(o, s) + " The reference is `" + reference_file + "` (a deep OpenEXR image of `" +
                  (file->method().empty() ? std::string("an unnamed method") : file->method()) + "`, " + std::to_string(file->resolution()) + "x" +

@@ -129,6 +129,9 @@ struct light_space_parts {
     glm::mat4 view{1.0f}, projection{1.0f}, view_projection{1.0f};
     float near_plane = 0.0f, far_plane = 1.0f;
     float half_extent = 1.0f;
+
+    /// The same light, member by member (what a file must hold to map points as the light did).
+    bool operator==(const light_space_parts&) const = default;
 };
 
 /// The frustum and resolution of one shadow map.

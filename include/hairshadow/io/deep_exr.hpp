@@ -18,8 +18,9 @@
 ///   - A compressed map: the falling envelope of its piecewise-linear functions (their running
 ///     minimum, clamped at 0: a compressed function may rise a little, an alpha must lie in [0, 1];
 ///     detail::falling_envelope), a vertical step as a point sample, a sloped piece as volume samples,
-///     subdivided until each is within tolerance / 16 of the line (detail::volume_gap_bound proves the
-///     bound); so within the map's tolerance (and 1/16 of it) of the exact map, and within 1/16 of
+///     cut geometrically in T until each is within tolerance / 16 of the line (detail::volume_gap_bound
+///     proves the bound; about sqrt(8 / tolerance) samples a piece at most; a budget below 2^-24, a
+///     float's rounding, is held to 2^-24); so within the map's tolerance (and 1/16 of it) of the exact map, and within 1/16 of
 ///     the tolerance of the envelope.
 ///   - Any other map (write_sampled_deep_exr: any method of the registry): its optical depth omega
 ///     sampled at N + 1 uniform depths i / N over [0, 1], one volume sample an interval, alpha taking
@@ -123,53 +124,51 @@ inline deep_exr_map parse_deep_exr(std::span<const unsigned char> bytes, const s
 inline deep_exr_map read_deep_exr(const std::string& path) { return parse_deep_exr(detail::read_file_bytes(path), path); }
 
 namespace detail {
-/// Writes `samples` (texel by texel, `offsets` as in deep_exr_contents) as a tidy deep scanline image.
-inline void write_deep_samples(const std::string& path, const light_space& light, const std::vector<std::uint64_t>& offsets,
-                               std::vector<deep_sample>& samples, bool volumes, const std::string& method, std::optional<float> tolerance) {
+/// Writes a tidy deep scanline image row by row, from `texel_samples(x, y, out)` (appending texel
+/// (x, y)'s samples to out): one row's samples are held at a time, whatever the map's size.
+template <class TexelSamples>
+void write_deep_texels(const std::string& path, const light_space& light, bool volumes, const std::string& method, std::optional<float> tolerance,
+                       TexelSamples&& texel_samples) {
     const int res = light.resolution();
-    const std::size_t texels = std::size_t(res) * std::size_t(res);
     exr_call(path, [&] {
         Imf::Header h(res, res);
         h.setType(Imf::DEEPSCANLINE);
-        h.compression() = Imf::ZIPS_COMPRESSION;
+        h.compression() = Imf::ZIPS_COMPRESSION; // one scanline a chunk
         h.channels().insert("Z", Imf::Channel(Imf::FLOAT));
         h.channels().insert("A", Imf::Channel(Imf::FLOAT));
         if (volumes) h.channels().insert("ZBack", Imf::Channel(Imf::FLOAT));
         Imf::addDeepImageState(h, Imf::DIS_TIDY);
         write_hairshadow_attributes(h, light, method, tolerance);
-        std::vector<unsigned int> counts(texels);
-        std::vector<char*> z(texels), z_back(texels), alpha(texels);
-        for (std::size_t t = 0; t < texels; ++t) {
-            counts[t] = unsigned(offsets[t + 1] - offsets[t]);
-            if (counts[t] == 0) continue;
-            auto* s = samples.data() + offsets[t];
-            z[t] = reinterpret_cast<char*>(&s->z), z_back[t] = reinterpret_cast<char*>(&s->z_back), alpha[t] = reinterpret_cast<char*>(&s->alpha);
-        }
-        Imf::DeepFrameBuffer fb;
-        const std::size_t xs = sizeof(char*), ys = sizeof(char*) * std::size_t(res);
-        fb.insertSampleCountSlice(Imf::Slice(Imf::UINT, reinterpret_cast<char*>(counts.data()), sizeof(unsigned int), sizeof(unsigned int) * std::size_t(res)));
-        fb.insert("Z", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(z.data()), xs, ys, sizeof(deep_sample)));
-        fb.insert("A", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(alpha.data()), xs, ys, sizeof(deep_sample)));
-        if (volumes) fb.insert("ZBack", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(z_back.data()), xs, ys, sizeof(deep_sample)));
         Imf::DeepScanLineOutputFile out(path.c_str(), h);
-        out.setFrameBuffer(fb);
-        out.writePixels(res);
-    });
-}
-
-/// Collects every texel's samples from `texel_samples(x, y, out)`, then writes them.
-template <class TexelSamples>
-void write_deep_texels(const std::string& path, const light_space& light, bool volumes, const std::string& method, std::optional<float> tolerance,
-                       TexelSamples&& texel_samples) {
-    const int res = light.resolution();
-    std::vector<std::uint64_t> offsets(std::size_t(res) * std::size_t(res) + 1, 0);
-    std::vector<deep_sample> samples;
-    for (int y = 0; y < res; ++y)
-        for (int x = 0; x < res; ++x) {
-            texel_samples(x, y, samples);
-            offsets[std::size_t(y) * std::size_t(res) + std::size_t(x) + 1] = samples.size();
+        const std::size_t row = std::size_t(res);
+        std::vector<unsigned int> counts(row);
+        std::vector<std::size_t> first(row + 1);
+        std::vector<char*> z(row), z_back(row), alpha(row);
+        std::vector<deep_sample> samples;
+        for (int y = 0; y < res; ++y) {
+            samples.clear();
+            for (int x = 0; x < res; ++x) {
+                first[std::size_t(x)] = samples.size();
+                texel_samples(x, y, samples);
+            }
+            first[row] = samples.size();
+            for (std::size_t x = 0; x < row; ++x) {
+                counts[x] = unsigned(first[x + 1] - first[x]);
+                z[x] = z_back[x] = alpha[x] = nullptr; // no samples: OpenEXR reads nothing there
+                if (counts[x] == 0) continue;
+                auto* s = samples.data() + first[x];
+                z[x] = reinterpret_cast<char*>(&s->z), z_back[x] = reinterpret_cast<char*>(&s->z_back), alpha[x] = reinterpret_cast<char*>(&s->alpha);
+            }
+            // A y stride of 0: every row reads the same one-row arrays, refilled before its write.
+            Imf::DeepFrameBuffer fb;
+            fb.insertSampleCountSlice(Imf::Slice(Imf::UINT, reinterpret_cast<char*>(counts.data()), sizeof(unsigned int), 0));
+            fb.insert("Z", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(z.data()), sizeof(char*), 0, sizeof(deep_sample)));
+            fb.insert("A", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(alpha.data()), sizeof(char*), 0, sizeof(deep_sample)));
+            if (volumes) fb.insert("ZBack", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(z_back.data()), sizeof(char*), 0, sizeof(deep_sample)));
+            out.setFrameBuffer(fb);
+            out.writePixels(1);
         }
-    write_deep_samples(path, light, offsets, samples, volumes, method, tolerance);
+    });
 }
 } // namespace detail
 

@@ -125,13 +125,26 @@ inline void check_samples(std::vector<deep_sample>& samples, const std::string& 
     }
 }
 
-/// The header alone, read and checked before DeepScanLineInputFile allocates anything from it.
+/// Scanlines in one chunk of a deep scanline image: OpenEXR allows only these four compressions for
+/// deep data (the others are refused here, before OpenEXR sees them).
+inline int deep_lines_per_chunk(Imf::Compression c, const std::string& file) {
+    if (c == Imf::NO_COMPRESSION || c == Imf::RLE_COMPRESSION || c == Imf::ZIPS_COMPRESSION) return 1;
+    if (c == Imf::ZIP_COMPRESSION) return 16;
+    throw io_error(file, "a deep image compressed other than NONE, RLE, ZIPS or ZIP");
+}
+
+/// The header and the chunk offset table, read and checked before DeepScanLineInputFile allocates
+/// anything from them.
 inline light_space checked_header(exr_memory_stream& stream, std::span<const unsigned char> bytes, const std::string& file) {
-    int version = exr_header_walk(bytes, file).run();
+    exr_header_walk walk(bytes, file);
+    int version = walk.run(); // readFrom takes it by reference
     stream.seekg(8);
     Imf::Header h;
     h.readFrom(stream, version);
-    return check_deep_header(h, file, bytes.size());
+    light_space light = check_deep_header(h, file, bytes.size());
+    const std::uint64_t lines = std::uint64_t(deep_lines_per_chunk(h.compression(), file));
+    check_deep_chunks(bytes, walk.end(), (std::uint64_t(light.resolution()) + lines - 1) / lines, expansion_bound(h.compression()), file);
+    return light;
 }
 
 /// Reads a deep image from its bytes; `file` names it in errors.

@@ -5,7 +5,9 @@
 /// then ask for gigabytes), and reads some types by their own layout whatever size they declare.
 /// The walk follows OpenEXR's reading: a channel list up to its empty name, fixed-size types only at
 /// their size, a preview at 8 + 4 w h bytes, anything else at its declared size; every size must fit
-/// in the bytes left. Needs no OpenEXR.
+/// in the bytes left. Then, for a deep scanline image, the chunks: OpenEXR 3.1 also allocates a
+/// chunk's declared sizes before reading it (readPixelData), so every chunk the offset table names
+/// must lie inside the file with sizes that fit in it (check_deep_chunks). Needs no OpenEXR.
 
 #include <hairshadow/core/error.hpp>
 
@@ -23,6 +25,7 @@ public:
     exr_header_walk(std::span<const unsigned char> bytes, const std::string& file) : b_(bytes), file_(file) {}
 
     /// Walks the header; returns its version field. Refuses multi-part files (a map is one part).
+    /// Afterwards end() is the first byte after the header (a single-part image's offset table).
     int run() {
         if (b_.size() < 8) fail("too short for an OpenEXR header");
         const int version = int(u32(4));
@@ -30,7 +33,7 @@ public:
         at_ = 8;
         for (;;) {
             need(1);
-            if (b_[at_] == 0) return version;
+            if (b_[at_] == 0) return ++at_, version;
             name();
             const std::string_view type = name();
             need(4);
@@ -39,6 +42,8 @@ public:
             value(type, size);
         }
     }
+
+    std::size_t end() const noexcept { return at_; }
 
 private:
     [[noreturn]] void fail(const std::string& why) const { throw io_error(file_, why); }
@@ -88,5 +93,33 @@ private:
     const std::string& file_;
     std::size_t at_ = 0;
 };
+
+/// Checks a single-part deep scanline image's chunks before OpenEXR reads them: `chunks` offsets
+/// (little-endian 64-bit) at `table`, each pointing inside the file at a chunk of 28 bytes (its first
+/// scanline, the packed sizes of its sample count table and of its data, the unpacked size of its
+/// data) followed by the two packed parts, which must fit in the file; the unpacked size at most
+/// `expansion` times the packed one (the compression's bound). A chunk the table does not place (an
+/// incomplete file, whose offsets OpenEXR would rebuild by scanning) is refused too.
+inline void check_deep_chunks(std::span<const unsigned char> b, std::size_t table, std::uint64_t chunks, double expansion, const std::string& file) {
+    const auto u64 = [&](std::size_t at) {
+        std::uint64_t v = 0;
+        for (int i = 7; i >= 0; --i) v = v << 8 | b[at + std::size_t(i)];
+        return v;
+    };
+    const std::uint64_t size = b.size();
+    if (table > size || chunks > (size - table) / 8) throw io_error(file, "the chunk offset table runs past the end of the file");
+    const std::uint64_t first = table + 8 * chunks;
+    for (std::uint64_t i = 0; i < chunks; ++i) {
+        const std::uint64_t at = u64(std::size_t(table + 8 * i));
+        if (at < first || at > size || size - at < 28) throw io_error(file, "chunk " + std::to_string(i) + "'s offset points outside the file");
+        const std::uint64_t counts = u64(std::size_t(at + 4)), packed = u64(std::size_t(at + 12)), unpacked = u64(std::size_t(at + 20));
+        const std::uint64_t left = size - at - 28;
+        if (counts > left || packed > left - counts)
+            throw io_error(file, "chunk " + std::to_string(i) + " declares " + std::to_string(counts) + " + " + std::to_string(packed) +
+                                     " bytes; the file has " + std::to_string(left) + " after it");
+        if (double(unpacked) > expansion * double(packed) + 64.0)
+            throw io_error(file, "chunk " + std::to_string(i) + " claims " + std::to_string(unpacked) + " bytes unpacked from " + std::to_string(packed));
+    }
+}
 
 } // namespace hairshadow::detail
