@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <sstream>
 
 using namespace hairshadow;
@@ -241,10 +242,12 @@ namespace {
 /// Writes a deep image of OpenEXR's own making: `channels` (FLOAT) with every sample at `value`, one
 /// sample a texel, and the hairshadow light where `with_light`.
 void write_deep_by_hand(const std::string& path, int res, std::vector<std::string> channels, bool with_light, float value,
-                        Imf::Compression compression = Imf::ZIPS_COMPRESSION, Imf::PixelType stored = Imf::FLOAT) {
+                        Imf::Compression compression = Imf::ZIPS_COMPRESSION, Imf::PixelType stored = Imf::FLOAT,
+                        Imf::LineOrder order = Imf::INCREASING_Y) {
     Imf::Header h(res, res);
     h.setType(Imf::DEEPSCANLINE);
     h.compression() = compression;
+    h.lineOrder() = order;
     for (const auto& c : channels) h.channels().insert(c, Imf::Channel(stored));
     if (with_light) detail::write_hairshadow_attributes(h, test::make_sheets(1, res).light, "dsm", std::nullopt);
     const std::size_t texels = std::size_t(res) * std::size_t(res);
@@ -372,6 +375,75 @@ TEST_CASE("deep exr: a chunk declaring more bytes than the file has is refused b
     std::vector<unsigned char> cut(good.begin(), good.begin() + std::ptrdiff_t(table + 12)); // the table itself cut short
     test::write_bytes(dir.file("cut.exr"), cut);
     CHECK_FALSE(read_error(dir.file("cut.exr")).empty());
+    { // OpenEXR seeks to the first chunk only and reads the others back to back: the table points at a
+      // good copy of chunk 1 at the end, while the bytes after chunk 0, which OpenEXR reads as chunk 1,
+      // declare 2 GiB of data.
+        std::uint64_t second = 0, third = 0;
+        std::memcpy(&second, &good[table + 8], 8), std::memcpy(&third, &good[table + 16], 8);
+        auto bytes = good;
+        bytes.insert(bytes.end(), good.begin() + std::ptrdiff_t(second), good.begin() + std::ptrdiff_t(third));
+        const std::uint64_t copy = good.size(), none = 0, huge = 0x7fffffffu;
+        std::memcpy(&bytes[table + 8], &copy, 8);
+        std::memcpy(&bytes[std::size_t(second) + 4], &none, 8);
+        std::memcpy(&bytes[std::size_t(second) + 12], &huge, 8);
+        test::write_bytes(dir.file("moved.exr"), bytes);
+        CHECK_THAT(read_error(dir.file("moved.exr")), Catch::Contains("chunk 1 does not start where the chunk read before it ends"));
+    }
+    { // An attribute that OpenEXR reads shorter than it declares (a floatvector of 6 bytes: one float
+      // read, 2 bytes left, the first 0 ending OpenEXR's header early), so that OpenEXR would read
+      // the offset table 2 bytes before the walk's end.
+        auto bytes = good;
+        const std::vector<unsigned char> attribute = {'j', 'u', 'n', 'k', 0, 'f', 'l', 'o', 'a', 't', 'v', 'e', 'c', 't', 'o', 'r', 0,
+                                                      6, 0, 0, 0, 0, 0, 0x80, 0x3f, 0, 0};
+        bytes.insert(bytes.begin() + std::ptrdiff_t(table - 1), attribute.begin(), attribute.end()); // before the header's last 0
+        for (std::size_t i = 0; i < 4; ++i) { // the chunks moved by the attribute's bytes
+            const std::size_t at = table + attribute.size() + 8 * i;
+            std::uint64_t offset = 0;
+            std::memcpy(&offset, &bytes[at], 8);
+            offset += attribute.size();
+            std::memcpy(&bytes[at], &offset, 8);
+        }
+        test::write_bytes(dir.file("short_attribute.exr"), bytes);
+        CHECK_THAT(read_error(dir.file("short_attribute.exr")), Catch::Contains("does not read as the size it declares"));
+    }
+}
+
+TEST_CASE("deep exr: files of every deep compression and line order OpenEXR 3.1 writes are read", "[deep_exr]") {
+    test::temp_dir dir("deep_exr_orders");
+    struct kind {
+        Imf::Compression compression;
+        Imf::LineOrder order;
+        int res;
+    };
+    // OpenEXR 3.1 writes deep images only uncompressed, RLE or ZIPS (ZIP: "not valid for deep data"),
+    // and scanline images in increasing or decreasing y (RANDOM_Y: "invalid line order").
+    for (const kind k : {kind{Imf::RLE_COMPRESSION, Imf::INCREASING_Y, 8}, kind{Imf::RLE_COMPRESSION, Imf::DECREASING_Y, 9},
+                         kind{Imf::NO_COMPRESSION, Imf::DECREASING_Y, 5}, kind{Imf::ZIPS_COMPRESSION, Imf::DECREASING_Y, 33}}) {
+        CAPTURE(int(k.compression), int(k.order), k.res);
+        write_deep_by_hand(dir.file("kind.exr"), k.res, {"Z", "A"}, true, 0.25f, k.compression, Imf::FLOAT, k.order);
+        REQUIRE(read_error(dir.file("kind.exr")).empty());
+        const auto map = read_deep_exr(dir.file("kind.exr"));
+        CHECK(map.sample_count() == std::size_t(k.res) * std::size_t(k.res));
+        CHECK(map.transmittance(k.res - 1, k.res - 1, 0.5f) == Approx(0.75f));
+    }
+}
+
+TEST_CASE("deep exr: a write that fails part-way leaves no file", "[deep_exr][errors]") {
+    test::temp_dir dir("deep_exr_failed_write");
+    struct failing_map { // a map whose optical depth fails in its third row
+        light_space ls = test::make_sheets(1, 8).light;
+        const light_space& light() const { return ls; }
+        float optical_depth(int, int y, float) const {
+            if (y == 2) throw argument_error("no optical depth here");
+            return 0.5f;
+        }
+    };
+    CHECK_THROWS_AS(write_sampled_deep_exr(dir.file("partial.exr"), failing_map{}, 4), argument_error);
+    CHECK_FALSE(std::filesystem::exists(dir.file("partial.exr")));
+    std::filesystem::create_directories(dir.file("folder"));
+    test::write_text(dir.file("folder/keep"), ""); // never removes what it did not make
+    CHECK_THROWS_AS(write_sampled_deep_exr(dir.file("folder"), failing_map{}, 4), io_error);
+    CHECK(std::filesystem::exists(dir.file("folder/keep")));
 }
 
 TEST_CASE("deep exr: export, then compare against the file, prints compare's table", "[deep_exr][cli]") {

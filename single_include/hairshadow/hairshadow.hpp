@@ -9641,7 +9641,9 @@ inline void compress_function(std::span<const transmittance_vertex> in, float ep
 }
 /// exp(-omega), with no call where it is 0: expf rounds to +0 for arguments below ln(2^-150) =
 /// -103.97, and its underflow path (a helper that sets errno) took 5% of a 100M-segment build,
-/// whose dense texels reach omega in the hundreds. The same bits as std::exp(-omega) for every omega.
+/// whose dense texels reach omega in the hundreds. The same bits as std::exp(-omega) for every omega
+/// with glibc's expf, or any expf correctly rounded to nearest (exp(-104) is below 2^-150); the
+/// tests check it on the platform they run on.
 inline float exact_transmittance(float omega) noexcept { return omega >= 104.0f ? 0.0f : std::exp(-omega); }
 
 /// The exact transmittance function of one texel as vertices: T steps down at each fragment's depth

@@ -19,9 +19,9 @@
 ///     minimum, clamped at 0: a compressed function may rise a little, an alpha must lie in [0, 1];
 ///     detail::falling_envelope), a vertical step as a point sample, a sloped piece as volume samples,
 ///     cut geometrically in T until each is within tolerance / 16 of the line (detail::volume_gap_bound
-///     proves the bound; about sqrt(8 / tolerance) samples a piece at most; a budget below 2^-24, a
-///     float's rounding, is held to 2^-24); so within the map's tolerance (and 1/16 of it) of the exact map, and within 1/16 of
-///     the tolerance of the envelope.
+///     proves the bound; about sqrt(8 / tolerance) samples a piece at most, 31 at 0.01; a budget
+///     below 2^-24, a float's rounding, is held to 2^-24); so within the map's tolerance (and 1/16
+///     of it) of the exact map, and within 1/16 of the tolerance of the envelope.
 ///   - Any other map (write_sampled_deep_exr: any method of the registry): its optical depth omega
 ///     sampled at N + 1 uniform depths i / N over [0, 1], one volume sample an interval, alpha taking
 ///     the composited transmittance to exp(-omega) at the interval's back (detail::sampled_texel_samples).
@@ -48,6 +48,7 @@
 #include <ImfStandardAttributes.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -125,50 +126,60 @@ inline deep_exr_map read_deep_exr(const std::string& path) { return parse_deep_e
 
 namespace detail {
 /// Writes a tidy deep scanline image row by row, from `texel_samples(x, y, out)` (appending texel
-/// (x, y)'s samples to out): one row's samples are held at a time, whatever the map's size.
+/// (x, y)'s samples to out): one row's samples are held at a time, whatever the map's size. Where
+/// anything fails after the file is opened, the partial file is removed.
 template <class TexelSamples>
 void write_deep_texels(const std::string& path, const light_space& light, bool volumes, const std::string& method, std::optional<float> tolerance,
                        TexelSamples&& texel_samples) {
     const int res = light.resolution();
-    exr_call(path, [&] {
-        Imf::Header h(res, res);
-        h.setType(Imf::DEEPSCANLINE);
-        h.compression() = Imf::ZIPS_COMPRESSION; // one scanline a chunk
-        h.channels().insert("Z", Imf::Channel(Imf::FLOAT));
-        h.channels().insert("A", Imf::Channel(Imf::FLOAT));
-        if (volumes) h.channels().insert("ZBack", Imf::Channel(Imf::FLOAT));
-        Imf::addDeepImageState(h, Imf::DIS_TIDY);
-        write_hairshadow_attributes(h, light, method, tolerance);
-        Imf::DeepScanLineOutputFile out(path.c_str(), h);
-        const std::size_t row = std::size_t(res);
-        std::vector<unsigned int> counts(row);
-        std::vector<std::size_t> first(row + 1);
-        std::vector<char*> z(row), z_back(row), alpha(row);
-        std::vector<deep_sample> samples;
-        for (int y = 0; y < res; ++y) {
-            samples.clear();
-            for (int x = 0; x < res; ++x) {
-                first[std::size_t(x)] = samples.size();
-                texel_samples(x, y, samples);
+    bool opened = false;
+    try {
+        exr_call(path, [&] {
+            Imf::Header h(res, res);
+            h.setType(Imf::DEEPSCANLINE);
+            h.compression() = Imf::ZIPS_COMPRESSION; // one scanline a chunk
+            h.channels().insert("Z", Imf::Channel(Imf::FLOAT));
+            h.channels().insert("A", Imf::Channel(Imf::FLOAT));
+            if (volumes) h.channels().insert("ZBack", Imf::Channel(Imf::FLOAT));
+            Imf::addDeepImageState(h, Imf::DIS_TIDY);
+            write_hairshadow_attributes(h, light, method, tolerance);
+            Imf::DeepScanLineOutputFile out(path.c_str(), h);
+            opened = true;
+            const std::size_t row = std::size_t(res);
+            std::vector<unsigned int> counts(row);
+            std::vector<std::size_t> first(row + 1);
+            std::vector<char*> z(row), z_back(row), alpha(row);
+            std::vector<deep_sample> samples;
+            for (int y = 0; y < res; ++y) {
+                samples.clear();
+                for (int x = 0; x < res; ++x) {
+                    first[std::size_t(x)] = samples.size();
+                    texel_samples(x, y, samples);
+                }
+                first[row] = samples.size();
+                for (std::size_t x = 0; x < row; ++x) {
+                    counts[x] = unsigned(first[x + 1] - first[x]);
+                    z[x] = z_back[x] = alpha[x] = nullptr; // no samples: OpenEXR reads nothing there
+                    if (counts[x] == 0) continue;
+                    auto* s = samples.data() + first[x];
+                    z[x] = reinterpret_cast<char*>(&s->z), z_back[x] = reinterpret_cast<char*>(&s->z_back), alpha[x] = reinterpret_cast<char*>(&s->alpha);
+                }
+                // A y stride of 0: every row reads the same one-row arrays, refilled before its write. This
+                // needs one scanline a chunk (ZIPS): OpenEXR takes a chunk's counts when the chunk is full.
+                Imf::DeepFrameBuffer fb;
+                fb.insertSampleCountSlice(Imf::Slice(Imf::UINT, reinterpret_cast<char*>(counts.data()), sizeof(unsigned int), 0));
+                fb.insert("Z", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(z.data()), sizeof(char*), 0, sizeof(deep_sample)));
+                fb.insert("A", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(alpha.data()), sizeof(char*), 0, sizeof(deep_sample)));
+                if (volumes) fb.insert("ZBack", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(z_back.data()), sizeof(char*), 0, sizeof(deep_sample)));
+                out.setFrameBuffer(fb);
+                out.writePixels(1);
             }
-            first[row] = samples.size();
-            for (std::size_t x = 0; x < row; ++x) {
-                counts[x] = unsigned(first[x + 1] - first[x]);
-                z[x] = z_back[x] = alpha[x] = nullptr; // no samples: OpenEXR reads nothing there
-                if (counts[x] == 0) continue;
-                auto* s = samples.data() + first[x];
-                z[x] = reinterpret_cast<char*>(&s->z), z_back[x] = reinterpret_cast<char*>(&s->z_back), alpha[x] = reinterpret_cast<char*>(&s->alpha);
-            }
-            // A y stride of 0: every row reads the same one-row arrays, refilled before its write.
-            Imf::DeepFrameBuffer fb;
-            fb.insertSampleCountSlice(Imf::Slice(Imf::UINT, reinterpret_cast<char*>(counts.data()), sizeof(unsigned int), 0));
-            fb.insert("Z", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(z.data()), sizeof(char*), 0, sizeof(deep_sample)));
-            fb.insert("A", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(alpha.data()), sizeof(char*), 0, sizeof(deep_sample)));
-            if (volumes) fb.insert("ZBack", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(z_back.data()), sizeof(char*), 0, sizeof(deep_sample)));
-            out.setFrameBuffer(fb);
-            out.writePixels(1);
-        }
-    });
+        });
+    } catch (...) {
+        std::error_code ignored;
+        if (opened) std::filesystem::remove(path, ignored);
+        throw;
+    }
 }
 } // namespace detail
 

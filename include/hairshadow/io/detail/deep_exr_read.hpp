@@ -125,8 +125,9 @@ inline void check_samples(std::vector<deep_sample>& samples, const std::string& 
     }
 }
 
-/// Scanlines in one chunk of a deep scanline image: OpenEXR allows only these four compressions for
-/// deep data (the others are refused here, before OpenEXR sees them).
+/// Scanlines in one chunk of a deep scanline image, by its compression: 1 for NONE, RLE and ZIPS
+/// (all that OpenEXR 3.1 accepts for deep data), 16 for ZIP (which later OpenEXR may write; 3.1
+/// refuses it when it reads the header, so that case is untested here); anything else is refused.
 inline int deep_lines_per_chunk(Imf::Compression c, const std::string& file) {
     if (c == Imf::NO_COMPRESSION || c == Imf::RLE_COMPRESSION || c == Imf::ZIPS_COMPRESSION) return 1;
     if (c == Imf::ZIP_COMPRESSION) return 16;
@@ -141,9 +142,13 @@ inline light_space checked_header(exr_memory_stream& stream, std::span<const uns
     stream.seekg(8);
     Imf::Header h;
     h.readFrom(stream, version);
+    // OpenEXR reads the offset table where readFrom stops, which is not the walk's end where an
+    // attribute reads other than its declared size (a floatvector of 6 bytes, 3.1's idmanifest).
+    if (stream.tellg() != walk.end()) throw io_error(file, "a header attribute does not read as the size it declares");
     light_space light = check_deep_header(h, file, bytes.size());
     const std::uint64_t lines = std::uint64_t(deep_lines_per_chunk(h.compression(), file));
-    check_deep_chunks(bytes, walk.end(), (std::uint64_t(light.resolution()) + lines - 1) / lines, expansion_bound(h.compression()), file);
+    check_deep_chunks(bytes, walk.end(), (std::uint64_t(light.resolution()) + lines - 1) / lines, expansion_bound(h.compression()),
+                      h.lineOrder() == Imf::INCREASING_Y, file);
     return light;
 }
 

@@ -93,15 +93,19 @@ inline constexpr double least_volume_budget = 0x1p-24;
 /// q <= b. Cut so, geometrically in T, a piece needs about sqrt(a / (2 budget)) sub-pieces (22 from
 /// 0.5 down to 0 at tolerance 0.01, where equal cuts need |a - b| / budget = 800: near T = 0 the
 /// exponential bends hardest).
+/// Transmittances lie in [0, 1], so at most about 2900 cuts are made; the loop stops at 4096 in any
+/// case (an input outside [0, 1] then gets a last piece to b, outside the bound).
 inline void volume_cuts(double a, double b, double budget, std::vector<double>& cuts) {
     cuts.clear();
     budget = std::max(budget, least_volume_budget);
-    for (double p = a;;) {
+    double p = a;
+    for (int n = 0; n < 4096; ++n) {
         const double q = p * std::exp(-std::sqrt(8.0 * 0.999 * budget / p));
-        if (!(p - b > budget) || !(q > b)) return cuts.push_back(b); // NaN ends it too
+        if (!(p - b > budget) || !(q > b)) break; // NaN ends it too
         cuts.push_back(q);
         p = q;
     }
+    cuts.push_back(b);
 }
 
 /// A vertex of a texel's falling envelope (falling_envelope).
@@ -151,7 +155,10 @@ public:
 
     void step(float z, double target) { emit(z, z, target); }
 
-    /// The linear piece from (z0, a) to (z1, b), z0 < z1, a >= b >= 0, as volume samples within the budget.
+    /// The linear piece from (z0, a) to (z1, b), z0 < z1, a >= b >= 0, as volume samples within the
+    /// budget. The cuts' depths are rounded to float and each target taken on the line at the rounded
+    /// depth; where a piece spans only a few floats, a sub-piece so lengthened (or merged with the
+    /// next) can pass the budget by the rounding.
     void slope(float z0, double a, float z1, double b) {
         if (a == b) return;
         volume_cuts(a, b, budget_, cuts_);

@@ -98,27 +98,37 @@ private:
 /// (little-endian 64-bit) at `table`, each pointing inside the file at a chunk of 28 bytes (its first
 /// scanline, the packed sizes of its sample count table and of its data, the unpacked size of its
 /// data) followed by the two packed parts, which must fit in the file; the unpacked size at most
-/// `expansion` times the packed one (the compression's bound). A chunk the table does not place (an
-/// incomplete file, whose offsets OpenEXR would rebuild by scanning) is refused too.
-inline void check_deep_chunks(std::span<const unsigned char> b, std::size_t table, std::uint64_t chunks, double expansion, const std::string& file) {
-    const auto u64 = [&](std::size_t at) {
+/// `expansion` times the packed one (the compression's bound). OpenEXR 3.1 seeks only to the first
+/// chunk it reads and reads the others back to back from there (readPixelData), so each chunk must
+/// start where the one read before it ends: in increasing order where `increasing` (INCREASING_Y),
+/// else decreasing, as OpenEXR writes and reads them; otherwise the chunks checked would not be the
+/// ones read. A chunk the table does not place (an incomplete file, whose offsets OpenEXR would
+/// rebuild by scanning) is refused too.
+inline void check_deep_chunks(std::span<const unsigned char> b, std::size_t table, std::uint64_t chunks, double expansion, bool increasing,
+                              const std::string& file) {
+    const auto u64 = [&](std::uint64_t at) {
         std::uint64_t v = 0;
-        for (int i = 7; i >= 0; --i) v = v << 8 | b[at + std::size_t(i)];
+        for (int i = 7; i >= 0; --i) v = v << 8 | b[std::size_t(at) + std::size_t(i)];
         return v;
     };
     const std::uint64_t size = b.size();
     if (table > size || chunks > (size - table) / 8) throw io_error(file, "the chunk offset table runs past the end of the file");
     const std::uint64_t first = table + 8 * chunks;
-    for (std::uint64_t i = 0; i < chunks; ++i) {
-        const std::uint64_t at = u64(std::size_t(table + 8 * i));
+    std::uint64_t end_of_last = 0; // where the chunk read before this one ends
+    for (std::uint64_t k = 0; k < chunks; ++k) {
+        const std::uint64_t i = increasing ? k : chunks - 1 - k;
+        const std::uint64_t at = u64(table + 8 * i);
         if (at < first || at > size || size - at < 28) throw io_error(file, "chunk " + std::to_string(i) + "'s offset points outside the file");
-        const std::uint64_t counts = u64(std::size_t(at + 4)), packed = u64(std::size_t(at + 12)), unpacked = u64(std::size_t(at + 20));
+        if (k > 0 && at != end_of_last)
+            throw io_error(file, "chunk " + std::to_string(i) + " does not start where the chunk read before it ends (OpenEXR reads them back to back)");
+        const std::uint64_t counts = u64(at + 4), packed = u64(at + 12), unpacked = u64(at + 20);
         const std::uint64_t left = size - at - 28;
         if (counts > left || packed > left - counts)
             throw io_error(file, "chunk " + std::to_string(i) + " declares " + std::to_string(counts) + " + " + std::to_string(packed) +
                                      " bytes; the file has " + std::to_string(left) + " after it");
         if (double(unpacked) > expansion * double(packed) + 64.0)
             throw io_error(file, "chunk " + std::to_string(i) + " claims " + std::to_string(unpacked) + " bytes unpacked from " + std::to_string(packed));
+        end_of_last = at + 28 + counts + packed;
     }
 }
 
