@@ -137,6 +137,9 @@ for nodes in (4, 16):
                                              LOOKUP_MAIN)
 
 # Density clustering's state passes (cluster_state_pass.hpp).
+# The renderer's unshadowed light (scene_renderer.hpp): the light's frustum and no hair.
+COMPOSITIONS["lookup_light_alone"] = ("vert", "uniform sampler2D hs_range_map;\n", ["arithmetic/exact_division", "lookup/light"],
+                                      "float hs_transmittance(vec3 world_pos) { return 1.0; }\n" + LOOKUP_MAIN)
 COMPOSITIONS["fullscreen_vertex"] = ("vert", "", ["passes/fullscreen_vertex"], "")
 for clusters in (4, 6):
     defines = f"#define HS_LAYERS {clusters}\n#define HS_STATE_TARGETS {(clusters + 3) // 4}\n"
@@ -203,6 +206,16 @@ COMPOSITIONS["transparency_weighted_sum"] = ("frag", "", ["transparency/camera_f
 COMPOSITIONS["transparency_peel"] = ("frag", "", ["transparency/camera_fragment", "transparency/peel"], "")
 for mode in ("OCCUPANCY_ORDER", "WEIGHTED_AVERAGE", "EXACT"):
     COMPOSITIONS[f"transparency_resolve_{mode.lower()}"] = ("frag", f"#define HS_{mode}\n", ["transparency/resolve"], "")
+
+# The exact division (arithmetic/exact_division) goes before compute/common and placement/common, where the
+# library puts it (compute_pieces and every composition of placement/common), once: the snippet's guard
+# lets the library compose it twice.
+for name, (stage, defines, snippets, main_text) in COMPOSITIONS.items():
+    first = next((i for i, s in enumerate(snippets) if s in ("compute/common", "placement/common")), None)
+    if first is not None:
+        COMPOSITIONS[name] = (stage, defines, snippets[:first] + ["arithmetic/exact_division"] + snippets[first:], main_text)
+    if "compute/common" in snippets:  # compute_pieces enables the extension before any code
+        COMPOSITIONS[name] = (stage, "#extension GL_ARB_gpu_shader_int64 : require\n" + defines) + COMPOSITIONS[name][2:]
 
 
 def expand(text: str) -> str:

@@ -22,7 +22,7 @@ int64_t hs_fixed(double x) { return int64_t(x * HS_FIXED); }
 // Initial k-means centre j: the middle of the j-th of K equal parts of [nearest, furthest].
 float hs_centre(vec2 range, int j) {
     precise float width = (range.y - range.x) * (float(j) + 0.5);
-    precise float centre = range.x + hs_divide(width, float(HS_LAYERS));
+    precise float centre = range.x + hs_div_rn(width, float(HS_LAYERS));
     return centre;
 }
 

@@ -2,8 +2,9 @@
 // tiles, and the line rule of raster/line_rule.hpp in 64-bit integers, so that a tile's work group
 // makes exactly the fragments the CPU rasteriser makes. A pass defines hs_emit(x, y), which the walk
 // calls for every fragment of the current segment inside the tile. Needs GL_ARB_gpu_shader_int64 and
-// double precision (GL 4.0), the one extension and feature the compute path asks for.
-#extension GL_ARB_gpu_shader_int64 : require
+// double precision (GL 4.0), the one extension and feature the compute path asks for: compute_pieces
+// enables the extension first (GLSL allows #extension only before any code, and
+// arithmetic/exact_division comes before this).
 
 const int64_t HS_S = int64_t(1) << HS_SUBPIXEL_BITS; // sub-pixel steps per texel
 const int64_t HS_H = HS_S / 2;
@@ -165,16 +166,13 @@ float hs_lerp_exact(float a, float b, float s) {
     precise float r = a + d;
     return r;
 }
-// A float quotient, correctly rounded (through double, which rounds a float quotient exactly once
-// more to the same float) whatever the precision of the GPU's float division.
-float hs_divide(float a, float b) { return float(double(a) / double(b)); }
 
 float hs_attribute_parameter(float t) {
     if (hs_current.depth_w.z == hs_current.depth_w.w) return t;
     precise float wa = (1.0 - t) * hs_current.depth_w.z;
     precise float wb = t * hs_current.depth_w.w;
     precise float sum = wa + wb;
-    return hs_divide(wb, sum);
+    return hs_div_rn(wb, sum);
 }
 float hs_fragment_depth_at(float s) { return hs_lerp_exact(hs_current.depth_w.x, hs_current.depth_w.y, s); }
 
@@ -195,9 +193,9 @@ float hs_fragment_alpha_at(float s, float depth) {
         if (hs_footprint_varies) {
             precise float distance = hs_footprint_terms.y + depth * hs_footprint_terms.z;
             precise float width = hs_footprint_terms.x * distance;
-            footprint = hs_divide(width, hs_footprint_terms.w);
+            footprint = hs_div_rn(width, hs_footprint_terms.w);
         }
-        precise float a = opacity * min(1.0, hs_divide(thickness, footprint));
+        precise float a = opacity * min(1.0, hs_div_rn(thickness, footprint));
         alpha = a;
     }
     return alpha > 0.0 ? min(alpha, HS_ALPHA_MAX) : 0.0;
@@ -207,7 +205,7 @@ float hs_fragment_alpha_at(float s, float depth) {
 // computes it (precise: no fused multiply-adds; quotients correctly rounded), so the same bits.
 float hs_optical_depth_of(float alpha) {
     if (alpha < 0.5) {
-        float s = hs_divide(alpha, 2.0 - alpha);
+        float s = hs_div_rn(alpha, 2.0 - alpha);
         precise float s2 = s * s;
         precise float p = 1.0 / 15.0;
         const float c[7] = float[7](1.0 / 13.0, 1.0 / 11.0, 1.0 / 9.0, 1.0 / 7.0, 1.0 / 5.0, 1.0 / 3.0, 1.0);
@@ -223,7 +221,7 @@ float hs_optical_depth_of(float alpha) {
         m *= 0.5;
         ++e;
     }
-    float s = hs_divide(m - 1.0, m + 1.0);
+    float s = hs_div_rn(m - 1.0, m + 1.0);
     precise float s2 = s * s;
     precise float p = 1.0 / 11.0;
     const float c[5] = float[5](1.0 / 9.0, 1.0 / 7.0, 1.0 / 5.0, 1.0 / 3.0, 1.0);

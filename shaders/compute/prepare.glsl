@@ -1,7 +1,8 @@
 // Compute build, step 1 (one invocation per segment): reads the segment's two points from the mesh's
 // buffers, clips it to the light's depth range and the guard band, projects and snaps it exactly as
 // hairshadow::detail::prepare_segment does (the same operations in the same order, no fused
-// multiply-adds, quotients correctly rounded), counts it in every tile its box meets, and widens the
+// multiply-adds; float quotients by hs_div_rn, the guard-band clip's double quotients by the driver's
+// double division, which llvmpipe rounds correctly), counts it in every tile its box meets, and widens the
 // whole map's extent by its ends, as segment_bins does. A long segment (its box over more than
 // HS_SHORT_TILES tiles) goes to the long list instead of the tiles.
 layout(local_size_x = 256) in;
@@ -44,11 +45,11 @@ float hs_distance_of(vec3 p) { return -hs_row(hs_view, 2, p); }
 hs_light_point hs_project(vec3 p, float distance) {
     float x = hs_row(hs_view_projection, 0, p), y = hs_row(hs_view_projection, 1, p), w = hs_row(hs_view_projection, 3, p);
     precise float half_res = 0.5 * float(hs_resolution);
-    precise float wx = (hs_divide(x, w) + 1.0) * half_res;
-    precise float wy = (hs_divide(y, w) + 1.0) * half_res;
+    precise float wx = (hs_div_rn(x, w) + 1.0) * half_res;
+    precise float wy = (hs_div_rn(y, w) + 1.0) * half_res;
     precise float from_near = distance - hs_near;
     precise float span = hs_far - hs_near;
-    return hs_light_point(vec2(wx, wy), hs_divide(from_near, span), w);
+    return hs_light_point(vec2(wx, wy), hs_div_rn(from_near, span), w);
 }
 
 vec3 hs_point(uint i) {
@@ -69,8 +70,8 @@ int hs_snap(float window) {
 bool hs_clip(float f0, float f1, inout float s0, inout float s1) {
     if (!(f0 >= 0.0 || f1 >= 0.0)) return false;
     precise float d = f0 - f1;
-    if (f0 < 0.0) s0 = max(s0, hs_divide(f0, d));
-    if (f1 < 0.0) s1 = min(s1, hs_divide(f0, d));
+    if (f0 < 0.0) s0 = max(s0, hs_div_rn(f0, d));
+    if (f1 < 0.0) s1 = min(s1, hs_div_rn(f0, d));
     return s0 <= s1;
 }
 
@@ -132,7 +133,7 @@ bool hs_prepare(vec3 p0, vec3 p1, inout vec4 at, out hs_segment out_segment) {
     }
     if (!(hs_in_band(a) && hs_in_band(b) && abs(a.depth) <= 2.0 && abs(b.depth) <= 2.0 && a.w > 0.0 && b.w > 0.0)) return false;
     out_segment = hs_segment(ivec4(hs_snap(a.window.x), hs_snap(a.window.y), hs_snap(b.window.x), hs_snap(b.window.y)),
-                             vec4(a.depth, b.depth, hs_divide(1.0, a.w), hs_divide(1.0, b.w)), at);
+                             vec4(a.depth, b.depth, hs_div_rn(1.0, a.w), hs_div_rn(1.0, b.w)), at);
     return out_segment.ends.xy != out_segment.ends.zw;
 }
 

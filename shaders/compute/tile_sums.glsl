@@ -27,7 +27,7 @@ void hs_clear_sums() {
 #ifdef HS_EIGHT_BIT
 // The 8-bit step of optical depth b: its output b / kappa in unorm8, rounded half away from zero.
 uint hs_eight_bit_step(float b) {
-    precise float x = clamp(hs_divide(b, HS_KAPPA), 0.0, 1.0) * 255.0;
+    precise float x = clamp(hs_div_rn(b, HS_KAPPA), 0.0, 1.0) * 255.0;
     return uint(x) + (fract(x) >= 0.5 ? 1u : 0u);
 }
 #endif

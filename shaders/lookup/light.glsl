@@ -3,8 +3,8 @@
 // holds no fragment: there the light is unshadowed. The range map is placement/common's.
 // The arithmetic is the CPU query's (light_space::project, map_queries::transmittance), operation
 // for operation and `precise` (no fused multiply-add, no reordering), so that the look-up finds the
-// CPU's texel and depth; divisions are GLSL's, correctly rounded on llvmpipe (GLSL allows a GPU
-// 2.5 ULP there, which can move a point lying within a rounding of a texel's edge).
+// CPU's texel and depth; quotients are hs_div_rn's, the CPU's on every GPU (GLSL's own division may be
+// 2.5 ULP off, which could move a point lying within a rounding of a texel's edge).
 uniform mat4 hs_lookup_view_projection;
 uniform mat4 hs_lookup_view;
 uniform float hs_lookup_near;
@@ -23,7 +23,7 @@ bool hs_lookup_locate(vec3 world_pos, out ivec2 texel, out float depth, out vec4
     precise float y = hs_lookup_row(hs_lookup_view_projection, 1, world_pos);
     precise float w = hs_lookup_row(hs_lookup_view_projection, 3, world_pos);
     precise float half_resolution = 0.5 * float(hs_lookup_resolution);
-    precise vec2 window = vec2((x / w + 1.0) * half_resolution, (y / w + 1.0) * half_resolution);
+    precise vec2 window = vec2((hs_div_rn(x, w) + 1.0) * half_resolution, (hs_div_rn(y, w) + 1.0) * half_resolution);
     texel = ivec2(0);
     depth = 0.0;
     range = vec4(0.0);
@@ -32,7 +32,7 @@ bool hs_lookup_locate(vec3 world_pos, out ivec2 texel, out float depth, out vec4
         return false;
     texel = ivec2(window);
     precise float distance = -hs_lookup_row(hs_lookup_view, 2, world_pos);
-    precise float biased = (distance - hs_lookup_near) / (hs_lookup_far - hs_lookup_near) - hs_lookup_depth_bias;
+    precise float biased = hs_div_rn(distance - hs_lookup_near, hs_lookup_far - hs_lookup_near) - hs_lookup_depth_bias;
     depth = biased;
     range = texelFetch(hs_range_map, texel, 0);
     return range.x <= range.w;

@@ -12,7 +12,8 @@ struct hs_bin {
 
 // Initial k-means centre j: the middle of the j-th of K equal parts of [nearest, furthest].
 float hs_initial_centre(vec4 range, int j) {
-    precise float centre = range.x + (range.w - range.x) * (float(j) + 0.5) / float(HS_LAYERS);
+    precise float width = (range.w - range.x) * (float(j) + 0.5);
+    precise float centre = range.x + hs_div_rn(width, float(HS_LAYERS));
     return centre;
 }
 
@@ -74,7 +75,7 @@ hs_layer_position hs_locate(float mean[HS_LAYERS], float sigma[HS_LAYERS], float
             p = hs_layer_position(j, 1.0);
             continue;
         }
-        return hs_layer_position(j, (depth - b.lo) / (b.hi - b.lo));
+        return hs_layer_position(j, hs_div_rn(depth - b.lo, b.hi - b.lo));
     }
     return p;
 }

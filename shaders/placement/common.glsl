@@ -6,7 +6,7 @@ struct hs_layer_position {
 };
 
 hs_layer_position hs_position_in(int k, float depth, float lo, float hi) {
-    return hs_layer_position(k, hi > lo ? clamp((depth - lo) / (hi - lo), 0.0, 1.0) : 0.0);
+    return hs_layer_position(k, hi > lo ? clamp(hs_div_rn(depth - lo, hi - lo), 0.0, 1.0) : 0.0);
 }
 
 // The largest integer in [0, last] no greater than a non-negative estimate; NaN and negatives give 0.

@@ -2,7 +2,7 @@
 // between the texel's nearest and furthest fragment, settled against the slice boundaries so that a
 // fragment's slice and a query's agree exactly. Mirrors depth_range; hs_range = (nearest, furthest).
 float hs_boundary(vec2 hs_range, int k) {
-    precise float value = hs_range.x + (hs_range.y - hs_range.x) * (float(k) / float(HS_LAYERS));
+    precise float value = hs_range.x + (hs_range.y - hs_range.x) * hs_div_rn(float(k), float(HS_LAYERS));
     return value;
 }
 

@@ -15,14 +15,15 @@ float hs_layer_extent() {
 
 float hs_relative_boundary(int k) {
 #ifdef HS_UNIFORM_SIZES
-    return float(k) / float(HS_LAYERS);
+    return hs_div_rn(float(k), float(HS_LAYERS));
 #else
-    return float(k * (k + 1)) / float(HS_LAYERS * (HS_LAYERS + 1));
+    return hs_div_rn(float(k * (k + 1)), float(HS_LAYERS * (HS_LAYERS + 1)));
 #endif
 }
 
 hs_layer_position hs_locate(float z0, float hs_scale, float depth) {
-    precise float rel = (depth - z0) / (hs_layer_extent() * hs_scale);
+    precise float extent = hs_layer_extent() * hs_scale;
+    float rel = hs_div_rn(depth - z0, extent);
     if (!(rel >= 0.0)) return hs_layer_position(-1, 0.0);
     if (rel >= 1.0) return hs_layer_position(HS_LAYERS, 0.0);
 #ifdef HS_UNIFORM_SIZES
@@ -31,9 +32,15 @@ hs_layer_position hs_locate(float z0, float hs_scale, float depth) {
     float estimate = (sqrt(1.0 + 4.0 * rel * float(HS_LAYERS * (HS_LAYERS + 1))) - 1.0) * 0.5;
 #endif
     int k = hs_estimate_index(estimate, HS_LAYERS - 1);
-    while (k > 0 && rel < hs_relative_boundary(k)) --k;
-    while (k < HS_LAYERS - 1 && rel >= hs_relative_boundary(k + 1)) ++k;
-    return hs_position_in(k, rel, hs_relative_boundary(k), hs_relative_boundary(k + 1));
+    // The estimate settled by exact comparisons, each boundary divided once (hs_div_rn is not free).
+    float lo = hs_relative_boundary(k);
+    while (k > 0 && rel < lo) lo = hs_relative_boundary(--k);
+    float hi = hs_relative_boundary(k + 1);
+    while (k < HS_LAYERS - 1 && rel >= hi) {
+        lo = hi;
+        hi = hs_relative_boundary(++k + 1);
+    }
+    return hs_position_in(k, rel, lo, hi);
 }
 
 int hs_assign(float z0, float hs_scale, float depth) {

@@ -21,7 +21,7 @@ float hs_spacing_inverse(float u) {
 
 // D_i, for slices = (D_0, D_N).
 float hs_boundary(int i, vec2 slices) {
-    precise float value = i >= HS_LAYERS ? slices.y : slices.x + (slices.y - slices.x) * hs_spacing(float(i) / float(HS_LAYERS));
+    precise float value = i >= HS_LAYERS ? slices.y : slices.x + (slices.y - slices.x) * hs_spacing(hs_div_rn(float(i), float(HS_LAYERS)));
     return value;
 }
 
@@ -32,9 +32,15 @@ hs_layer_position hs_locate(float depth) {
     // depth >= D_N, D_N being just above the furthest fragment (a denormal, which GLSL may flush, above 0)
     if (depth > extent.y) return hs_layer_position(HS_LAYERS, 0.0);
     int k = hs_estimate_index(hs_spacing_inverse((depth - s.x) / (s.y - s.x)) * float(HS_LAYERS), HS_LAYERS - 1);
-    while (k > 0 && depth < hs_boundary(k, s)) --k;
-    while (k < HS_LAYERS - 1 && depth >= hs_boundary(k + 1, s)) ++k;
-    return hs_position_in(k, depth, hs_boundary(k, s), hs_boundary(k + 1, s));
+    // The estimate settled by exact comparisons, each boundary divided once (hs_div_rn is not free).
+    float lo = hs_boundary(k, s);
+    while (k > 0 && depth < lo) lo = hs_boundary(--k, s);
+    float hi = hs_boundary(k + 1, s);
+    while (k < HS_LAYERS - 1 && depth >= hi) {
+        lo = hi;
+        hi = hs_boundary(++k + 1, s);
+    }
+    return hs_position_in(k, depth, lo, hi);
 }
 
 int hs_assign(float depth) { return clamp(hs_locate(depth).index, 0, HS_LAYERS - 1); }

@@ -1,12 +1,11 @@
 // What Fourier opacity maps and moment shadow maps share (mirrors
 // reconstruction/detail/depth_projection.hpp), composed after the reconstruction's snippet: a
-// fragment's place in its texel's depth range, 0 at the nearest fragment and 1 at the furthest, divided
-// as the CPU divides (a quotient of floats in double, rounded once, is the correctly rounded float
-// quotient); the terms a fragment adds and the sums a texel stores, under either accumulation.
+// fragment's place in its texel's depth range, 0 at the nearest fragment and 1 at the furthest,
+// divided as the CPU divides (hs_div_rn); the terms a fragment adds and the sums a texel stores, under either accumulation.
 float hs_position_in_range(float nearest, float furthest, float depth) {
     precise float span = furthest - nearest;
     precise float offset = depth - nearest;
-    return span > 0.0 ? clamp(float(double(offset) / double(span)), 0.0, 1.0) : 0.0;
+    return span > 0.0 ? clamp(hs_div_rn(offset, span), 0.0, 1.0) : 0.0;
 }
 
 // The terms a fragment adds (composed after the reconstruction, whose hs_projection_terms and HS_SUMS

@@ -3,7 +3,7 @@
 // as the CPU's std::nextafter gives).
 float hs_scale_from(vec4 range) {
 #ifdef HS_BEYOND_EXTEND
-    return max(1.0, hs_just_above(range.w - range.x) / hs_layer_extent());
+    return max(1.0, hs_div_rn(hs_just_above(range.w - range.x), hs_layer_extent()));
 #else
     return 1.0;
 #endif

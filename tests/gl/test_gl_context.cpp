@@ -68,7 +68,7 @@ void main() {
 )";
     const auto fs = gl::compile_shader(GL_FRAGMENT_SHADER,
                                        {version, defines, "#define HS_LAYERS 128\n#define HS_SLABS 4\n", gl::shaders::raster_coverage,
-                                        gl::shaders::accumulation_float, gl::shaders::placement_common, gl::shaders::placement_depth_range,
+                                        gl::shaders::accumulation_float, gl::shaders::arithmetic_exact_division, gl::shaders::placement_common, gl::shaders::placement_depth_range,
                                         gl::shaders::reconstruction_occupancy_bitcount, occupancy_main},
                                        "occupancy composition");
     CHECK(gl::link_program({&vs, &fs}, "occupancy composition").get() != 0);

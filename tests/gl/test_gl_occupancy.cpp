@@ -74,8 +74,8 @@ void check_occupancy(const hair_model& model, const light_space& light) {
     CAPTURE(worst, query_count, model_off);
     CHECK(query_count >= 1000);
     CHECK(shadowed > 500);
-    // GLSL's division is good to 2.5 ULP, not correctly rounded, and a query's fraction inside its
-    // slice is a quotient: T may differ by a few 1e-6 to 1e-5.
+    // A query's slice and its fraction inside it are the CPU's (hs_div_rn), but the reconstruction's
+    // own quotients use GLSL's division, good to 2.5 ULP: T may differ by a few 1e-6 to 1e-5.
     CHECK(worst < 5e-5f);
     CHECK(model_off * 200 < model.point_count()); // under 0.5% of the model's points, all at texel edges
 }

@@ -24,6 +24,95 @@ float hs_encode(float optical_depth) { return optical_depth; }
 float hs_decode(float stored) { return stored; }
 )hs_glsl";
 
+/// shaders/arithmetic/exact_division.glsl
+inline constexpr std::string_view arithmetic_exact_division = R"hs_glsl(// A float quotient every GPU rounds the same, from 32-bit integers: hs_div_rn(a, b) is the IEEE 754
+// binary32 quotient rounded to nearest even, which is the CPU's a / b, for all a and b (zeros,
+// subnormals and infinities included, as bit patterns: a GPU that flushes subnormals may flush one
+// on its way in or out). NaN, 0/0 and inf/inf give the quiet NaN 0x7fc00000, whose sign and payload
+// may differ from the CPU's. GLSL lets a float division be
+// 2.5 ULP off (ARB_shader_precision, core since GL 4.1) and leaves double precision unspecified, so a
+// quotient that must give the CPU's bits cannot come from either. The GPU's own division only
+// estimates the quotient's 26 leading bits; an exact remainder, kept in 32-bit words that wrap,
+// corrects the estimate for any GPU error up to 16 ULP (the remainder must stay below 2^31).
+// Every program that divides where the bits matter composes this first; the guard lets two snippets
+// that need it sit in one program.
+#ifndef HS_EXACT_DIVISION
+#define HS_EXACT_DIVISION
+
+#ifndef HS_NATIVE_DIVIDE // the estimate: tests define a deliberately worse one
+#define HS_NATIVE_DIVIDE(a, b) ((a) / (b))
+#endif
+
+// The significand m in [2^23, 2^24) and biased exponent e of a finite non-zero float of magnitude bits
+// `x`: |value| = m 2^(e - 150); a subnormal is normalised (e below 1).
+void hs_unpack_float(uint x, out uint m, out int e) {
+    e = int(x >> 23);
+    m = x & 0x7fffffu;
+    if (e == 0) {
+        int shift = 23 - findMSB(m);
+        m <<= uint(shift);
+        e = 1 - shift;
+    } else {
+        m |= 0x800000u;
+    }
+}
+
+float hs_div_rn(float a, float b) {
+    uint ua = floatBitsToUint(a), ub = floatBitsToUint(b);
+    uint sign = (ua ^ ub) & 0x80000000u;
+    uint xa = ua & 0x7fffffffu, xb = ub & 0x7fffffffu;
+    const uint inf = 0x7f800000u;
+    if (xa > inf || xb > inf || (xa == xb && (xa == 0u || xa == inf))) return uintBitsToFloat(0x7fc00000u);
+    if (xa == inf || xb == 0u) return uintBitsToFloat(sign | inf);
+    if (xa == 0u || xb == inf) return uintBitsToFloat(sign);
+    uint ma, mb;
+    int ea, eb;
+    hs_unpack_float(xa, ma, ea);
+    hs_unpack_float(xb, mb, eb);
+    int e = ea - eb + 127; // the quotient's biased exponent, once ma / mb is in [1, 2)
+    if (ma < mb) {
+        ma <<= 1u;
+        --e;
+    }
+    if (e >= 255) return uintBitsToFloat(sign | inf);
+    // q = floor(ma 2^25 / mb) in [2^25, 2^26) and r = ma 2^25 - q mb in [0, mb). The estimate is
+    // within 11 of q for a division within 2.5 ULP (within 65 for one within 16 ULP); r, exact
+    // modulo 2^32, is then below 2^31 in size, so the wrapped words hold it exactly. r / mb, below 128
+    // in size, is estimated to well within 1, so its floor is off by at most one, which one
+    // correction each way mends. No loops: with loops correcting one step at a time, llvmpipe's
+    // 256-layer compute pass left the later layers of some texels zero (not understood; this form
+    // passes), and a GPU pays for their divergence.
+    uint q = uint(HS_NATIVE_DIVIDE(float(ma), float(mb)) * 33554432.0);
+    int r = int((ma << 25u) - q * mb);
+    int d = int(floor(HS_NATIVE_DIVIDE(float(r), float(mb))));
+    r -= d * int(mb);
+    q += uint(d);
+    if (r < 0) {
+        r += int(mb);
+        --q;
+    }
+    if (r >= int(mb)) {
+        r -= int(mb);
+        ++q;
+    }
+    // Keep 24 bits of q for a normal result, fewer for a subnormal one (its unit is 2^-149), and round
+    // to nearest even on the bits shifted out and the remainder.
+    int shift = max(2, 3 - e);
+    if (shift > 26) return uintBitsToFloat(sign); // below half the smallest subnormal
+    uint m = q >> uint(shift);
+    uint half_bit = (q >> uint(shift - 1)) & 1u;
+    bool sticky = r != 0 || (q & ((1u << uint(shift - 1)) - 1u)) != 0u;
+    m += half_bit & uint(sticky || (m & 1u) != 0u);
+    // The significand's leading bit adds one to the exponent field, and a carry out of it (from the
+    // largest subnormal to the smallest normal; a normal quotient's significand stays below
+    // 2 - 2^-24, so it never carries) another. The min only guards.
+    uint bits = (uint(max(e - 1, 0)) << 23) + m;
+    return uintBitsToFloat(sign | min(bits, inf));
+}
+
+#endif
+)hs_glsl";
+
 /// shaders/compute/clusters.glsl
 inline constexpr std::string_view compute_clusters = R"hs_glsl(// Compute build of density clustering (Mertens et al. 2004, section 3.3; one work group per tile, in
 // strips of HS_STRIP_ROWS rows so that a strip's sums fit shared memory): three walks of the tile's
@@ -49,7 +138,7 @@ int64_t hs_fixed(double x) { return int64_t(x * HS_FIXED); }
 // Initial k-means centre j: the middle of the j-th of K equal parts of [nearest, furthest].
 float hs_centre(vec2 range, int j) {
     precise float width = (range.y - range.x) * (float(j) + 0.5);
-    precise float centre = range.x + hs_divide(width, float(HS_LAYERS));
+    precise float centre = range.x + hs_div_rn(width, float(HS_LAYERS));
     return centre;
 }
 
@@ -149,8 +238,9 @@ inline constexpr std::string_view compute_common = R"hs_glsl(// What every pass 
 // tiles, and the line rule of raster/line_rule.hpp in 64-bit integers, so that a tile's work group
 // makes exactly the fragments the CPU rasteriser makes. A pass defines hs_emit(x, y), which the walk
 // calls for every fragment of the current segment inside the tile. Needs GL_ARB_gpu_shader_int64 and
-// double precision (GL 4.0), the one extension and feature the compute path asks for.
-#extension GL_ARB_gpu_shader_int64 : require
+// double precision (GL 4.0), the one extension and feature the compute path asks for: compute_pieces
+// enables the extension first (GLSL allows #extension only before any code, and
+// arithmetic/exact_division comes before this).
 
 const int64_t HS_S = int64_t(1) << HS_SUBPIXEL_BITS; // sub-pixel steps per texel
 const int64_t HS_H = HS_S / 2;
@@ -312,16 +402,13 @@ float hs_lerp_exact(float a, float b, float s) {
     precise float r = a + d;
     return r;
 }
-// A float quotient, correctly rounded (through double, which rounds a float quotient exactly once
-// more to the same float) whatever the precision of the GPU's float division.
-float hs_divide(float a, float b) { return float(double(a) / double(b)); }
 
 float hs_attribute_parameter(float t) {
     if (hs_current.depth_w.z == hs_current.depth_w.w) return t;
     precise float wa = (1.0 - t) * hs_current.depth_w.z;
     precise float wb = t * hs_current.depth_w.w;
     precise float sum = wa + wb;
-    return hs_divide(wb, sum);
+    return hs_div_rn(wb, sum);
 }
 float hs_fragment_depth_at(float s) { return hs_lerp_exact(hs_current.depth_w.x, hs_current.depth_w.y, s); }
 
@@ -342,9 +429,9 @@ float hs_fragment_alpha_at(float s, float depth) {
         if (hs_footprint_varies) {
             precise float distance = hs_footprint_terms.y + depth * hs_footprint_terms.z;
             precise float width = hs_footprint_terms.x * distance;
-            footprint = hs_divide(width, hs_footprint_terms.w);
+            footprint = hs_div_rn(width, hs_footprint_terms.w);
         }
-        precise float a = opacity * min(1.0, hs_divide(thickness, footprint));
+        precise float a = opacity * min(1.0, hs_div_rn(thickness, footprint));
         alpha = a;
     }
     return alpha > 0.0 ? min(alpha, HS_ALPHA_MAX) : 0.0;
@@ -354,7 +441,7 @@ float hs_fragment_alpha_at(float s, float depth) {
 // computes it (precise: no fused multiply-adds; quotients correctly rounded), so the same bits.
 float hs_optical_depth_of(float alpha) {
     if (alpha < 0.5) {
-        float s = hs_divide(alpha, 2.0 - alpha);
+        float s = hs_div_rn(alpha, 2.0 - alpha);
         precise float s2 = s * s;
         precise float p = 1.0 / 15.0;
         const float c[7] = float[7](1.0 / 13.0, 1.0 / 11.0, 1.0 / 9.0, 1.0 / 7.0, 1.0 / 5.0, 1.0 / 3.0, 1.0);
@@ -370,7 +457,7 @@ float hs_optical_depth_of(float alpha) {
         m *= 0.5;
         ++e;
     }
-    float s = hs_divide(m - 1.0, m + 1.0);
+    float s = hs_div_rn(m - 1.0, m + 1.0);
     precise float s2 = s * s;
     precise float p = 1.0 / 11.0;
     const float c[5] = float[5](1.0 / 9.0, 1.0 / 7.0, 1.0 / 5.0, 1.0 / 3.0, 1.0);
@@ -560,7 +647,8 @@ void main() {
 inline constexpr std::string_view compute_prepare = R"hs_glsl(// Compute build, step 1 (one invocation per segment): reads the segment's two points from the mesh's
 // buffers, clips it to the light's depth range and the guard band, projects and snaps it exactly as
 // hairshadow::detail::prepare_segment does (the same operations in the same order, no fused
-// multiply-adds, quotients correctly rounded), counts it in every tile its box meets, and widens the
+// multiply-adds; float quotients by hs_div_rn, the guard-band clip's double quotients by the driver's
+// double division, which llvmpipe rounds correctly), counts it in every tile its box meets, and widens the
 // whole map's extent by its ends, as segment_bins does. A long segment (its box over more than
 // HS_SHORT_TILES tiles) goes to the long list instead of the tiles.
 layout(local_size_x = 256) in;
@@ -603,11 +691,11 @@ float hs_distance_of(vec3 p) { return -hs_row(hs_view, 2, p); }
 hs_light_point hs_project(vec3 p, float distance) {
     float x = hs_row(hs_view_projection, 0, p), y = hs_row(hs_view_projection, 1, p), w = hs_row(hs_view_projection, 3, p);
     precise float half_res = 0.5 * float(hs_resolution);
-    precise float wx = (hs_divide(x, w) + 1.0) * half_res;
-    precise float wy = (hs_divide(y, w) + 1.0) * half_res;
+    precise float wx = (hs_div_rn(x, w) + 1.0) * half_res;
+    precise float wy = (hs_div_rn(y, w) + 1.0) * half_res;
     precise float from_near = distance - hs_near;
     precise float span = hs_far - hs_near;
-    return hs_light_point(vec2(wx, wy), hs_divide(from_near, span), w);
+    return hs_light_point(vec2(wx, wy), hs_div_rn(from_near, span), w);
 }
 
 vec3 hs_point(uint i) {
@@ -628,8 +716,8 @@ int hs_snap(float window) {
 bool hs_clip(float f0, float f1, inout float s0, inout float s1) {
     if (!(f0 >= 0.0 || f1 >= 0.0)) return false;
     precise float d = f0 - f1;
-    if (f0 < 0.0) s0 = max(s0, hs_divide(f0, d));
-    if (f1 < 0.0) s1 = min(s1, hs_divide(f0, d));
+    if (f0 < 0.0) s0 = max(s0, hs_div_rn(f0, d));
+    if (f1 < 0.0) s1 = min(s1, hs_div_rn(f0, d));
     return s0 <= s1;
 }
 
@@ -691,7 +779,7 @@ bool hs_prepare(vec3 p0, vec3 p1, inout vec4 at, out hs_segment out_segment) {
     }
     if (!(hs_in_band(a) && hs_in_band(b) && abs(a.depth) <= 2.0 && abs(b.depth) <= 2.0 && a.w > 0.0 && b.w > 0.0)) return false;
     out_segment = hs_segment(ivec4(hs_snap(a.window.x), hs_snap(a.window.y), hs_snap(b.window.x), hs_snap(b.window.y)),
-                             vec4(a.depth, b.depth, hs_divide(1.0, a.w), hs_divide(1.0, b.w)), at);
+                             vec4(a.depth, b.depth, hs_div_rn(1.0, a.w), hs_div_rn(1.0, b.w)), at);
     return out_segment.ends.xy != out_segment.ends.zw;
 }
 
@@ -976,7 +1064,7 @@ void hs_clear_sums() {
 #ifdef HS_EIGHT_BIT
 // The 8-bit step of optical depth b: its output b / kappa in unorm8, rounded half away from zero.
 uint hs_eight_bit_step(float b) {
-    precise float x = clamp(hs_divide(b, HS_KAPPA), 0.0, 1.0) * 255.0;
+    precise float x = clamp(hs_div_rn(b, HS_KAPPA), 0.0, 1.0) * 255.0;
     return uint(x) + (fract(x) >= 0.5 ? 1u : 0u);
 }
 #endif
@@ -1065,8 +1153,8 @@ inline constexpr std::string_view lookup_light = R"hs_glsl(// Where a world poin
 // holds no fragment: there the light is unshadowed. The range map is placement/common's.
 // The arithmetic is the CPU query's (light_space::project, map_queries::transmittance), operation
 // for operation and `precise` (no fused multiply-add, no reordering), so that the look-up finds the
-// CPU's texel and depth; divisions are GLSL's, correctly rounded on llvmpipe (GLSL allows a GPU
-// 2.5 ULP there, which can move a point lying within a rounding of a texel's edge).
+// CPU's texel and depth; quotients are hs_div_rn's, the CPU's on every GPU (GLSL's own division may be
+// 2.5 ULP off, which could move a point lying within a rounding of a texel's edge).
 uniform mat4 hs_lookup_view_projection;
 uniform mat4 hs_lookup_view;
 uniform float hs_lookup_near;
@@ -1085,7 +1173,7 @@ bool hs_lookup_locate(vec3 world_pos, out ivec2 texel, out float depth, out vec4
     precise float y = hs_lookup_row(hs_lookup_view_projection, 1, world_pos);
     precise float w = hs_lookup_row(hs_lookup_view_projection, 3, world_pos);
     precise float half_resolution = 0.5 * float(hs_lookup_resolution);
-    precise vec2 window = vec2((x / w + 1.0) * half_resolution, (y / w + 1.0) * half_resolution);
+    precise vec2 window = vec2((hs_div_rn(x, w) + 1.0) * half_resolution, (hs_div_rn(y, w) + 1.0) * half_resolution);
     texel = ivec2(0);
     depth = 0.0;
     range = vec4(0.0);
@@ -1094,7 +1182,7 @@ bool hs_lookup_locate(vec3 world_pos, out ivec2 texel, out float depth, out vec4
         return false;
     texel = ivec2(window);
     precise float distance = -hs_lookup_row(hs_lookup_view, 2, world_pos);
-    precise float biased = (distance - hs_lookup_near) / (hs_lookup_far - hs_lookup_near) - hs_lookup_depth_bias;
+    precise float biased = hs_div_rn(distance - hs_lookup_near, hs_lookup_far - hs_lookup_near) - hs_lookup_depth_bias;
     depth = biased;
     range = texelFetch(hs_range_map, texel, 0);
     return range.x <= range.w;
@@ -1498,7 +1586,8 @@ struct hs_bin {
 
 // Initial k-means centre j: the middle of the j-th of K equal parts of [nearest, furthest].
 float hs_initial_centre(vec4 range, int j) {
-    precise float centre = range.x + (range.w - range.x) * (float(j) + 0.5) / float(HS_LAYERS);
+    precise float width = (range.w - range.x) * (float(j) + 0.5);
+    precise float centre = range.x + hs_div_rn(width, float(HS_LAYERS));
     return centre;
 }
 
@@ -1560,7 +1649,7 @@ hs_layer_position hs_locate(float mean[HS_LAYERS], float sigma[HS_LAYERS], float
             p = hs_layer_position(j, 1.0);
             continue;
         }
-        return hs_layer_position(j, (depth - b.lo) / (b.hi - b.lo));
+        return hs_layer_position(j, hs_div_rn(depth - b.lo, b.hi - b.lo));
     }
     return p;
 }
@@ -1575,7 +1664,7 @@ struct hs_layer_position {
 };
 
 hs_layer_position hs_position_in(int k, float depth, float lo, float hi) {
-    return hs_layer_position(k, hi > lo ? clamp((depth - lo) / (hi - lo), 0.0, 1.0) : 0.0);
+    return hs_layer_position(k, hi > lo ? clamp(hs_div_rn(depth - lo, hi - lo), 0.0, 1.0) : 0.0);
 }
 
 // The largest integer in [0, last] no greater than a non-negative estimate; NaN and negatives give 0.
@@ -1599,7 +1688,7 @@ inline constexpr std::string_view placement_depth_range = R"hs_glsl(// Occupancy
 // between the texel's nearest and furthest fragment, settled against the slice boundaries so that a
 // fragment's slice and a query's agree exactly. Mirrors depth_range; hs_range = (nearest, furthest).
 float hs_boundary(vec2 hs_range, int k) {
-    precise float value = hs_range.x + (hs_range.y - hs_range.x) * (float(k) / float(HS_LAYERS));
+    precise float value = hs_range.x + (hs_range.y - hs_range.x) * hs_div_rn(float(k), float(HS_LAYERS));
     return value;
 }
 
@@ -1642,14 +1731,15 @@ float hs_layer_extent() {
 
 float hs_relative_boundary(int k) {
 #ifdef HS_UNIFORM_SIZES
-    return float(k) / float(HS_LAYERS);
+    return hs_div_rn(float(k), float(HS_LAYERS));
 #else
-    return float(k * (k + 1)) / float(HS_LAYERS * (HS_LAYERS + 1));
+    return hs_div_rn(float(k * (k + 1)), float(HS_LAYERS * (HS_LAYERS + 1)));
 #endif
 }
 
 hs_layer_position hs_locate(float z0, float hs_scale, float depth) {
-    precise float rel = (depth - z0) / (hs_layer_extent() * hs_scale);
+    precise float extent = hs_layer_extent() * hs_scale;
+    float rel = hs_div_rn(depth - z0, extent);
     if (!(rel >= 0.0)) return hs_layer_position(-1, 0.0);
     if (rel >= 1.0) return hs_layer_position(HS_LAYERS, 0.0);
 #ifdef HS_UNIFORM_SIZES
@@ -1658,9 +1748,15 @@ hs_layer_position hs_locate(float z0, float hs_scale, float depth) {
     float estimate = (sqrt(1.0 + 4.0 * rel * float(HS_LAYERS * (HS_LAYERS + 1))) - 1.0) * 0.5;
 #endif
     int k = hs_estimate_index(estimate, HS_LAYERS - 1);
-    while (k > 0 && rel < hs_relative_boundary(k)) --k;
-    while (k < HS_LAYERS - 1 && rel >= hs_relative_boundary(k + 1)) ++k;
-    return hs_position_in(k, rel, hs_relative_boundary(k), hs_relative_boundary(k + 1));
+    // The estimate settled by exact comparisons, each boundary divided once (hs_div_rn is not free).
+    float lo = hs_relative_boundary(k);
+    while (k > 0 && rel < lo) lo = hs_relative_boundary(--k);
+    float hi = hs_relative_boundary(k + 1);
+    while (k < HS_LAYERS - 1 && rel >= hi) {
+        lo = hi;
+        hi = hs_relative_boundary(++k + 1);
+    }
+    return hs_position_in(k, rel, lo, hi);
 }
 
 int hs_assign(float z0, float hs_scale, float depth) {
@@ -1697,7 +1793,7 @@ float hs_spacing_inverse(float u) {
 
 // D_i, for slices = (D_0, D_N).
 float hs_boundary(int i, vec2 slices) {
-    precise float value = i >= HS_LAYERS ? slices.y : slices.x + (slices.y - slices.x) * hs_spacing(float(i) / float(HS_LAYERS));
+    precise float value = i >= HS_LAYERS ? slices.y : slices.x + (slices.y - slices.x) * hs_spacing(hs_div_rn(float(i), float(HS_LAYERS)));
     return value;
 }
 
@@ -1708,9 +1804,15 @@ hs_layer_position hs_locate(float depth) {
     // depth >= D_N, D_N being just above the furthest fragment (a denormal, which GLSL may flush, above 0)
     if (depth > extent.y) return hs_layer_position(HS_LAYERS, 0.0);
     int k = hs_estimate_index(hs_spacing_inverse((depth - s.x) / (s.y - s.x)) * float(HS_LAYERS), HS_LAYERS - 1);
-    while (k > 0 && depth < hs_boundary(k, s)) --k;
-    while (k < HS_LAYERS - 1 && depth >= hs_boundary(k + 1, s)) ++k;
-    return hs_position_in(k, depth, hs_boundary(k, s), hs_boundary(k + 1, s));
+    // The estimate settled by exact comparisons, each boundary divided once (hs_div_rn is not free).
+    float lo = hs_boundary(k, s);
+    while (k > 0 && depth < lo) lo = hs_boundary(--k, s);
+    float hi = hs_boundary(k + 1, s);
+    while (k < HS_LAYERS - 1 && depth >= hi) {
+        lo = hi;
+        hi = hs_boundary(++k + 1, s);
+    }
+    return hs_position_in(k, depth, lo, hi);
 }
 
 int hs_assign(float depth) { return clamp(hs_locate(depth).index, 0, HS_LAYERS - 1); }
@@ -1906,13 +2008,12 @@ float hs_nodes_transmittance(float depths[HS_NODES], float omegas[HS_NODES], flo
 /// shaders/reconstruction/depth_projection.glsl
 inline constexpr std::string_view reconstruction_depth_projection = R"hs_glsl(// What Fourier opacity maps and moment shadow maps share (mirrors
 // reconstruction/detail/depth_projection.hpp), composed after the reconstruction's snippet: a
-// fragment's place in its texel's depth range, 0 at the nearest fragment and 1 at the furthest, divided
-// as the CPU divides (a quotient of floats in double, rounded once, is the correctly rounded float
-// quotient); the terms a fragment adds and the sums a texel stores, under either accumulation.
+// fragment's place in its texel's depth range, 0 at the nearest fragment and 1 at the furthest,
+// divided as the CPU divides (hs_div_rn); the terms a fragment adds and the sums a texel stores, under either accumulation.
 float hs_position_in_range(float nearest, float furthest, float depth) {
     precise float span = furthest - nearest;
     precise float offset = depth - nearest;
-    return span > 0.0 ? clamp(float(double(offset) / double(span)), 0.0, 1.0) : 0.0;
+    return span > 0.0 ? clamp(hs_div_rn(offset, span), 0.0, 1.0) : 0.0;
 }
 
 // The terms a fragment adds (composed after the reconstruction, whose hs_projection_terms and HS_SUMS
@@ -2518,7 +2619,7 @@ inline constexpr std::string_view texel_state_per_pixel_depth = R"hs_glsl(// Dee
 // as the CPU's std::nextafter gives).
 float hs_scale_from(vec4 range) {
 #ifdef HS_BEYOND_EXTEND
-    return max(1.0, hs_just_above(range.w - range.x) / hs_layer_extent());
+    return max(1.0, hs_div_rn(hs_just_above(range.w - range.x), hs_layer_extent()));
 #else
     return 1.0;
 #endif
@@ -2745,9 +2846,10 @@ struct entry {
 };
 
 /// Every snippet, sorted by name.
-inline constexpr std::array<entry, 74> all{{
+inline constexpr std::array<entry, 75> all{{
     {"accumulation/emulated_8bit", accumulation_emulated_8bit},
     {"accumulation/float", accumulation_float},
+    {"arithmetic/exact_division", arithmetic_exact_division},
     {"compute/clusters", compute_clusters},
     {"compute/common", compute_common},
     {"compute/fibre_count", compute_fibre_count},

@@ -38,7 +38,7 @@ public:
         // The fragment passes read the rasterised fragment (raster/coverage); the resolve pass does not.
         const auto compile = [&](std::string_view pass, std::string_view source, bool fragments) {
             return compile_stage(GL_FRAGMENT_SHADER, {},
-                                  {defines, fragments ? shaders::raster_coverage : "", shaders::placement_common,
+                                  {defines, fragments ? shaders::raster_coverage : "", shaders::arithmetic_exact_division, shaders::placement_common,
                                    shaders::placement_clustered, shaders::passes_cluster_common, source},
                                   std::string(pass));
         };

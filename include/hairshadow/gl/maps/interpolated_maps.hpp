@@ -155,7 +155,7 @@ public:
         if (targets_per_pass_ < 1) throw feature_error("interpolated shadow maps need at least one draw buffer");
         const auto vs = compile_stage(GL_VERTEX_SHADER, {}, {shaders::raster_vertex}, "raster/vertex");
         const auto layers_fs = compile_stage(GL_FRAGMENT_SHADER, defines(targets_per_pass_),
-                                             around_placement<P>({shaders::raster_coverage, accumulation::source(), shaders::placement_common},
+                                             around_placement<P>({shaders::raster_coverage, accumulation::source(), shaders::arithmetic_exact_division, shaders::placement_common},
                                                                  {shaders::passes_layers}),
                                              "passes/layers");
         layers_program_ = link_program({&vs, &layers_fs}, "layers pass");
@@ -168,7 +168,7 @@ public:
     /// first_unit, prefix). Any number of look-ups with different prefixes share one shader.
     static std::string lookup_source(std::string_view prefix = default_lookup_prefix) {
         std::string s = defines(1);
-        for (auto piece : around_placement<P>({accumulation::source(), shaders::placement_common},
+        for (auto piece : around_placement<P>({accumulation::source(), shaders::arithmetic_exact_division, shaders::placement_common},
                                               {shaders::lookup_layers, shaders::reconstruction_interpolation, reconstruction_source(), shaders::lookup_light,
                                                shaders::lookup_interpolation}))
             s += piece;
@@ -319,7 +319,7 @@ private:
             const int group = std::min(8, 4 * array_layers); // layers summed per walk: 16 KiB of sums
             return detail::link_compute_pass(defines(1) + format + "#define HS_LAYER_GROUP " + std::to_string(group) + "\n#define HS_SUM_SLOTS " +
                                                  std::to_string(group) + "\n",
-                                             around_placement<P>({accumulation::source(), shaders::compute_tile_sums, shaders::placement_common}, {}),
+                                             around_placement<P>({accumulation::source(), shaders::compute_tile_sums, shaders::arithmetic_exact_division, shaders::placement_common}, {}),
                                              shaders::compute_layers, "compute/layers");
         } else {
             // Strips of the tile small enough that a strip's k-means sums, state and range fit 30 KiB.
@@ -328,7 +328,7 @@ private:
             return detail::link_compute_pass(defines(1) + format + "#define HS_FIXED_SUMS\n#define HS_SUM_SLOTS " + std::to_string(2 * layers) +
                                                  "\n#define HS_STRIP_ROWS " + std::to_string(rows) + "\n#define HS_SUM_TEXELS " +
                                                  std::to_string(detail::compute_tile * rows) + "\n",
-                                             {accumulation::source(), shaders::compute_tile_sums, shaders::placement_common, placement_glsl<P>::sources().front()},
+                                             {accumulation::source(), shaders::compute_tile_sums, shaders::arithmetic_exact_division, shaders::placement_common, placement_glsl<P>::sources().front()},
                                              shaders::compute_clusters, "compute/clusters");
         }
     }

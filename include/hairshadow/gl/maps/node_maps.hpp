@@ -39,7 +39,7 @@ public:
     /// version line; bind with bind_lookup(program, first_unit, prefix).
     static std::string lookup_source(std::string_view prefix = default_lookup_prefix) {
         std::string s = defines();
-        for (auto piece : {shaders::placement_common, shaders::reconstruction_adaptive_nodes, shaders::lookup_light, shaders::lookup_nodes}) s += piece;
+        for (auto piece : {shaders::arithmetic_exact_division, shaders::placement_common, shaders::reconstruction_adaptive_nodes, shaders::lookup_light, shaders::lookup_nodes}) s += piece;
         return prefix_glsl(std::string(lookup_version_check) + s, prefix);
     }
 

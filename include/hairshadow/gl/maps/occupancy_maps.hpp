@@ -53,7 +53,7 @@ public:
         const std::string defs = defines();
         auto fragment = [&](std::string_view pass, const char* name) {
             return compile_stage(GL_FRAGMENT_SHADER, defs,
-                                 around_placement<P>({shaders::raster_coverage, accumulation::source(), shaders::placement_common}, {pass}), name);
+                                 around_placement<P>({shaders::raster_coverage, accumulation::source(), shaders::arithmetic_exact_division, shaders::placement_common}, {pass}), name);
         };
         const auto bits_fs = fragment(shaders::passes_occupancy_bits, "passes/occupancy_bits");
         const auto slabs_fs = fragment(shaders::passes_occupancy_slabs, "passes/occupancy_slabs");
@@ -66,7 +66,7 @@ public:
     /// first_unit, prefix). Any number of look-ups with different prefixes share one shader.
     static std::string lookup_source(std::string_view prefix = default_lookup_prefix) {
         std::string s = defines();
-        for (auto piece : around_placement<P>({accumulation::source(), shaders::placement_common},
+        for (auto piece : around_placement<P>({accumulation::source(), shaders::arithmetic_exact_division, shaders::placement_common},
                                               {shaders::reconstruction_occupancy_bitcount, shaders::lookup_light, shaders::lookup_occupancy_texels,
                                                shaders::lookup_occupancy}))
             s += piece;
@@ -195,7 +195,7 @@ private:
     void build_compute(const light_pass& pass) {
         if (!compute_program_) {
             const std::string d = defines() + "#define HS_SUM_SLOTS " + std::to_string(B) + "\n" + accumulation::image_defines("HS_SLABS_FORMAT");
-            compute_program_ = detail::link_compute_pass(d, around_placement<P>({accumulation::source(), shaders::compute_tile_sums, shaders::placement_common}, {}),
+            compute_program_ = detail::link_compute_pass(d, around_placement<P>({accumulation::source(), shaders::compute_tile_sums, shaders::arithmetic_exact_division, shaders::placement_common}, {}),
                                                          shaders::compute_occupancy, "compute/occupancy");
         }
         this->begin_compute_pass(pass, compute_program_.get());

@@ -46,7 +46,7 @@ public:
         if (draw_buffers < array_layers) throw feature_error("this projected method needs " + std::to_string(array_layers) + " draw buffers");
         const auto vs = compile_stage(GL_VERTEX_SHADER, {}, {shaders::raster_vertex}, "raster/vertex");
         const auto fs = compile_stage(GL_FRAGMENT_SHADER, defines(),
-                                      {shaders::raster_coverage, accumulation::source(), shaders::placement_common, reconstruction_source(),
+                                      {shaders::raster_coverage, accumulation::source(), shaders::arithmetic_exact_division, shaders::placement_common, reconstruction_source(),
                                        shaders::reconstruction_depth_projection, shaders::passes_projection},
                                       "passes/projection");
         raster_program_ = link_program({&vs, &fs}, "projection pass");
@@ -56,7 +56,7 @@ public:
     /// version line; bind with bind_lookup(program, first_unit, prefix).
     static std::string lookup_source(std::string_view prefix = default_lookup_prefix) {
         std::string s = defines();
-        for (auto piece : {accumulation::source(), shaders::placement_common, reconstruction_source(), shaders::reconstruction_depth_projection,
+        for (auto piece : {accumulation::source(), shaders::arithmetic_exact_division, shaders::placement_common, reconstruction_source(), shaders::reconstruction_depth_projection,
                            shaders::lookup_light, shaders::lookup_projection})
             s += piece;
         return prefix_glsl(std::string(lookup_version_check) + s, prefix);
@@ -76,7 +76,7 @@ public:
             // shaders/compute/projection: one work group per tile of the light pass's lists, 8 sums a walk.
             if (!compute_program_)
                 compute_program_ = detail::link_compute_pass(compute_defines() + "#define HS_SUM_SLOTS 8\n",
-                                                             {accumulation::source(), shaders::compute_tile_sums, shaders::placement_common,
+                                                             {accumulation::source(), shaders::compute_tile_sums, shaders::arithmetic_exact_division, shaders::placement_common,
                                                               reconstruction_source(), shaders::reconstruction_depth_projection},
                                                              shaders::compute_projection, "compute/projection");
             this->begin_compute_pass(pass, compute_program_.get());

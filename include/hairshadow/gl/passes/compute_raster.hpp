@@ -70,12 +70,12 @@ namespace detail {
 
 inline constexpr int compute_tile = 16; // texels per side of a compute tile (HS_TILE)
 
-/// Source pieces every compute program starts with (after compile_stage's version line): defines,
-/// the shared snippet.
+/// Source pieces every compute program starts with (after compile_stage's version line): the
+/// extension and defines, the exact division, the shared snippet.
 inline std::vector<std::string_view> compute_pieces(const std::string& defines) {
-    static const std::string common_defines = "#define HS_SUBPIXEL_BITS " + std::to_string(HAIRSHADOW_SUBPIXEL_BITS) + "\n#define HS_ALPHA_MAX " +
+    static const std::string common_defines = "#extension GL_ARB_gpu_shader_int64 : require\n#define HS_SUBPIXEL_BITS " + std::to_string(HAIRSHADOW_SUBPIXEL_BITS) + "\n#define HS_ALPHA_MAX " +
                                               std::to_string(HAIRSHADOW_ALPHA_MAX) + "\n";
-    return {common_defines, defines, shaders::compute_common};
+    return {common_defines, defines, shaders::arithmetic_exact_division, shaders::compute_common};
 }
 
 inline void set_uniform(GLuint prog, const char* name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }

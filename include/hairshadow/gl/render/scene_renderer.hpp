@@ -282,7 +282,8 @@ private:
     light_entry unshadowed_entry(const scene_light& light, const light_space& space, float bias) const {
         // The light's frustum (lookup/light.glsl, which the mesh's depth test reads) and no hair.
         const std::string no_hair =
-            "uniform sampler2D hs_range_map;\n" + std::string(shaders::lookup_light) + "float hs_transmittance(vec3 world_pos) { return 1.0; }\n";
+            std::string(shaders::arithmetic_exact_division) + "uniform sampler2D hs_range_map;\n" + std::string(shaders::lookup_light) +
+            "float hs_transmittance(vec3 world_pos) { return 1.0; }\n";
         return make_entry(light, space, no_hair, [space](GLuint prog) { set_lookup_frustum(lookup_binder::for_pass(prog, 0), space); }, bias);
     }
 

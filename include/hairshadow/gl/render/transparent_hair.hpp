@@ -112,7 +112,7 @@ private:
     static program line_program(std::initializer_list<std::string_view> pieces, const std::string& name) {
         const auto vs = compile_stage(GL_VERTEX_SHADER, {}, {shaders::transparency_line_vertex}, "transparency/line_vertex");
         const auto gs = compile_stage(GL_GEOMETRY_SHADER, {}, {shaders::transparency_line_geometry}, "transparency/line_geometry");
-        std::vector<std::string_view> fragment{shaders::accumulation_float, shaders::placement_common, shaders::placement_depth_range,
+        std::vector<std::string_view> fragment{shaders::accumulation_float, shaders::arithmetic_exact_division, shaders::placement_common, shaders::placement_depth_range,
                                                shaders::texel_state_depth_range, shaders::transparency_camera_fragment};
         fragment.insert(fragment.end(), pieces);
         const auto fs = compile_stage(GL_FRAGMENT_SHADER, defines(), fragment, name);
