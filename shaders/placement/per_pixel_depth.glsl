@@ -32,7 +32,8 @@ hs_layer_position hs_locate(float z0, float hs_scale, float depth) {
     float estimate = (sqrt(1.0 + 4.0 * rel * float(HS_LAYERS * (HS_LAYERS + 1))) - 1.0) * 0.5;
 #endif
     int k = hs_estimate_index(estimate, HS_LAYERS - 1);
-    // The estimate settled by exact comparisons, each boundary divided once (hs_div_rn is not free).
+    // The estimate settled by exact comparisons, carrying the boundaries it compared with so that
+    // the common case divides each once (hs_div_rn is not free).
     float lo = hs_relative_boundary(k);
     while (k > 0 && rel < lo) lo = hs_relative_boundary(--k);
     float hi = hs_relative_boundary(k + 1);

@@ -1748,7 +1748,8 @@ hs_layer_position hs_locate(float z0, float hs_scale, float depth) {
     float estimate = (sqrt(1.0 + 4.0 * rel * float(HS_LAYERS * (HS_LAYERS + 1))) - 1.0) * 0.5;
 #endif
     int k = hs_estimate_index(estimate, HS_LAYERS - 1);
-    // The estimate settled by exact comparisons, each boundary divided once (hs_div_rn is not free).
+    // The estimate settled by exact comparisons, carrying the boundaries it compared with so that
+    // the common case divides each once (hs_div_rn is not free).
     float lo = hs_relative_boundary(k);
     while (k > 0 && rel < lo) lo = hs_relative_boundary(--k);
     float hi = hs_relative_boundary(k + 1);
@@ -1804,7 +1805,8 @@ hs_layer_position hs_locate(float depth) {
     // depth >= D_N, D_N being just above the furthest fragment (a denormal, which GLSL may flush, above 0)
     if (depth > extent.y) return hs_layer_position(HS_LAYERS, 0.0);
     int k = hs_estimate_index(hs_spacing_inverse((depth - s.x) / (s.y - s.x)) * float(HS_LAYERS), HS_LAYERS - 1);
-    // The estimate settled by exact comparisons, each boundary divided once (hs_div_rn is not free).
+    // The estimate settled by exact comparisons, carrying the boundaries it compared with so that
+    // the common case divides each once (hs_div_rn is not free).
     float lo = hs_boundary(k, s);
     while (k > 0 && depth < lo) lo = hs_boundary(--k, s);
     float hi = hs_boundary(k + 1, s);
