@@ -1,11 +1,15 @@
 #!/usr/bin/env python3
 """Validates the GLSL snippets under shaders/ with glslangValidator (Debian's glslang-tools): each
 composition below is what a program would concatenate (version line, defines, snippets, a main), so
-every snippet is compiled in every configuration it is used in.
+every snippet is compiled in every configuration it is used in. Each is also compiled to SPIR-V for
+OpenGL (-G), whose capabilities say what arithmetic it needs: double precision (Float64) and 64-bit
+integers (Int64) run slowly or not at all on most GPUs, so they are allowed only where wide_allowed
+says, and the check is exact both ways, so that the table shrinks as they go.
 
     scripts/validate_shaders.py [--validator PATH]   exit 1 on the first failure, printing the log
 """
 import pathlib
+import re
 import subprocess
 import sys
 import tempfile
@@ -163,7 +167,7 @@ for accumulation, eight in (("float", ""), ("emulated_8bit", "#define HS_EIGHT_B
                                ("per_pixel_depth", "#define HS_LAYERS 3\n#define HS_CUMULATIVE\n"),
                                ("depth_range", "#define HS_LAYERS 16\n#define HS_CUMULATIVE\n")):
         COMPOSITIONS[f"compute_layers_{placement}_{accumulation}"] = (
-            "comp", COMPUTE + defines + eight + f"#define HS_LAYER_GROUP 8\n#define HS_SUM_SLOTS 8\n#define HS_LAYERS_FORMAT {form}\n",
+            "comp", COMPUTE + defines + eight + f"#define HS_LAYER_GROUP 12\n#define HS_SUM_SLOTS 12\n#define HS_LAYERS_FORMAT {form}\n",
             ["compute/common", "accumulation/" + accumulation, "compute/tile_sums", "placement/common", "placement/" + placement,
              "texel_state/" + placement, "compute/layers"], "")
     for clusters, rows in ((4, 16), (8, 8)):
@@ -218,6 +222,31 @@ for name, (stage, defines, snippets, main_text) in COMPOSITIONS.items():
         COMPOSITIONS[name] = (stage, "#extension GL_ARB_gpu_shader_int64 : require\n" + defines) + COMPOSITIONS[name][2:]
 
 
+WIDE = ("Float64", "Int64", "Int64Atomics")
+
+
+def wide_allowed(name: str) -> set:
+    """The wide capabilities composition `name` may need, and must. Raster programs need none. Every
+    compute program still declares compute/common's double reciprocal of t (hs_inv_length2), and all
+    but the prepare/scan/scatter passes compute t from a 64-bit dot product (hs_parameter) or sum in
+    64-bit words (compute/tile_sums); the line walk itself is 32-bit."""
+    if not name.startswith("compute_"):
+        return set()
+    if name in ("compute_prepare", "compute_scan", "compute_scatter"):
+        return {"Float64"}
+    return {"Float64", "Int64"}
+
+
+def wide_capabilities(validator: str, path: pathlib.Path) -> tuple:
+    """Compiles `path` to SPIR-V for OpenGL; returns (error log or "", the wide capabilities it declares).
+    -G comes before -H: -H alone would pick Vulkan's rules."""
+    result = subprocess.run([validator, "-G", "--aml", "--amb", "-H", str(path), "-o", str(path) + ".spv"], capture_output=True, text=True)
+    if result.returncode != 0:
+        return result.stdout + result.stderr, set()
+    declared = set(re.findall(r"^\s*Capability (\w+)", result.stdout, re.MULTILINE))
+    return "", declared & set(WIDE)
+
+
 def expand(text: str) -> str:
     """Inlines '#include family/name' lines (our composition shorthand, not GLSL's)."""
     out = []
@@ -234,6 +263,7 @@ def main() -> int:
     if "--validator" in sys.argv:
         validator = sys.argv[sys.argv.index("--validator") + 1]
     used = set()
+    wide_count = 0
     with tempfile.TemporaryDirectory() as tmp:
         for name, (stage, defines, snippets, main_text) in COMPOSITIONS.items():
             used.update(snippets)
@@ -245,12 +275,26 @@ def main() -> int:
             if result.returncode != 0:
                 print(f"validate_shaders: {name} failed:\n{result.stdout}{result.stderr}", file=sys.stderr)
                 return 1
+            log, wide = wide_capabilities(validator, path)
+            if log:
+                print(f"validate_shaders: {name} failed to compile to SPIR-V:\n{log}", file=sys.stderr)
+                return 1
+            allowed = wide_allowed(name)
+            if wide - allowed:
+                print(f"validate_shaders: {name} needs {', '.join(sorted(wide - allowed))} (SPIR-V capability), which most GPUs "
+                      "run slowly or not at all", file=sys.stderr)
+                return 1
+            if allowed - wide:
+                print(f"validate_shaders: {name} no longer needs {', '.join(sorted(allowed - wide))}: shrink wide_allowed", file=sys.stderr)
+                return 1
+            wide_count += bool(wide)
     every = {str(p.relative_to(SHADERS).with_suffix("")) for p in SHADERS.rglob("*.glsl")}
     unvalidated = sorted(every - used)
     if unvalidated:
         print(f"validate_shaders: not validated by any composition: {', '.join(unvalidated)}", file=sys.stderr)
         return 1
-    print(f"validate_shaders: {len(COMPOSITIONS)} compositions of {len(every)} snippets are valid GLSL")
+    print(f"validate_shaders: {len(COMPOSITIONS)} compositions of {len(every)} snippets are valid GLSL; in SPIR-V, "
+          f"{len(COMPOSITIONS) - wide_count} need neither Float64 nor Int64, and {wide_count} (compute) still need what wide_allowed says")
     return 0
 
 

@@ -1,13 +1,18 @@
 // What every pass of the compute build shares (gl/passes/compute_raster.hpp): the prepared segments and their
-// tiles, and the line rule of raster/line_rule.hpp in 64-bit integers, so that a tile's work group
+// tiles, and the line rule of raster/line_rule.hpp in 32-bit integers, so that a tile's work group
 // makes exactly the fragments the CPU rasteriser makes. A pass defines hs_emit(x, y), which the walk
-// calls for every fragment of the current segment inside the tile. Needs GL_ARB_gpu_shader_int64 and
-// double precision (GL 4.0), the one extension and feature the compute path asks for: compute_pieces
-// enables the extension first (GLSL allows #extension only before any code, and
-// arithmetic/exact_division comes before this).
+// calls for every fragment of the current segment inside the tile. The walk is 32-bit; the window
+// parameter t here, the passes' fixed-point sums and compute/prepare's snap and clip still need
+// GL_ARB_gpu_shader_int64 or double precision (GL 4.0): compute_pieces enables the extension first
+// (GLSL allows #extension only before any code, and arithmetic/exact_division comes before this).
 
-const int64_t HS_S = int64_t(1) << HS_SUBPIXEL_BITS; // sub-pixel steps per texel
-const int64_t HS_H = HS_S / 2;
+// Coordinates lie within the guard band, |c| <= 2^(20 + bits) sub-pixels, so with at most 9 bits every
+// difference and every remainder of the walk below fits a 32-bit int (compute_path_missing says so).
+#if HS_SUBPIXEL_BITS < 1 || HS_SUBPIXEL_BITS > 9
+#error "the compute line rule needs 1 <= HS_SUBPIXEL_BITS <= 9"
+#endif
+const int HS_S = 1 << HS_SUBPIXEL_BITS; // sub-pixel steps per texel
+const int HS_H = HS_S / 2;
 
 // A prepared segment (hairshadow::detail::prepared_segment and its segment_attributes): snapped ends,
 // linear depth and 1/w at both ends, thickness and opacity at both ends. Both ends equal: nothing to draw.
@@ -74,74 +79,97 @@ uint hs_ordered(float f) {
 }
 float hs_from_ordered(uint u) { return uintBitsToFloat((u & 0x80000000u) != 0u ? u & 0x7fffffffu : ~u); }
 
-int64_t hs_floor_div(int64_t a, int64_t b) { // b > 0
-    int64_t q = a / b;
-    return (q * b != a && a < 0) ? q - 1 : q;
-}
-int64_t hs_ceil_div(int64_t a, int64_t b) { return -hs_floor_div(-a, b); }
-int64_t hs_abs64(int64_t a) { return a < 0 ? -a : a; }
-int64_t hs_min64(int64_t a, int64_t b) { return a < b ? a : b; }
-int64_t hs_max64(int64_t a, int64_t b) { return a > b ? a : b; }
-
-// Is p, moved by -(e, e^2), inside the open diamond of texel (c, r)? (detail::inside_diamond)
-bool hs_inside_diamond(i64vec2 p, int64_t c, int64_t r) {
-    int64_t u = p.x - (c * HS_S + HS_H), v = p.y - (r * HS_S + HS_H);
-    int64_t l1 = hs_abs64(u) + hs_abs64(v);
+// Is p, moved by -(e, e^2), inside the open diamond of texel (c, r)? (detail::inside_diamond; a
+// coordinate more than H from the centre leaves it at once, so the sum cannot overflow.)
+bool hs_inside_diamond(ivec2 p, int c, int r) {
+    int u = p.x - (c * HS_S + HS_H), v = p.y - (r * HS_S + HS_H);
+    if (abs(u) > HS_H || abs(v) > HS_H) return false;
+    int l1 = abs(u) + abs(v);
     return l1 < HS_H || (l1 == HS_H && u > 0);
 }
 
 // Texels [x0, x1) x [y0, y1) within the map's side that a segment's box, widened by one texel (the
 // CPU's reach for thin lines), may touch; false when it misses the map (segment_bins::meets_map).
+// GLSL's >> on an int extends the sign: a floor division by HS_S.
 bool hs_segment_box(ivec4 e, out ivec4 box) {
-    int64_t lo_x = (int64_t(min(e.x, e.z)) - HS_S) >> HS_SUBPIXEL_BITS, hi_x = (int64_t(max(e.x, e.z)) + HS_S) >> HS_SUBPIXEL_BITS;
-    int64_t lo_y = (int64_t(min(e.y, e.w)) - HS_S) >> HS_SUBPIXEL_BITS, hi_y = (int64_t(max(e.y, e.w)) + HS_S) >> HS_SUBPIXEL_BITS;
-    if (hi_x < 0 || hi_y < 0 || lo_x >= hs_resolution || lo_y >= hs_resolution) return false;
-    box = ivec4(int(hs_max64(lo_x, int64_t(0))), int(hs_max64(lo_y, int64_t(0))), int(hs_min64(hi_x, int64_t(hs_resolution - 1))),
-                int(hs_min64(hi_y, int64_t(hs_resolution - 1))));
+    ivec2 lo = (min(e.xy, e.zw) - HS_S) >> HS_SUBPIXEL_BITS, hi = (max(e.xy, e.zw) + HS_S) >> HS_SUBPIXEL_BITS;
+    if (hi.x < 0 || hi.y < 0 || lo.x >= hs_resolution || lo.y >= hs_resolution) return false;
+    box = ivec4(max(lo, ivec2(0)), min(hi, ivec2(hs_resolution - 1)));
     return true;
+}
+
+// o v / A as q + r / A with 0 <= r < A, exactly, for 0 <= o <= 2^30 and |v| <= A <= 2^30 (so |q| <= o;
+// within the guard band A <= 2^(21 + bits) <= 2^30, and 2A - 2, the most a partial remainder reaches
+// here or in hs_walk's step, fits an int).
+// When |o v| fits 32 bits (always for a segment under 2^16 sub-pixels, 256 texels at 8 bits) it is one unsigned
+// division; otherwise o's bits are taken one at a time (long multiplication of v / A, in (q, r) form):
+// each partial remainder stays below 2A, which fits an int.
+ivec2 hs_product_quotient(int o, int v, int A) {
+    uint hi, lo;
+    umulExtended(uint(o), uint(abs(v)), hi, lo);
+    if (hi == 0u) {
+        uint q = lo / uint(A), r = lo - q * uint(A);
+        if (v >= 0 || r == 0u) return ivec2(v >= 0 ? int(q) : -int(q), int(r));
+        return ivec2(-int(q) - 1, A - int(r));
+    }
+    ivec2 unit = v == A ? ivec2(1, 0) : v >= 0 ? ivec2(0, v) : ivec2(-1, v + A); // v / A
+    ivec2 qr = ivec2(0);
+    for (int bit = findMSB(o); bit >= 0; --bit) {
+        qr *= 2;
+        if (qr.y >= A) qr += ivec2(1, -A);
+        if (((o >> bit) & 1) != 0) {
+            qr += unit;
+            if (qr.y >= A) qr += ivec2(1, -A);
+        }
+    }
+    return qr;
 }
 
 void hs_emit(int x, int y); // defined by each pass
 
 // Every fragment of a -> b inside the texel rectangle clip = (x0, y0, x1, y1), half-open, by the
-// diamond-exit rule (rasterize_line: set_up_line, the walk, then start_fragment).
-void hs_walk(i64vec2 a, i64vec2 b, ivec4 clip) {
+// diamond-exit rule: the fragments of rasterize_line (set_up_line, the walk, then start_fragment), in
+// 32-bit words. The CPU keeps the minor coordinate at a centre as n + rem / (A S), A = |d_major|, a
+// numerator near 2^58; here it is k + r / A sub-pixels (n = k >> bits, rem = (k mod S) A + r), whose
+// parts stay within the guard band and below A: the same quotient, exactly, so the same fragments.
+void hs_walk(ivec2 a, ivec2 b, ivec4 clip) {
     if (a == b) return;
-    int64_t dx = b.x - a.x, dy = b.y - a.y;
-    bool x_major = hs_abs64(dx) >= hs_abs64(dy);
-    int64_t major_a = x_major ? a.x : a.y, major_b = x_major ? b.x : b.y;
-    int64_t d_major = x_major ? dx : dy, d_minor = x_major ? dy : dx;
-    int64_t minor_a = x_major ? a.y : a.x;
-    int64_t lo_end = d_major > 0 ? major_a : major_b, hi_end = d_major > 0 ? major_b : major_a;
-    int64_t first = hs_ceil_div(lo_end - HS_H, HS_S), last = hs_ceil_div(hi_end - HS_H, HS_S) - 1;
-    int64_t m_begin = hs_max64(first, int64_t(x_major ? clip.x : clip.y)), m_end = hs_min64(last, int64_t(x_major ? clip.z : clip.w) - 1);
-    int64_t denom = (d_major > 0 ? d_major : -d_major) * HS_S;
-    int64_t sign = d_major > 0 ? 1 : -1;
+    int dx = b.x - a.x, dy = b.y - a.y;
+    bool x_major = abs(dx) >= abs(dy);
+    int major_a = x_major ? a.x : a.y, major_b = x_major ? b.x : b.y;
+    int d_major = x_major ? dx : dy, d_minor = x_major ? dy : dx;
+    int minor_a = x_major ? a.y : a.x;
+    int lo_end = d_major > 0 ? major_a : major_b, hi_end = d_major > 0 ? major_b : major_a;
+    // Centres crossed: ceil((end - H) / S), by the shift's floor.
+    int first = (lo_end - HS_H + HS_S - 1) >> HS_SUBPIXEL_BITS, last = ((hi_end - HS_H + HS_S - 1) >> HS_SUBPIXEL_BITS) - 1;
+    int m_begin = max(first, x_major ? clip.x : clip.y), m_end = min(last, (x_major ? clip.z : clip.w) - 1);
     bool lower_on_tie = !x_major || dy == 0 || ((dx > 0) != (dy > 0));
     if (m_begin <= m_end) {
-        int64_t num0 = sign * (minor_a * d_major + (m_begin * HS_S + HS_H - major_a) * d_minor);
-        int64_t n = hs_floor_div(num0, denom);
-        int64_t rem = num0 - n * denom;
-        int64_t step = sign * d_minor * HS_S;
-        int64_t step_q = step == denom ? 1 : (step < 0 ? -1 : 0);
-        int64_t step_r = step - step_q * denom;
-        for (int64_t m = m_begin; m <= m_end; ++m) {
-            int64_t minor = (lower_on_tie && rem == 0) ? n - 1 : n;
-            int64_t x = x_major ? m : minor, y = x_major ? minor : m;
-            if (x >= clip.x && x < clip.z && y >= clip.y && y < clip.w && !hs_inside_diamond(b, x, y)) hs_emit(int(x), int(y));
-            n += step_q;
-            rem += step_r;
-            if (rem >= denom) {
-                rem -= denom;
-                ++n;
+        int A = abs(d_major), sign = d_major > 0 ? 1 : -1;
+        // The first centre's distance from a along the major axis, in [0, A] (first <= m_begin <= last),
+        // and the minor coordinate there: minor_a + o d_minor / A.
+        int o = sign * (m_begin * HS_S + HS_H - major_a);
+        ivec2 start = hs_product_quotient(o, d_minor, A);
+        ivec2 step = hs_product_quotient(HS_S, sign * d_minor, A); // per centre
+        int k = minor_a + start.x, r = start.y;
+        for (int m = m_begin; m <= m_end; ++m) {
+            int n = k >> HS_SUBPIXEL_BITS;
+            int minor = (lower_on_tie && r == 0 && (k & (HS_S - 1)) == 0) ? n - 1 : n;
+            int x = x_major ? m : minor, y = x_major ? minor : m;
+            if (x >= clip.x && x < clip.z && y >= clip.y && y < clip.w && !hs_inside_diamond(b, x, y)) hs_emit(x, y);
+            k += step.x;
+            r += step.y;
+            if (r >= A) {
+                r -= A;
+                ++k;
             }
         }
     }
-    int64_t ax = hs_floor_div(a.x - 1, HS_S), ay = hs_floor_div(a.y - 1, HS_S);
-    int64_t a_major = x_major ? ax : ay;
+    int ax = (a.x - 1) >> HS_SUBPIXEL_BITS, ay = (a.y - 1) >> HS_SUBPIXEL_BITS;
+    int a_major = x_major ? ax : ay;
     if (hs_inside_diamond(a, ax, ay) && (a_major < first || a_major > last) && !hs_inside_diamond(b, ax, ay) && ax >= clip.x && ax < clip.z &&
         ay >= clip.y && ay < clip.w)
-        hs_emit(int(ax), int(ay));
+        hs_emit(ax, ay);
 }
 
 // The segment being walked, and its fragments' depth and optical depth (detail::segment_shader).
@@ -151,13 +179,13 @@ double hs_inv_length2 = 0.0lf;
 bool hs_constant_alpha = false;
 float hs_constant_b = 0.0;
 void hs_walk_current(ivec4 clip) {
-    hs_walk(i64vec2(hs_current.ends.xy), i64vec2(hs_current.ends.zw), clip);
+    hs_walk(hs_current.ends.xy, hs_current.ends.zw, clip);
 }
 
 // Window parameter of texel centre (x, y) along the segment, clamped to [0, 1].
 float hs_parameter(int x, int y) {
     int64_t dx = int64_t(hs_current.ends.z) - hs_current.ends.x, dy = int64_t(hs_current.ends.w) - hs_current.ends.y;
-    int64_t px = int64_t(x) * HS_S + HS_H - hs_current.ends.x, py = int64_t(y) * HS_S + HS_H - hs_current.ends.y;
+    int64_t px = int64_t(x * HS_S + HS_H - hs_current.ends.x), py = int64_t(y * HS_S + HS_H - hs_current.ends.y);
     return float(clamp(double(px * dx + py * dy) * hs_inv_length2, 0.0lf, 1.0lf));
 }
 // a + (b - a) s, rounded as the CPU rounds it.

@@ -74,7 +74,7 @@ TEST_CASE("GL Fourier opacity maps equal the CPU maps, and the GLSL look-up the 
     const auto fragments = rasterize(model, light);
     SECTION("7 coefficients, undamped") { check_compute_path(fourier_opacity_maps<7>(), model, light, mesh, fragments); }
     SECTION("7 coefficients in 8 bits: the encoded terms' steps") { check_compute_path(fourier_opacity_maps<7, emulated_8bit>(), model, light, mesh, fragments); }
-    SECTION("15 coefficients, damped: two walks of the tile, 8 sums each") {
+    SECTION("15 coefficients, damped: more sums than one walk holds at 32 KiB") {
         const fourier_opacity_maps<15> damped{depth_range<1>(), fourier_series<15>(true)};
         check_compute_path(damped, model, light, mesh, fragments);
         gl::maps<fourier_opacity_maps<15>> on_gl(damped);

@@ -316,7 +316,8 @@ private:
     static program link_compute_program() {
         const std::string format = accumulation::image_defines("HS_LAYERS_FORMAT");
         if constexpr (range_placement<P>) {
-            const int group = std::min(8, 4 * array_layers); // layers summed per walk: 16 KiB of sums
+            // Layers summed per walk: 8 bytes a sum (4 for 8-bit steps), beside the texels' ranges.
+            const int group = detail::sums_per_walk(layers, accumulation::unorm8 ? 4 : 8, detail::compute_tile * detail::compute_tile * 8);
             return detail::link_compute_pass(defines(1) + format + "#define HS_LAYER_GROUP " + std::to_string(group) + "\n#define HS_SUM_SLOTS " +
                                                  std::to_string(group) + "\n",
                                              around_placement<P>({accumulation::source(), shaders::compute_tile_sums, shaders::arithmetic_exact_division, shaders::placement_common}, {}),

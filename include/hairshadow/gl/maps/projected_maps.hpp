@@ -73,9 +73,13 @@ public:
         const int res = this->light_.resolution();
         allocate(res);
         if (pass.compute()) {
-            // shaders/compute/projection: one work group per tile of the light pass's lists, 8 sums a walk.
+            // shaders/compute/projection: one work group per tile of the light pass's lists, as many sums
+            // a walk as shared memory holds beside the texels' ranges (8 bytes a sum, 4 for 8-bit steps).
             if (!compute_program_)
-                compute_program_ = detail::link_compute_pass(compute_defines() + "#define HS_SUM_SLOTS 8\n",
+                compute_program_ = detail::link_compute_pass(compute_defines() + "#define HS_SUM_SLOTS " +
+                                                                 std::to_string(detail::sums_per_walk(sums, accumulation::unorm8 ? 4 : 8,
+                                                                                                      detail::compute_tile * detail::compute_tile * 8)) +
+                                                                 "\n",
                                                              {accumulation::source(), shaders::compute_tile_sums, shaders::arithmetic_exact_division, shaders::placement_common,
                                                               reconstruction_source(), shaders::reconstruction_depth_projection},
                                                              shaders::compute_projection, "compute/projection");

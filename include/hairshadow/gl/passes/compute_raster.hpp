@@ -35,9 +35,13 @@ enum class build_path {
 inline std::string_view to_string(build_path p) noexcept { return p == build_path::compute ? "compute" : "raster"; }
 
 /// What the current context lacks for build_path::compute, or "" when it has everything: GL 4.3
-/// (compute shaders), GL_ARB_gpu_shader_int64 (the line rule's 64-bit integers), 8 shader storage
-/// blocks and 4 image units in a compute shader, and 32 KiB of shared memory per work group.
+/// (compute shaders), GL_ARB_gpu_shader_int64 (the window parameter's and the sums' 64-bit integers), 8 shader
+/// storage blocks and 4 image units in a compute shader, and 32 KiB of shared memory per work group.
+/// The build itself must keep HAIRSHADOW_SUBPIXEL_BITS within [1, 9], where the compute line rule's
+/// 32-bit words hold every guard-band coordinate (shaders/compute/common.glsl).
 inline std::string compute_path_missing() {
+    if constexpr (HAIRSHADOW_SUBPIXEL_BITS < 1 || HAIRSHADOW_SUBPIXEL_BITS > 9)
+        return "HAIRSHADOW_SUBPIXEL_BITS within [1, 9] (this build has " + std::to_string(HAIRSHADOW_SUBPIXEL_BITS) + ")";
     if (gl_version() < 43) return "OpenGL 4.3 (compute shaders)";
     bool int64 = false;
     GLint count = 0;
@@ -76,6 +80,23 @@ inline std::vector<std::string_view> compute_pieces(const std::string& defines) 
     static const std::string common_defines = "#extension GL_ARB_gpu_shader_int64 : require\n#define HS_SUBPIXEL_BITS " + std::to_string(HAIRSHADOW_SUBPIXEL_BITS) + "\n#define HS_ALPHA_MAX " +
                                               std::to_string(HAIRSHADOW_ALPHA_MAX) + "\n";
     return {common_defines, defines, shaders::arithmetic_exact_division, shaders::compute_common};
+}
+
+/// Sums a compute pass keeps per texel in one walk of a tile's segments (HS_SUM_SLOTS), in whole groups
+/// of four (the passes store array layers of four): the fewest walks that the context's shared memory
+/// allows beside `other_bytes`, at `slot_bytes` a sum for each of a tile's texels, and then the
+/// smallest group that needs no more walks, so that no walk holds more memory than it must. 32 KiB,
+/// the least compute_path_missing accepts, holds 12 float sums: OSM 64 in 6 walks. Every walk costs
+/// a pass over the tile's segments (BENCHMARKS.md); what a larger group costs a GPU in work groups
+/// resident at once is not measured.
+inline int sums_per_walk(int needed, int slot_bytes, int other_bytes) {
+    GLint limit = 0;
+    glGetIntegerv(GL_MAX_COMPUTE_SHARED_MEMORY_SIZE, &limit);
+    const int group_bytes = compute_tile * compute_tile * 4 * slot_bytes;
+    const int most = std::max(1, (int(limit) - other_bytes) / group_bytes); // groups of four a walk holds
+    const int groups = (std::max(needed, 1) + 3) / 4;
+    const int walks = (groups + most - 1) / most;
+    return 4 * ((groups + walks - 1) / walks);
 }
 
 inline void set_uniform(GLuint prog, const char* name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }
