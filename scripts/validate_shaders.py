@@ -226,15 +226,14 @@ WIDE = ("Float64", "Int64", "Int64Atomics")
 
 
 def wide_allowed(name: str) -> set:
-    """The wide capabilities composition `name` may need, and must. Raster programs need none. Every
-    compute program still declares compute/common's double reciprocal of t (hs_inv_length2), and all
-    but the prepare/scan/scatter passes compute t from a 64-bit dot product (hs_parameter) or sum in
-    64-bit words (compute/tile_sums); the line walk itself is 32-bit."""
-    if not name.startswith("compute_"):
-        return set()
-    if name in ("compute_prepare", "compute_scan", "compute_scatter"):
-        return {"Float64"}
-    return {"Float64", "Int64"}
+    """The wide capabilities composition `name` may need, and must. Raster and look-up programs need
+    none, nor do the compute passes that prepare the segments (float clip and snap), walk the lines
+    (32-bit words), shade fragments (float t) and sum them (compute/tile_sums, two 32-bit words).
+    Density clustering (compute/clusters) still takes its fixed-point terms, means and deviations
+    through double and 64-bit integers."""
+    if name.startswith("compute_clusters_"):
+        return {"Float64", "Int64"}
+    return set()
 
 
 def wide_capabilities(validator: str, path: pathlib.Path) -> tuple:

@@ -4,6 +4,10 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <random>
+
 using namespace hairshadow;
 
 namespace {
@@ -184,4 +188,70 @@ TEST_CASE("a segment from far outside a perspective map is clipped, not dropped"
         for (int x = 130; x < 250; ++x) found += int(fb.texel(x, y).size());
     CHECK(found > 100);
     CHECK(found < 130);
+}
+
+TEST_CASE("a fragment's window parameter, taken in float, is within a few ULP of the exact quotient", "[raster]") {
+    // segment_shader::parameter: (p . d) / |d|^2 from float conversions, products rounded on their
+    // own and a reciprocal of |d|^2, the same on the CPU, in AVX-512 lanes and on the GPU. Against the
+    // exact quotient of the integers, for lengths from one sub-pixel to the guard band's and centres
+    // on and beside the segment: each product, the sum and the reciprocal round once, so the error is
+    // a few ULP of the larger product over |d|^2 (cancellation near the start) and of t itself.
+    const auto ls = light_space::fit(light_spec::directional({0, 0, -1}), {{-1, -1, -1}, {1, 1, 1}}, 256);
+    std::mt19937 random(2043);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const double band = double(std::int64_t(1) << 20) * double(subpixel_scale);
+    int checked = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const double length = std::exp2(unit(random) * std::log2(band));
+        const double angle = unit(random) * 6.283185307179586;
+        const double ax = (unit(random) * 2.0 - 1.0) * band, ay = (unit(random) * 2.0 - 1.0) * band;
+        detail::prepared_segment s{};
+        s.ax = std::int32_t(ax), s.ay = std::int32_t(ay);
+        s.bx = std::int32_t(std::clamp(ax + length * std::cos(angle), -band, band));
+        s.by = std::int32_t(std::clamp(ay + length * std::sin(angle), -band, band));
+        if (s.empty()) continue;
+        s.depth_a = 0.25f, s.depth_b = 0.75f, s.inv_w_a = s.inv_w_b = 1.0f;
+        const detail::segment_shader shader(ls, raster_options{}, s, {0.001f, 0.001f, 1.0f, 1.0f});
+        // A texel near the point at a random parameter (a little before the start or past the end too).
+        const double f = unit(random) * 1.2 - 0.1;
+        const int x = int(std::floor((s.ax + f * (double(s.bx) - s.ax)) / subpixel_scale)) + int(random() % 3) - 1;
+        const int y = int(std::floor((s.ay + f * (double(s.by) - s.ay)) / subpixel_scale)) + int(random() % 3) - 1;
+        __extension__ typedef __int128 i128;
+        const i128 dx = i128(s.bx) - s.ax, dy = i128(s.by) - s.ay;
+        const i128 px = i128(x) * subpixel_scale + subpixel_scale / 2 - s.ax, py = i128(y) * subpixel_scale + subpixel_scale / 2 - s.ay;
+        const long double exact = std::clamp((long double)(px * dx + py * dy) / (long double)(dx * dx + dy * dy), 0.0L, 1.0L);
+        const long double products = ((long double)(px < 0 ? -px : px) * (long double)(dx < 0 ? -dx : dx) +
+                                      (long double)(py < 0 ? -py : py) * (long double)(dy < 0 ? -dy : dy)) /
+                                     (long double)(dx * dx + dy * dy);
+        const float t = shader.parameter(x, y);
+        CAPTURE(s.ax, s.ay, s.bx, s.by, x, y, t, double(exact));
+        REQUIRE(std::abs((long double)t - exact) <= std::ldexp(6.0L, -24) * (products + exact));
+        REQUIRE(std::signbit(t) == false); // -0 clamps to +0
+        ++checked;
+    }
+    CHECK(checked > 19000);
+}
+
+TEST_CASE("segments from beyond the guard band are clipped to it, never dropped", "[raster]") {
+    // A spot light's window coordinates run to 2^36 texels near its plane. The clip to the +-2^20-texel
+    // band takes its parameter in float, a few ULP off, so an end can land just past the band: it is
+    // clamped to it, or the whole segment, inside part and all, would be dropped.
+    const auto ls = light_space::fit(light_spec::spot({0, 0, 0}, {0, 0, -1}, 10.0f), {{-1, -1, -1.2f}, {1, 1, -0.001f}}, 256);
+    std::mt19937 random(4300);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    int beyond = 0;
+    for (int i = 0; i < 4000; ++i) {
+        const float angle = unit(random) * 6.2831853f, reach = std::exp2(5.0f + unit(random) * 12.0f);
+        const glm::vec3 p0{reach * std::cos(angle), reach * std::sin(angle), -0.002f - 0.001f * unit(random)};
+        const glm::vec3 p1{0.05f * (unit(random) - 0.5f), 0.05f * (unit(random) - 0.5f), -1.0f};
+        const auto pp0 = detail::project_point(ls, p0), pp1 = detail::project_point(ls, p1);
+        beyond += std::abs(pp0.projected.window.x) > detail::guard_band || std::abs(pp0.projected.window.y) > detail::guard_band;
+        detail::segment_attributes at{0.001f, 0.002f, 1.0f, 0.5f};
+        detail::prepared_segment s{};
+        CAPTURE(i, p0.x, p0.y, p0.z, p1.x, p1.y);
+        REQUIRE(detail::prepare_segment(ls, p0, p1, pp0, pp1, at, s));
+        const std::int64_t band = std::int64_t(detail::guard_band) * subpixel_scale;
+        REQUIRE(std::max({std::abs(std::int64_t(s.ax)), std::abs(std::int64_t(s.ay)), std::abs(std::int64_t(s.bx)), std::abs(std::int64_t(s.by))}) <= band);
+    }
+    CHECK(beyond > 3500);
 }

@@ -17,7 +17,10 @@ ivec2 hs_origin;
 int hs_walk_kind;
 
 const double HS_FIXED = 68719476736.0lf; // 2^36: clustered::fixed_sum
-int64_t hs_fixed(double x) { return int64_t(x * HS_FIXED); }
+uvec2 hs_fixed(double x) { // trunc(x 2^36), two's complement, as (low, high) words for hs_add_fixed
+    uint64_t v = uint64_t(int64_t(x * HS_FIXED));
+    return uvec2(uint(v & 0xffffffffUL), uint(v >> 32));
+}
 
 // Initial k-means centre j: the middle of the j-th of K equal parts of [nearest, furthest].
 float hs_centre(vec2 range, int j) {
@@ -58,7 +61,7 @@ void hs_emit(int x, int y) {
     hs_add_sum(texel * uint(HS_SUM_SLOTS) + uint(hs_assign(mean, sigma, depth)), b);
 }
 
-int64_t hs_signed_sum(uint slot) { return int64_t(hs_sum(slot)); }
+int64_t hs_signed_sum(uint slot) { uvec2 s = hs_sum(slot); return int64_t((uint64_t(s.y) << 32) | uint64_t(s.x)); }
 
 void main() {
     uint tile = gl_WorkGroupID.y * uint(hs_tiles_x) + gl_WorkGroupID.x;

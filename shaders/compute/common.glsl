@@ -1,10 +1,10 @@
 // What every pass of the compute build shares (gl/passes/compute_raster.hpp): the prepared segments and their
 // tiles, and the line rule of raster/line_rule.hpp in 32-bit integers, so that a tile's work group
 // makes exactly the fragments the CPU rasteriser makes. A pass defines hs_emit(x, y), which the walk
-// calls for every fragment of the current segment inside the tile. The walk is 32-bit; the window
-// parameter t here, the passes' fixed-point sums and compute/prepare's snap and clip still need
-// GL_ARB_gpu_shader_int64 or double precision (GL 4.0): compute_pieces enables the extension first
-// (GLSL allows #extension only before any code, and arithmetic/exact_division comes before this).
+// calls for every fragment of the current segment inside the tile. Everything here is 32-bit: the
+// walk in integers, the fragments' parameter, depth and optical depth in float. compute_pieces still
+// enables GL_ARB_gpu_shader_int64 for every program (GLSL allows #extension only before any code),
+// for density clustering's sake, which still uses 64-bit integers and double precision.
 
 // Coordinates lie within the guard band, |c| <= 2^(20 + bits) sub-pixels, so with at most 9 bits every
 // difference and every remainder of the walk below fits a 32-bit int (compute_path_missing says so).
@@ -174,7 +174,8 @@ void hs_walk(ivec2 a, ivec2 b, ivec4 clip) {
 
 // The segment being walked, and its fragments' depth and optical depth (detail::segment_shader).
 hs_segment hs_current = hs_segment(ivec4(0), vec4(0.0), vec4(0.0));
-double hs_inv_length2 = 0.0lf;
+vec2 hs_delta = vec2(0.0);    // b - a in sub-pixels, converted exactly or correctly rounded
+float hs_inv_length2 = 0.0;   // 1 / |b - a|^2, correctly rounded (hs_div_rn)
 
 bool hs_constant_alpha = false;
 float hs_constant_b = 0.0;
@@ -182,11 +183,15 @@ void hs_walk_current(ivec4 clip) {
     hs_walk(hs_current.ends.xy, hs_current.ends.zw, clip);
 }
 
-// Window parameter of texel centre (x, y) along the segment, clamped to [0, 1].
+// Window parameter of texel centre (x, y) along the segment, clamped to [0, 1]: segment_shader::parameter,
+// operation for operation (precise: each product rounded on its own; the offsets are exact 32-bit
+// integers within the guard band, and GLSL converts them to float correctly rounded). -0 gives +0.
 float hs_parameter(int x, int y) {
-    int64_t dx = int64_t(hs_current.ends.z) - hs_current.ends.x, dy = int64_t(hs_current.ends.w) - hs_current.ends.y;
-    int64_t px = int64_t(x * HS_S + HS_H - hs_current.ends.x), py = int64_t(y * HS_S + HS_H - hs_current.ends.y);
-    return float(clamp(double(px * dx + py * dy) * hs_inv_length2, 0.0lf, 1.0lf));
+    precise float px = float(x * HS_S + HS_H - hs_current.ends.x), py = float(y * HS_S + HS_H - hs_current.ends.y);
+    precise float along_x = px * hs_delta.x, along_y = py * hs_delta.y;
+    precise float dot = along_x + along_y;
+    precise float t = dot * hs_inv_length2;
+    return t > 0.0 ? min(t, 1.0) : 0.0;
 }
 // a + (b - a) s, rounded as the CPU rounds it.
 float hs_lerp_exact(float a, float b, float s) {
@@ -262,8 +267,10 @@ float hs_optical_depth_of(float alpha) {
 // with a footprint that does not change with depth) works out its b once, as the CPU does.
 void hs_begin_segment(uint index) {
     hs_current = hs_segments[index];
-    int64_t dx = int64_t(hs_current.ends.z) - hs_current.ends.x, dy = int64_t(hs_current.ends.w) - hs_current.ends.y;
-    hs_inv_length2 = 1.0lf / double(dx * dx + dy * dy);
+    hs_delta = vec2(hs_current.ends.zw - hs_current.ends.xy);
+    precise float dx2 = hs_delta.x * hs_delta.x, dy2 = hs_delta.y * hs_delta.y;
+    precise float length2 = dx2 + dy2;
+    hs_inv_length2 = hs_div_rn(1.0, length2);
     hs_constant_alpha = hs_use_fixed_alpha || (!hs_footprint_varies && hs_current.attributes.x == hs_current.attributes.y &&
                                                 hs_current.attributes.z == hs_current.attributes.w);
 #ifndef HS_DEPTH_ONLY

@@ -26,7 +26,7 @@ void main() {
     bool inside = texel.x < hs_resolution && texel.y < hs_resolution;
     vec4 range = inside ? texelFetch(hs_range_map, texel, 0) : vec4(0.0);
     hs_texel_range[me] = range.xw;
-    uint64_t running = 0UL;
+    uvec2 running = uvec2(0u); // the sum so far, (low, high) words
     for (hs_group_first = 0; hs_group_first < HS_LAYERS; hs_group_first += HS_LAYER_GROUP) {
         hs_clear_sums();
         barrier();
@@ -38,7 +38,7 @@ void main() {
                 for (int c = 0; c < 4; ++c) {
                     int layer = 4 * array_layer + c;
                     if (layer >= HS_LAYERS) break;
-                    uint64_t sum = hs_sum(me * uint(HS_SUM_SLOTS) + uint(layer - hs_group_first));
+                    uvec2 sum = hs_sum(me * uint(HS_SUM_SLOTS) + uint(layer - hs_group_first));
 #ifdef HS_CUMULATIVE
                     running = hs_combine(running, sum);
                     v[c] = hs_stored(running);

@@ -1,8 +1,7 @@
 // Compute build, step 1 (one invocation per segment): reads the segment's two points from the mesh's
 // buffers, clips it to the light's depth range and the guard band, projects and snaps it exactly as
 // hairshadow::detail::prepare_segment does (the same operations in the same order, no fused
-// multiply-adds; float quotients by hs_div_rn, the guard-band clip's double quotients by the driver's
-// double division, which llvmpipe rounds correctly), counts it in every tile its box meets, and widens the
+// multiply-adds; every quotient by hs_div_rn, no double precision), counts it in every tile its box meets, and widens the
 // whole map's extent by its ends, as segment_bins does. A long segment (its box over more than
 // HS_SHORT_TILES tiles) goes to the long list instead of the tiles.
 layout(local_size_x = 256) in;
@@ -59,11 +58,14 @@ vec3 hs_point(uint i) {
 float hs_thickness(uint i) { return hs_thickness_constant ? hs_thickness_value : hs_thickness_data[hs_thickness_layout.x + i * hs_thickness_layout.y]; }
 float hs_opacity(uint i) { return hs_opacity_constant ? hs_opacity_value : hs_opacity_data[hs_opacity_layout.x + i * hs_opacity_layout.y]; }
 
-// Window coordinate to sub-pixel fixed point, half away from zero (detail::snap).
+// Window coordinate to sub-pixel fixed point, half away from zero (detail::snap, which takes it
+// through double): x = window S is exact (a power of two; |window| <= 2^20), so are its whole part
+// and fraction, and the fraction decides.
 int hs_snap(float window) {
-    precise double x = double(window) * double(HS_S);
-    precise double r = x + (x < 0.0lf ? -0.5lf : 0.5lf);
-    return int(r);
+    precise float x = window * float(HS_S);
+    float whole = trunc(x);
+    precise float fraction = x - whole;
+    return int(whole) + (abs(fraction) >= 0.5 ? (x < 0.0 ? -1 : 1) : 0);
 }
 
 // Clipping to f >= 0 (prepare_segment's clip): narrows [s0, s1]; false when nothing is left.
@@ -77,18 +79,24 @@ bool hs_clip(float f0, float f1, inout float s0, inout float s1) {
 
 bool hs_in_band(hs_light_point p) { return abs(p.window.x) <= HS_GUARD_BAND && abs(p.window.y) <= HS_GUARD_BAND; }
 
+// (1 - s) / w_a + s / w_b, each product rounded on its own (prepare_segment's weights).
+float hs_weights(float s, float ia, float ib) {
+    precise float wa = (1.0 - s) * ia, wb = s * ib;
+    precise float sum = wa + wb;
+    return sum;
+}
 // Window parameter s to the attributes' parameter, perspective-correct (prepare_segment's perspective).
-float hs_perspective(double s, double ia, double ib) {
-    precise double sb = s * ib;
-    precise double den = (1.0lf - s) * ia + s * ib;
-    return float(sb / den);
+float hs_perspective(float s, float ia, float ib) {
+    precise float sb = s * ib;
+    return hs_div_rn(sb, hs_weights(s, ia, ib));
 }
 // A segment's end where it leaves the guard band, at window parameter s (attribute parameter u).
-hs_light_point hs_band_end(hs_light_point a0, hs_light_point b0, double s, float u, double ia, double ib) {
-    precise double x = double(a0.window.x) + s * (double(b0.window.x) - double(a0.window.x));
-    precise double y = double(a0.window.y) + s * (double(b0.window.y) - double(a0.window.y));
-    precise double den = (1.0lf - s) * ia + s * ib;
-    return hs_light_point(vec2(float(x), float(y)), hs_lerp_exact(a0.depth, b0.depth, u), float(1.0lf / den));
+hs_light_point hs_band_end(hs_light_point a0, hs_light_point b0, float s, float u, float ia, float ib) {
+    precise vec2 delta = b0.window - a0.window;
+    precise vec2 along = s * delta;
+    precise vec2 window = a0.window + along;
+    // Clamped to the band: a parameter a few ULP off can put the end just past it (prepare_segment).
+    return hs_light_point(clamp(window, -HS_GUARD_BAND, HS_GUARD_BAND), hs_lerp_exact(a0.depth, b0.depth, u), hs_div_rn(1.0, hs_weights(s, ia, ib)));
 }
 
 // The segment's prepared form; false when nothing of it is left to draw.
@@ -108,23 +116,25 @@ bool hs_prepare(vec3 p0, vec3 p1, inout vec4 at, out hs_segment out_segment) {
         b = hs_project(q1, hs_distance_of(q1));
     }
     if (!(hs_in_band(a) && hs_in_band(b))) {
-        double lo_s = 0.0lf, hi_s = 1.0lf;
+        float lo_s = 0.0, hi_s = 1.0;
         for (int axis = 0; axis < 2; ++axis) {
-            double from = double(a.window[axis]), delta = double(b.window[axis]) - from;
+            float from = a.window[axis];
+            float delta = b.window[axis] - from; // no product to fuse with: no need of precise (which, here, sends glslang into a loop)
+            if (isinf(delta) || isnan(delta)) return false; // ends beyond float's range
             for (int side = 0; side < 2; ++side) {
                 bool upper = side == 1;
-                double limit = upper ? double(HS_GUARD_BAND) : -double(HS_GUARD_BAND);
-                if (delta == 0.0lf) {
+                float limit = upper ? HS_GUARD_BAND : -HS_GUARD_BAND;
+                if (delta == 0.0) {
                     if (upper ? from > limit : from < limit) return false;
                     continue;
                 }
-                double s = (limit - from) / delta;
-                if ((delta > 0.0lf) == upper) hi_s = min(hi_s, s);
+                float s = hs_div_rn(limit - from, delta);
+                if ((delta > 0.0) == upper) hi_s = min(hi_s, s);
                 else lo_s = max(lo_s, s);
             }
         }
         if (!(lo_s < hi_s)) return false;
-        double ia = 1.0lf / double(a.w), ib = 1.0lf / double(b.w);
+        float ia = hs_div_rn(1.0, a.w), ib = hs_div_rn(1.0, b.w);
         float u_lo = hs_perspective(lo_s, ia, ib), u_hi = hs_perspective(hi_s, ia, ib);
         at = vec4(hs_lerp_exact(at.x, at.y, u_lo), hs_lerp_exact(at.x, at.y, u_hi), hs_lerp_exact(at.z, at.w, u_lo), hs_lerp_exact(at.z, at.w, u_hi));
         hs_light_point a0 = a, b0 = b;

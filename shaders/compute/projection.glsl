@@ -41,7 +41,7 @@ void main() {
 #ifdef HS_EIGHT_BIT
                     v[c] = hs_stored(hs_sum(slot));
 #else
-                    v[c] = float(double(int64_t(hs_sum(slot))) / 1099511627776.0lf); // signed: the terms may be negative
+                    v[c] = hs_stored_signed(hs_sum(slot)); // the terms may be negative
 #endif
                 }
                 imageStore(hs_sums_image, ivec3(texel, layer), v);

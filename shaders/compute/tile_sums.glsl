@@ -33,45 +33,71 @@ uint hs_eight_bit_step(float b) {
 #endif
 
 #ifdef HS_WIDE_SUMS
-// Adds a 64-bit integer (two's complement, so negative terms too) to a slot.
-void hs_add_fixed(uint slot, int64_t value) {
-    uint64_t q = uint64_t(value);
-    uint low = uint(q & 0xffffffffUL), high = uint(q >> 32);
-    uint before = atomicAdd(hs_sum_low[slot], low);
-    if (before + low < before) ++high; // the low word carried
+// Adds a 64-bit integer, two's complement (so negative terms too) as (low word, high word), to a slot.
+void hs_add_fixed(uint slot, uvec2 value) {
+    uint before = atomicAdd(hs_sum_low[slot], value.x);
+    uint high = value.y + (before + value.x < before ? 1u : 0u); // the low word carried
     if (high != 0u) atomicAdd(hs_sum_high[slot], high);
 }
 #endif
+
+// trunc(x 2^40) for |x| below 2^23 as (low, high) words, two's complement: int64_t(x * 2^40) on the
+// CPU (the projected methods' terms may be negative). The scaling by powers of two, the floor and the
+// difference are exact in float; uint() truncates the fraction; a negative x negates the magnitude's.
+uvec2 hs_fixed_words(float x) {
+    precise float scaled = abs(x) * 1099511627776.0;
+    precise float high = floor(scaled * (1.0 / 4294967296.0));
+    precise float low = scaled - high * 4294967296.0;
+    uvec2 magnitude = uvec2(uint(low), uint(high));
+    if (x >= 0.0) return magnitude;
+    return uvec2(~magnitude.x + 1u, ~magnitude.y + (magnitude.x == 0u ? 1u : 0u));
+}
 
 void hs_add_sum(uint slot, float b) {
 #ifdef HS_EIGHT_BIT
     atomicAdd(hs_sum_low[slot], hs_eight_bit_step(b));
 #else
-    hs_add_fixed(slot, int64_t(b * 1099511627776.0)); // b 2^40: exact for b >= 2^-16
+    hs_add_fixed(slot, hs_fixed_words(b)); // b 2^40: exact for b >= 2^-16
 #endif
 }
 
-// A slot's sum: 2^40 times the optical depth, or the 8-bit steps (unsaturated).
-uint64_t hs_sum(uint slot) {
+// A slot's sum as (low, high) words: 2^40 times the optical depth, or the 8-bit steps (unsaturated).
+uvec2 hs_sum(uint slot) {
 #ifndef HS_WIDE_SUMS
-    return uint64_t(hs_sum_low[slot]);
+    return uvec2(hs_sum_low[slot], 0u);
 #else
-    return (uint64_t(hs_sum_high[slot]) << 32) | uint64_t(hs_sum_low[slot]);
+    return uvec2(hs_sum_low[slot], hs_sum_high[slot]);
 #endif
 }
 // a + b as the accumulation combines them (the 8-bit sum saturates).
-uint64_t hs_combine(uint64_t a, uint64_t b) {
+uvec2 hs_combine(uvec2 a, uvec2 b) {
 #ifdef HS_EIGHT_BIT
-    return a + b < 255UL ? a + b : 255UL;
+    return uvec2(min(a.x + b.x, 255u), 0u); // a at most 255, b a slot's step sum: far below 2^32
 #else
-    return a + b;
+    uint low = a.x + b.x;
+    return uvec2(low, a.y + b.y + (low < a.x ? 1u : 0u));
 #endif
 }
+// An unsigned 64-bit integer (low, high) as a float, rounded to nearest even once, as float(double(v))
+// is for the CPU's sums (below 2^53, a double holds them exactly): its top 32 bits, with a sticky bit
+// for any bit below them, convert correctly rounded (GLSL's uint-to-float conversion), then scale.
+float hs_float_of_words(uvec2 v) {
+    if (v.y == 0u) return float(v.x);
+    int shift = 31 - findMSB(v.y); // leading zeros of the high word
+    uint top = shift == 0 ? v.y : (v.y << shift) | (v.x >> (32 - shift));
+    uint below = v.x << shift; // shift < 32
+    return ldexp(float(top | (below != 0u ? 1u : 0u)), 32 - shift);
+}
 // The value a texture stores for a sum: the optical depth, or the 8-bit level over 255.
-float hs_stored(uint64_t sum) {
+float hs_stored(uvec2 sum) {
 #ifdef HS_EIGHT_BIT
-    return float(sum < 255UL ? sum : 255UL) / 255.0;
+    return float(min(sum.x, 255u)) / 255.0;
 #else
-    return float(double(sum) / 1099511627776.0lf);
+    return hs_float_of_words(sum) * (1.0 / 1099511627776.0); // a power of two: exact
 #endif
+}
+// The same for a signed sum (two's complement), whose terms may be negative.
+float hs_stored_signed(uvec2 sum) {
+    if ((sum.y & 0x80000000u) == 0u) return hs_stored(sum);
+    return -hs_stored(uvec2(~sum.x + 1u, ~sum.y + (sum.x == 0u ? 1u : 0u))); // the magnitude, as x >= 0 has it
 }

@@ -2723,31 +2723,36 @@ HAIRSHADOW_ALWAYS_INLINE inline bool prepare_segment(const light_space& ls, glm:
     }
     // Perspective lights can throw points near the near plane far off the map: clip to the guard
     // band in window space, with the attributes at a clipped end interpolated perspective-correctly,
-    // as GL would.
+    // as GL would. In float, every product rounded on its own, as compute/prepare does it on the GPU.
+    // The parameter is a few ULP off, which can put a clipped end past the band (by about a texel
+    // for an end at 2^24 texels): the ends are clamped to it, or the check below would drop the
+    // whole segment.
     if (!(std::abs(a.window.x) <= guard_band && std::abs(a.window.y) <= guard_band && std::abs(b.window.x) <= guard_band &&
           std::abs(b.window.y) <= guard_band)) [[unlikely]] {
-        double lo_s = 0.0, hi_s = 1.0;
+        float lo_s = 0.0f, hi_s = 1.0f;
         for (int axis = 0; axis < 2; ++axis) {
-            const double from = a.window[axis], delta = double(b.window[axis]) - from;
-            for (const double limit : {-double(guard_band), double(guard_band)}) {
+            const float from = a.window[axis], delta = b.window[axis] - from;
+            if (!std::isfinite(delta)) return false; // ends beyond float's range: nothing sensible to draw
+            for (const float limit : {-guard_band, guard_band}) {
                 const bool upper = limit > 0;
-                if (delta == 0.0) {
+                if (delta == 0.0f) {
                     if (upper ? from > limit : from < limit) return false;
                     continue;
                 }
-                const double s = (limit - from) / delta;
+                const float s = (limit - from) / delta;
                 if ((delta > 0) == upper) hi_s = std::min(hi_s, s);
                 else lo_s = std::max(lo_s, s);
             }
         }
         if (!(lo_s < hi_s)) return false;
         const light_point a0 = a, b0 = b;
-        const double ia = 1.0 / a0.w, ib = 1.0 / b0.w;
-        auto perspective = [&](double s) { return float(s * ib / ((1.0 - s) * ia + s * ib)); }; // window -> attribute parameter
-        auto end = [&](double s) {
-            return light_point{glm::vec2(float(a0.window.x + s * (double(b0.window.x) - a0.window.x)),
-                                         float(a0.window.y + s * (double(b0.window.y) - a0.window.y))),
-                               lerp_exact(a0.depth, b0.depth, perspective(s)), float(1.0 / ((1.0 - s) * ia + s * ib))};
+        const float ia = 1.0f / a0.w, ib = 1.0f / b0.w;
+        auto weights = [&](float s) { return rounded(rounded((1.0f - s) * ia) + rounded(s * ib)); }; // (1 - s) / w_a + s / w_b
+        auto perspective = [&](float s) { return rounded(s * ib) / weights(s); };                     // window -> attribute parameter
+        auto end = [&](float s) {
+            return light_point{glm::vec2(std::clamp(a0.window.x + rounded(s * (b0.window.x - a0.window.x)), -guard_band, guard_band),
+                                         std::clamp(a0.window.y + rounded(s * (b0.window.y - a0.window.y)), -guard_band, guard_band)),
+                               lerp_exact(a0.depth, b0.depth, perspective(s)), 1.0f / weights(s)};
         };
         const float u_lo = perspective(lo_s), u_hi = perspective(hi_s);
         at = {lerp_exact(at.thickness_a, at.thickness_b, u_lo), lerp_exact(at.thickness_a, at.thickness_b, u_hi),
@@ -2771,16 +2776,22 @@ class segment_shader {
 public:
     segment_shader(const light_space& light, const raster_options& options, const prepared_segment& s, const segment_attributes& at) noexcept
         : light_(&light), s_(s), at_(at), fixed_alpha_(options.fixed_alpha.value_or(-1.0f)),
-          dx_(std::int64_t(s.bx) - s.ax), dy_(std::int64_t(s.by) - s.ay),
-          inv_length2_(1.0 / double(dx_ * dx_ + dy_ * dy_)), perspective_(s.inv_w_a != s.inv_w_b),
+          dx_(float(std::int64_t(s.bx) - s.ax)), dy_(float(std::int64_t(s.by) - s.ay)), inv_length2_(1.0f / rounded(rounded(dx_ * dx_) + rounded(dy_ * dy_))),
+          perspective_(s.inv_w_a != s.inv_w_b),
           depth_varies_(light.perspective() && options.depth_weighting), footprint_(light.texel_size(0.5f)) {}
 
     /// Window-space parameter of the texel centre (x, y) along a -> b, clamped to [0, 1], as in GL's
-    /// line interpolation. The numerator is an exact integer: one rounding, in the product.
+    /// line interpolation: (p . d) / |d|^2 in float alone, every product rounded on its own (no fused
+    /// multiply-add) and the reciprocal of |d|^2 taken once per segment, so that the AVX-512 walk and
+    /// the GPU's compute build (shaders/compute/common.glsl, hs_parameter) make the same bits. The
+    /// offsets and differences are exact integers; they and their products round once each where they
+    /// pass 2^24, a few ULP of t on long segments.
+    /// Negative values and -0 clamp to +0.
     HAIRSHADOW_ALWAYS_INLINE float parameter(int x, int y) const noexcept {
-        constexpr std::int64_t S = subpixel_scale, H = subpixel_scale / 2;
-        const std::int64_t px = std::int64_t(x) * S + H - s_.ax, py = std::int64_t(y) * S + H - s_.ay;
-        return float(std::clamp(double(px * dx_ + py * dy_) * inv_length2_, 0.0, 1.0));
+        constexpr std::int64_t S = subpixel_scale, H = S / 2;
+        const float px = float(std::int64_t(x) * S + H - s_.ax), py = float(std::int64_t(y) * S + H - s_.ay);
+        const float t = rounded(rounded(px * dx_) + rounded(py * dy_)) * inv_length2_;
+        return t > 0.0f ? std::min(t, 1.0f) : 0.0f;
     }
 
     /// The fragment's linear depth at window parameter t (the depth of shade(t)).
@@ -2810,8 +2821,6 @@ public:
     }
 
     const prepared_segment& segment() const noexcept { return s_; }
-    /// 1 / |b - a|^2 in sub-pixel units, as parameter() uses it.
-    double inverse_length2() const noexcept { return inv_length2_; }
     /// 1/w changes along the segment: attributes are interpolated perspective-correctly.
     bool perspective() const noexcept { return perspective_; }
 
@@ -2828,8 +2837,8 @@ private:
     prepared_segment s_;
     segment_attributes at_;
     float fixed_alpha_;
-    std::int64_t dx_, dy_;
-    double inv_length2_;
+    float dx_, dy_;        // b - a in sub-pixels
+    float inv_length2_;    // 1 / |b - a|^2, correctly rounded
     bool perspective_, depth_varies_;
     float footprint_;
 };
@@ -4467,8 +4476,8 @@ HAIRSHADOW_ALWAYS_INLINE inline std::array<std::uint32_t, L> layer_counts(const 
 /// fragments. Longer segments are walked one at a time, sixteen texels
 /// per step. Either way the fragments are compressed into the tile's store segment after segment, so
 /// that segment order, and every sum, is the scalar walk's. Every quantity is an integer, or an
-/// integer held exactly in a double, until the depth: that is a + (b - a) t, rounded as the scalar
-/// walk rounds it. Where the build allows any order (fragment_order::any), the tile's segments are
+/// integer held exactly in a double, until the depth: that is a + (b - a) t, t in float, rounded as
+/// the scalar walk rounds them. Where the build allows any order (fragment_order::any), the tile's segments are
 /// sorted by their steps in the tile and every batch walks in lockstep, each step's fragments stored
 /// as they come: no transpose, and few idle lanes however long the segments.
 
@@ -4511,30 +4520,23 @@ HAIRSHADOW_AVX512_TARGET inline __m512d high_pd(__m512i x) noexcept { return _mm
 HAIRSHADOW_AVX512_TARGET inline __m512i join_epi32(__m256i low, __m256i high) noexcept {
     return _mm512_inserti64x4(_mm512_castsi256_si512(low), high, 1);
 }
-HAIRSHADOW_AVX512_TARGET inline __m512 join_ps(__m256 low, __m256 high) noexcept {
-    return _mm512_castpd_ps(_mm512_insertf64x4(_mm512_castps_pd(_mm512_castps256_ps512(low)), _mm256_castps_pd(high), 1));
-}
 
 /// The depth along sixteen segments (or one, broadcast) at texel centres: segment_shader::parameter,
-/// t = ((x S + H - ax) dx + (y S + H - ay) dy) / |d|^2 clamped to [0, 1], with an exact numerator
-/// and one rounding, then lerp_exact, rounded as the scalar walk rounds them.
+/// t = ((x S + H - ax) dx + (y S + H - ay) dy) / |d|^2 clamped to [0, 1] in float, each product
+/// rounded on its own, then lerp_exact, rounded as the scalar walk rounds them. (max returns its
+/// second operand on equal zeros, so -0 clamps to +0 as the scalar comparison does.)
 struct depth_along {
     __m512i ax, ay;
-    __m512d dx_low, dx_high, dy_low, dy_high, inv_length2_low, inv_length2_high;
+    __m512 dx, dy, inv_length2;
     __m512 depth_a, depth_delta;
 
     HAIRSHADOW_AVX512_TARGET __m512 at(__m512i x, __m512i y) const noexcept {
         constexpr int bits = HAIRSHADOW_SUBPIXEL_BITS;
         const __m512i half = _mm512_set1_epi32(std::int32_t(subpixel_scale / 2));
-        const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
-        const __m512i px = _mm512_sub_epi32(_mm512_add_epi32(_mm512_slli_epi32(x, bits), half), ax);
-        const __m512i py = _mm512_sub_epi32(_mm512_add_epi32(_mm512_slli_epi32(y, bits), half), ay);
-        const __m512d t_low = _mm512_max_pd(
-            _mm512_min_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(low_pd(px), dx_low), _mm512_mul_pd(low_pd(py), dy_low)), inv_length2_low), one), zero);
-        const __m512d t_high = _mm512_max_pd(
-            _mm512_min_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(high_pd(px), dx_high), _mm512_mul_pd(high_pd(py), dy_high)), inv_length2_high), one),
-            zero);
-        const __m512 param = join_ps(_mm512_cvtpd_ps(t_low), _mm512_cvtpd_ps(t_high));
+        const __m512 px = _mm512_cvtepi32_ps(_mm512_sub_epi32(_mm512_add_epi32(_mm512_slli_epi32(x, bits), half), ax));
+        const __m512 py = _mm512_cvtepi32_ps(_mm512_sub_epi32(_mm512_add_epi32(_mm512_slli_epi32(y, bits), half), ay));
+        const __m512 dot = rounded(_mm512_add_ps(rounded(_mm512_mul_ps(px, dx)), rounded(_mm512_mul_ps(py, dy))));
+        const __m512 param = _mm512_max_ps(_mm512_min_ps(_mm512_mul_ps(dot, inv_length2), _mm512_set1_ps(1.0f)), _mm512_setzero_ps());
         return _mm512_add_ps(depth_a, rounded(_mm512_mul_ps(depth_delta, param))); // lerp_exact
     }
 };
@@ -4606,7 +4608,8 @@ struct major_steps {
 struct alignas(64) batch {
     std::int32_t ax[16], ay[16], bx[16], by[16];
     std::int32_t m_begin[16], count[16], end_major[16], end_minor[16], minor_extent[16], start_x[16], start_y[16];
-    double num0[16], step[16], denom[16], inv_denom[16], inv_length2[16];
+    double num0[16], step[16], denom[16], inv_denom[16];
+    float inv_length2[16];
     float start_depth[16];
     float depth_a[16], depth_delta[16];
     std::uint16_t x_major, tie, start, simd;
@@ -4615,14 +4618,17 @@ struct alignas(64) batch {
     HAIRSHADOW_AVX512_TARGET depth_along depths() const noexcept {
         const __m512i a_x = _mm512_load_si512(ax), a_y = _mm512_load_si512(ay);
         const __m512i dx = _mm512_sub_epi32(_mm512_load_si512(bx), a_x), dy = _mm512_sub_epi32(_mm512_load_si512(by), a_y);
-        return {a_x, a_y, low_pd(dx), high_pd(dx), low_pd(dy), high_pd(dy), _mm512_load_pd(inv_length2), _mm512_load_pd(inv_length2 + 8),
-                _mm512_load_ps(depth_a), _mm512_load_ps(depth_delta)};
+        return {a_x, a_y, _mm512_cvtepi32_ps(dx), _mm512_cvtepi32_ps(dy), _mm512_load_ps(inv_length2), _mm512_load_ps(depth_a), _mm512_load_ps(depth_delta)};
     }
     /// The depth along lane l's segment, in every lane.
     HAIRSHADOW_AVX512_TARGET depth_along depths(int l) const noexcept {
-        const __m512d dx = _mm512_set1_pd(double(bx[l] - ax[l])), dy = _mm512_set1_pd(double(by[l] - ay[l]));
-        const __m512d inv = _mm512_set1_pd(inv_length2[l]);
-        return {_mm512_set1_epi32(ax[l]), _mm512_set1_epi32(ay[l]), dx, dx, dy, dy, inv, inv, _mm512_set1_ps(depth_a[l]), _mm512_set1_ps(depth_delta[l])};
+        return {_mm512_set1_epi32(ax[l]),
+                _mm512_set1_epi32(ay[l]),
+                _mm512_set1_ps(float(bx[l] - ax[l])),
+                _mm512_set1_ps(float(by[l] - ay[l])),
+                _mm512_set1_ps(inv_length2[l]),
+                _mm512_set1_ps(depth_a[l]),
+                _mm512_set1_ps(depth_delta[l])};
     }
 };
 
@@ -4660,9 +4666,9 @@ HAIRSHADOW_AVX512_TARGET inline void set_up(batch& b, int w, int h) noexcept {
     _mm512_store_pd(b.denom + 8, high_pd(denom));
     _mm512_store_pd(b.inv_denom, _mm512_div_pd(ones, low_pd(denom)));
     _mm512_store_pd(b.inv_denom + 8, _mm512_div_pd(ones, high_pd(denom)));
-    _mm512_store_pd(b.inv_length2, _mm512_div_pd(ones, _mm512_add_pd(_mm512_mul_pd(low_pd(dx), low_pd(dx)), _mm512_mul_pd(low_pd(dy), low_pd(dy)))));
-    _mm512_store_pd(b.inv_length2 + 8,
-                    _mm512_div_pd(ones, _mm512_add_pd(_mm512_mul_pd(high_pd(dx), high_pd(dx)), _mm512_mul_pd(high_pd(dy), high_pd(dy)))));
+    // 1 / |d|^2 in float, as segment_shader takes it: products rounded on their own, then an IEEE division.
+    const __m512 dx_f = _mm512_cvtepi32_ps(dx), dy_f = _mm512_cvtepi32_ps(dy);
+    _mm512_store_ps(b.inv_length2, _mm512_div_ps(_mm512_set1_ps(1.0f), rounded(_mm512_add_ps(rounded(_mm512_mul_ps(dx_f, dx_f)), rounded(_mm512_mul_ps(dy_f, dy_f))))));
     // Ties on the minor axis go to the lower row or left column unless the line is x-major and rising.
     const __mmask16 opposite = __mmask16(_mm512_cmpgt_epi32_mask(dx, zero) ^ _mm512_cmpgt_epi32_mask(dy, zero));
     b.tie = std::uint16_t(__mmask16(~xm) | _mm512_cmpeq_epi32_mask(dy, zero) | opposite);

@@ -111,7 +111,7 @@ TEST_CASE("query --backend gl on either build path gives the CPU's transmittance
 }
 
 TEST_CASE("an explicit --gl-path compute names the extension a context lacks; the default falls back to raster", "[gl][cli][compute][errors]") {
-    // Mesa hides an extension when told to: here the 64-bit integers the window parameter and the sums need.
+    // Mesa hides an extension when told to: here the 64-bit integers (density clustering's, enabled for every compute program).
     test::temp_dir dir("gl_cli_no_int64");
     test::write_text(dir.file("points.txt"), "0 0 0\n0.1 -0.1 0\n");
     ::setenv("MESA_EXTENSION_OVERRIDE", "-GL_ARB_gpu_shader_int64", 1);

@@ -12,6 +12,8 @@
 #include "../test_support.hpp"
 #include "compute_comparison.hpp"
 
+#include <cmath>
+
 
 using namespace hairshadow;
 
@@ -109,6 +111,21 @@ TEST_CASE("compute-built maps equal the CPU maps built from the model, for every
         auto part = model.bounds();
         part.max = part.min + (part.max - part.min) * 0.5f; // the map covers a corner of the hair
         CHECK(check_every_method(model, light_space::fit(light_spec::directional({0.1f, -1.0f, 0.2f}), part, 64)) > 100);
+    }
+    SECTION("segments from beyond the guard band, clipped in window space, under a spot light") {
+        // From near the light's plane, far off-axis (beyond the +-2^20-texel band), to the map, at many
+        // angles, with per-point thickness: the clip's parameters, ends and perspective attributes.
+        hair_model model;
+        for (int s = 0; s < 48; ++s) {
+            const float angle = 0.1309f * float(s);
+            const float reach = 40.0f + 2.0f * float(s % 5);
+            model.add_strand(std::vector<glm::vec3>{{reach * std::cos(angle), reach * std::sin(angle), -0.002f - 0.0001f * float(s % 3)},
+                                                    {0.05f * std::sin(3.0f * angle), 0.05f * std::cos(2.0f * angle), -1.0f - 0.01f * float(s % 4)}});
+        }
+        for (std::size_t i = 0; i < model.point_count(); ++i) model.thickness.push_back(0.0005f + 0.0003f * float(i % 3));
+        const auto light = light_space::fit(light_spec::spot({0, 0, 0}, {0, 0, -1}, 10.0f), model.bounds(), 256);
+        REQUIRE(std::abs(light.project(model.points[0]).window.x) > float(1 << 20)); // the band is crossed
+        CHECK(check_every_method(model, light) > 2000);
     }
 }
 

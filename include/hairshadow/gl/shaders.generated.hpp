@@ -133,7 +133,10 @@ ivec2 hs_origin;
 int hs_walk_kind;
 
 const double HS_FIXED = 68719476736.0lf; // 2^36: clustered::fixed_sum
-int64_t hs_fixed(double x) { return int64_t(x * HS_FIXED); }
+uvec2 hs_fixed(double x) { // trunc(x 2^36), two's complement, as (low, high) words for hs_add_fixed
+    uint64_t v = uint64_t(int64_t(x * HS_FIXED));
+    return uvec2(uint(v & 0xffffffffUL), uint(v >> 32));
+}
 
 // Initial k-means centre j: the middle of the j-th of K equal parts of [nearest, furthest].
 float hs_centre(vec2 range, int j) {
@@ -174,7 +177,7 @@ void hs_emit(int x, int y) {
     hs_add_sum(texel * uint(HS_SUM_SLOTS) + uint(hs_assign(mean, sigma, depth)), b);
 }
 
-int64_t hs_signed_sum(uint slot) { return int64_t(hs_sum(slot)); }
+int64_t hs_signed_sum(uint slot) { uvec2 s = hs_sum(slot); return int64_t((uint64_t(s.y) << 32) | uint64_t(s.x)); }
 
 void main() {
     uint tile = gl_WorkGroupID.y * uint(hs_tiles_x) + gl_WorkGroupID.x;
@@ -237,10 +240,10 @@ void main() {
 inline constexpr std::string_view compute_common = R"hs_glsl(// What every pass of the compute build shares (gl/passes/compute_raster.hpp): the prepared segments and their
 // tiles, and the line rule of raster/line_rule.hpp in 32-bit integers, so that a tile's work group
 // makes exactly the fragments the CPU rasteriser makes. A pass defines hs_emit(x, y), which the walk
-// calls for every fragment of the current segment inside the tile. The walk is 32-bit; the window
-// parameter t here, the passes' fixed-point sums and compute/prepare's snap and clip still need
-// GL_ARB_gpu_shader_int64 or double precision (GL 4.0): compute_pieces enables the extension first
-// (GLSL allows #extension only before any code, and arithmetic/exact_division comes before this).
+// calls for every fragment of the current segment inside the tile. Everything here is 32-bit: the
+// walk in integers, the fragments' parameter, depth and optical depth in float. compute_pieces still
+// enables GL_ARB_gpu_shader_int64 for every program (GLSL allows #extension only before any code),
+// for density clustering's sake, which still uses 64-bit integers and double precision.
 
 // Coordinates lie within the guard band, |c| <= 2^(20 + bits) sub-pixels, so with at most 9 bits every
 // difference and every remainder of the walk below fits a 32-bit int (compute_path_missing says so).
@@ -410,7 +413,8 @@ void hs_walk(ivec2 a, ivec2 b, ivec4 clip) {
 
 // The segment being walked, and its fragments' depth and optical depth (detail::segment_shader).
 hs_segment hs_current = hs_segment(ivec4(0), vec4(0.0), vec4(0.0));
-double hs_inv_length2 = 0.0lf;
+vec2 hs_delta = vec2(0.0);    // b - a in sub-pixels, converted exactly or correctly rounded
+float hs_inv_length2 = 0.0;   // 1 / |b - a|^2, correctly rounded (hs_div_rn)
 
 bool hs_constant_alpha = false;
 float hs_constant_b = 0.0;
@@ -418,11 +422,15 @@ void hs_walk_current(ivec4 clip) {
     hs_walk(hs_current.ends.xy, hs_current.ends.zw, clip);
 }
 
-// Window parameter of texel centre (x, y) along the segment, clamped to [0, 1].
+// Window parameter of texel centre (x, y) along the segment, clamped to [0, 1]: segment_shader::parameter,
+// operation for operation (precise: each product rounded on its own; the offsets are exact 32-bit
+// integers within the guard band, and GLSL converts them to float correctly rounded). -0 gives +0.
 float hs_parameter(int x, int y) {
-    int64_t dx = int64_t(hs_current.ends.z) - hs_current.ends.x, dy = int64_t(hs_current.ends.w) - hs_current.ends.y;
-    int64_t px = int64_t(x * HS_S + HS_H - hs_current.ends.x), py = int64_t(y * HS_S + HS_H - hs_current.ends.y);
-    return float(clamp(double(px * dx + py * dy) * hs_inv_length2, 0.0lf, 1.0lf));
+    precise float px = float(x * HS_S + HS_H - hs_current.ends.x), py = float(y * HS_S + HS_H - hs_current.ends.y);
+    precise float along_x = px * hs_delta.x, along_y = py * hs_delta.y;
+    precise float dot = along_x + along_y;
+    precise float t = dot * hs_inv_length2;
+    return t > 0.0 ? min(t, 1.0) : 0.0;
 }
 // a + (b - a) s, rounded as the CPU rounds it.
 float hs_lerp_exact(float a, float b, float s) {
@@ -498,8 +506,10 @@ float hs_optical_depth_of(float alpha) {
 // with a footprint that does not change with depth) works out its b once, as the CPU does.
 void hs_begin_segment(uint index) {
     hs_current = hs_segments[index];
-    int64_t dx = int64_t(hs_current.ends.z) - hs_current.ends.x, dy = int64_t(hs_current.ends.w) - hs_current.ends.y;
-    hs_inv_length2 = 1.0lf / double(dx * dx + dy * dy);
+    hs_delta = vec2(hs_current.ends.zw - hs_current.ends.xy);
+    precise float dx2 = hs_delta.x * hs_delta.x, dy2 = hs_delta.y * hs_delta.y;
+    precise float length2 = dx2 + dy2;
+    hs_inv_length2 = hs_div_rn(1.0, length2);
     hs_constant_alpha = hs_use_fixed_alpha || (!hs_footprint_varies && hs_current.attributes.x == hs_current.attributes.y &&
                                                 hs_current.attributes.z == hs_current.attributes.w);
 #ifndef HS_DEPTH_ONLY
@@ -592,7 +602,7 @@ void main() {
     bool inside = texel.x < hs_resolution && texel.y < hs_resolution;
     vec4 range = inside ? texelFetch(hs_range_map, texel, 0) : vec4(0.0);
     hs_texel_range[me] = range.xw;
-    uint64_t running = 0UL;
+    uvec2 running = uvec2(0u); // the sum so far, (low, high) words
     for (hs_group_first = 0; hs_group_first < HS_LAYERS; hs_group_first += HS_LAYER_GROUP) {
         hs_clear_sums();
         barrier();
@@ -604,7 +614,7 @@ void main() {
                 for (int c = 0; c < 4; ++c) {
                     int layer = 4 * array_layer + c;
                     if (layer >= HS_LAYERS) break;
-                    uint64_t sum = hs_sum(me * uint(HS_SUM_SLOTS) + uint(layer - hs_group_first));
+                    uvec2 sum = hs_sum(me * uint(HS_SUM_SLOTS) + uint(layer - hs_group_first));
 #ifdef HS_CUMULATIVE
                     running = hs_combine(running, sum);
                     v[c] = hs_stored(running);
@@ -675,8 +685,7 @@ void main() {
 inline constexpr std::string_view compute_prepare = R"hs_glsl(// Compute build, step 1 (one invocation per segment): reads the segment's two points from the mesh's
 // buffers, clips it to the light's depth range and the guard band, projects and snaps it exactly as
 // hairshadow::detail::prepare_segment does (the same operations in the same order, no fused
-// multiply-adds; float quotients by hs_div_rn, the guard-band clip's double quotients by the driver's
-// double division, which llvmpipe rounds correctly), counts it in every tile its box meets, and widens the
+// multiply-adds; every quotient by hs_div_rn, no double precision), counts it in every tile its box meets, and widens the
 // whole map's extent by its ends, as segment_bins does. A long segment (its box over more than
 // HS_SHORT_TILES tiles) goes to the long list instead of the tiles.
 layout(local_size_x = 256) in;
@@ -733,11 +742,14 @@ vec3 hs_point(uint i) {
 float hs_thickness(uint i) { return hs_thickness_constant ? hs_thickness_value : hs_thickness_data[hs_thickness_layout.x + i * hs_thickness_layout.y]; }
 float hs_opacity(uint i) { return hs_opacity_constant ? hs_opacity_value : hs_opacity_data[hs_opacity_layout.x + i * hs_opacity_layout.y]; }
 
-// Window coordinate to sub-pixel fixed point, half away from zero (detail::snap).
+// Window coordinate to sub-pixel fixed point, half away from zero (detail::snap, which takes it
+// through double): x = window S is exact (a power of two; |window| <= 2^20), so are its whole part
+// and fraction, and the fraction decides.
 int hs_snap(float window) {
-    precise double x = double(window) * double(HS_S);
-    precise double r = x + (x < 0.0lf ? -0.5lf : 0.5lf);
-    return int(r);
+    precise float x = window * float(HS_S);
+    float whole = trunc(x);
+    precise float fraction = x - whole;
+    return int(whole) + (abs(fraction) >= 0.5 ? (x < 0.0 ? -1 : 1) : 0);
 }
 
 // Clipping to f >= 0 (prepare_segment's clip): narrows [s0, s1]; false when nothing is left.
@@ -751,18 +763,24 @@ bool hs_clip(float f0, float f1, inout float s0, inout float s1) {
 
 bool hs_in_band(hs_light_point p) { return abs(p.window.x) <= HS_GUARD_BAND && abs(p.window.y) <= HS_GUARD_BAND; }
 
+// (1 - s) / w_a + s / w_b, each product rounded on its own (prepare_segment's weights).
+float hs_weights(float s, float ia, float ib) {
+    precise float wa = (1.0 - s) * ia, wb = s * ib;
+    precise float sum = wa + wb;
+    return sum;
+}
 // Window parameter s to the attributes' parameter, perspective-correct (prepare_segment's perspective).
-float hs_perspective(double s, double ia, double ib) {
-    precise double sb = s * ib;
-    precise double den = (1.0lf - s) * ia + s * ib;
-    return float(sb / den);
+float hs_perspective(float s, float ia, float ib) {
+    precise float sb = s * ib;
+    return hs_div_rn(sb, hs_weights(s, ia, ib));
 }
 // A segment's end where it leaves the guard band, at window parameter s (attribute parameter u).
-hs_light_point hs_band_end(hs_light_point a0, hs_light_point b0, double s, float u, double ia, double ib) {
-    precise double x = double(a0.window.x) + s * (double(b0.window.x) - double(a0.window.x));
-    precise double y = double(a0.window.y) + s * (double(b0.window.y) - double(a0.window.y));
-    precise double den = (1.0lf - s) * ia + s * ib;
-    return hs_light_point(vec2(float(x), float(y)), hs_lerp_exact(a0.depth, b0.depth, u), float(1.0lf / den));
+hs_light_point hs_band_end(hs_light_point a0, hs_light_point b0, float s, float u, float ia, float ib) {
+    precise vec2 delta = b0.window - a0.window;
+    precise vec2 along = s * delta;
+    precise vec2 window = a0.window + along;
+    // Clamped to the band: a parameter a few ULP off can put the end just past it (prepare_segment).
+    return hs_light_point(clamp(window, -HS_GUARD_BAND, HS_GUARD_BAND), hs_lerp_exact(a0.depth, b0.depth, u), hs_div_rn(1.0, hs_weights(s, ia, ib)));
 }
 
 // The segment's prepared form; false when nothing of it is left to draw.
@@ -782,23 +800,25 @@ bool hs_prepare(vec3 p0, vec3 p1, inout vec4 at, out hs_segment out_segment) {
         b = hs_project(q1, hs_distance_of(q1));
     }
     if (!(hs_in_band(a) && hs_in_band(b))) {
-        double lo_s = 0.0lf, hi_s = 1.0lf;
+        float lo_s = 0.0, hi_s = 1.0;
         for (int axis = 0; axis < 2; ++axis) {
-            double from = double(a.window[axis]), delta = double(b.window[axis]) - from;
+            float from = a.window[axis];
+            float delta = b.window[axis] - from; // no product to fuse with: no need of precise (which, here, sends glslang into a loop)
+            if (isinf(delta) || isnan(delta)) return false; // ends beyond float's range
             for (int side = 0; side < 2; ++side) {
                 bool upper = side == 1;
-                double limit = upper ? double(HS_GUARD_BAND) : -double(HS_GUARD_BAND);
-                if (delta == 0.0lf) {
+                float limit = upper ? HS_GUARD_BAND : -HS_GUARD_BAND;
+                if (delta == 0.0) {
                     if (upper ? from > limit : from < limit) return false;
                     continue;
                 }
-                double s = (limit - from) / delta;
-                if ((delta > 0.0lf) == upper) hi_s = min(hi_s, s);
+                float s = hs_div_rn(limit - from, delta);
+                if ((delta > 0.0) == upper) hi_s = min(hi_s, s);
                 else lo_s = max(lo_s, s);
             }
         }
         if (!(lo_s < hi_s)) return false;
-        double ia = 1.0lf / double(a.w), ib = 1.0lf / double(b.w);
+        float ia = hs_div_rn(1.0, a.w), ib = hs_div_rn(1.0, b.w);
         float u_lo = hs_perspective(lo_s, ia, ib), u_hi = hs_perspective(hi_s, ia, ib);
         at = vec4(hs_lerp_exact(at.x, at.y, u_lo), hs_lerp_exact(at.x, at.y, u_hi), hs_lerp_exact(at.z, at.w, u_lo), hs_lerp_exact(at.z, at.w, u_hi));
         hs_light_point a0 = a, b0 = b;
@@ -878,7 +898,7 @@ void main() {
 #ifdef HS_EIGHT_BIT
                     v[c] = hs_stored(hs_sum(slot));
 #else
-                    v[c] = float(double(int64_t(hs_sum(slot))) / 1099511627776.0lf); // signed: the terms may be negative
+                    v[c] = hs_stored_signed(hs_sum(slot)); // the terms may be negative
 #endif
                 }
                 imageStore(hs_sums_image, ivec3(texel, layer), v);
@@ -1098,47 +1118,73 @@ uint hs_eight_bit_step(float b) {
 #endif
 
 #ifdef HS_WIDE_SUMS
-// Adds a 64-bit integer (two's complement, so negative terms too) to a slot.
-void hs_add_fixed(uint slot, int64_t value) {
-    uint64_t q = uint64_t(value);
-    uint low = uint(q & 0xffffffffUL), high = uint(q >> 32);
-    uint before = atomicAdd(hs_sum_low[slot], low);
-    if (before + low < before) ++high; // the low word carried
+// Adds a 64-bit integer, two's complement (so negative terms too) as (low word, high word), to a slot.
+void hs_add_fixed(uint slot, uvec2 value) {
+    uint before = atomicAdd(hs_sum_low[slot], value.x);
+    uint high = value.y + (before + value.x < before ? 1u : 0u); // the low word carried
     if (high != 0u) atomicAdd(hs_sum_high[slot], high);
 }
 #endif
+
+// trunc(x 2^40) for |x| below 2^23 as (low, high) words, two's complement: int64_t(x * 2^40) on the
+// CPU (the projected methods' terms may be negative). The scaling by powers of two, the floor and the
+// difference are exact in float; uint() truncates the fraction; a negative x negates the magnitude's.
+uvec2 hs_fixed_words(float x) {
+    precise float scaled = abs(x) * 1099511627776.0;
+    precise float high = floor(scaled * (1.0 / 4294967296.0));
+    precise float low = scaled - high * 4294967296.0;
+    uvec2 magnitude = uvec2(uint(low), uint(high));
+    if (x >= 0.0) return magnitude;
+    return uvec2(~magnitude.x + 1u, ~magnitude.y + (magnitude.x == 0u ? 1u : 0u));
+}
 
 void hs_add_sum(uint slot, float b) {
 #ifdef HS_EIGHT_BIT
     atomicAdd(hs_sum_low[slot], hs_eight_bit_step(b));
 #else
-    hs_add_fixed(slot, int64_t(b * 1099511627776.0)); // b 2^40: exact for b >= 2^-16
+    hs_add_fixed(slot, hs_fixed_words(b)); // b 2^40: exact for b >= 2^-16
 #endif
 }
 
-// A slot's sum: 2^40 times the optical depth, or the 8-bit steps (unsaturated).
-uint64_t hs_sum(uint slot) {
+// A slot's sum as (low, high) words: 2^40 times the optical depth, or the 8-bit steps (unsaturated).
+uvec2 hs_sum(uint slot) {
 #ifndef HS_WIDE_SUMS
-    return uint64_t(hs_sum_low[slot]);
+    return uvec2(hs_sum_low[slot], 0u);
 #else
-    return (uint64_t(hs_sum_high[slot]) << 32) | uint64_t(hs_sum_low[slot]);
+    return uvec2(hs_sum_low[slot], hs_sum_high[slot]);
 #endif
 }
 // a + b as the accumulation combines them (the 8-bit sum saturates).
-uint64_t hs_combine(uint64_t a, uint64_t b) {
+uvec2 hs_combine(uvec2 a, uvec2 b) {
 #ifdef HS_EIGHT_BIT
-    return a + b < 255UL ? a + b : 255UL;
+    return uvec2(min(a.x + b.x, 255u), 0u); // a at most 255, b a slot's step sum: far below 2^32
 #else
-    return a + b;
+    uint low = a.x + b.x;
+    return uvec2(low, a.y + b.y + (low < a.x ? 1u : 0u));
 #endif
 }
+// An unsigned 64-bit integer (low, high) as a float, rounded to nearest even once, as float(double(v))
+// is for the CPU's sums (below 2^53, a double holds them exactly): its top 32 bits, with a sticky bit
+// for any bit below them, convert correctly rounded (GLSL's uint-to-float conversion), then scale.
+float hs_float_of_words(uvec2 v) {
+    if (v.y == 0u) return float(v.x);
+    int shift = 31 - findMSB(v.y); // leading zeros of the high word
+    uint top = shift == 0 ? v.y : (v.y << shift) | (v.x >> (32 - shift));
+    uint below = v.x << shift; // shift < 32
+    return ldexp(float(top | (below != 0u ? 1u : 0u)), 32 - shift);
+}
 // The value a texture stores for a sum: the optical depth, or the 8-bit level over 255.
-float hs_stored(uint64_t sum) {
+float hs_stored(uvec2 sum) {
 #ifdef HS_EIGHT_BIT
-    return float(sum < 255UL ? sum : 255UL) / 255.0;
+    return float(min(sum.x, 255u)) / 255.0;
 #else
-    return float(double(sum) / 1099511627776.0lf);
+    return hs_float_of_words(sum) * (1.0 / 1099511627776.0); // a power of two: exact
 #endif
+}
+// The same for a signed sum (two's complement), whose terms may be negative.
+float hs_stored_signed(uvec2 sum) {
+    if ((sum.y & 0x80000000u) == 0u) return hs_stored(sum);
+    return -hs_stored(uvec2(~sum.x + 1u, ~sum.y + (sum.x == 0u ? 1u : 0u))); // the magnitude, as x >= 0 has it
 }
 )hs_glsl";
 

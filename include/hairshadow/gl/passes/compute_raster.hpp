@@ -35,7 +35,8 @@ enum class build_path {
 inline std::string_view to_string(build_path p) noexcept { return p == build_path::compute ? "compute" : "raster"; }
 
 /// What the current context lacks for build_path::compute, or "" when it has everything: GL 4.3
-/// (compute shaders), GL_ARB_gpu_shader_int64 (the window parameter's and the sums' 64-bit integers), 8 shader
+/// (compute shaders), GL_ARB_gpu_shader_int64 (density clustering's 64-bit integers: every other
+/// compute program is 32-bit, scripts/validate_shaders.py checks which, but all enable it), 8 shader
 /// storage blocks and 4 image units in a compute shader, and 32 KiB of shared memory per work group.
 /// The build itself must keep HAIRSHADOW_SUBPIXEL_BITS within [1, 9], where the compute line rule's
 /// 32-bit words hold every guard-band coordinate (shaders/compute/common.glsl).

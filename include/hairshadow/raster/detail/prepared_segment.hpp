@@ -111,31 +111,36 @@ HAIRSHADOW_ALWAYS_INLINE inline bool prepare_segment(const light_space& ls, glm:
     }
     // Perspective lights can throw points near the near plane far off the map: clip to the guard
     // band in window space, with the attributes at a clipped end interpolated perspective-correctly,
-    // as GL would.
+    // as GL would. In float, every product rounded on its own, as compute/prepare does it on the GPU.
+    // The parameter is a few ULP off, which can put a clipped end past the band (by about a texel
+    // for an end at 2^24 texels): the ends are clamped to it, or the check below would drop the
+    // whole segment.
     if (!(std::abs(a.window.x) <= guard_band && std::abs(a.window.y) <= guard_band && std::abs(b.window.x) <= guard_band &&
           std::abs(b.window.y) <= guard_band)) [[unlikely]] {
-        double lo_s = 0.0, hi_s = 1.0;
+        float lo_s = 0.0f, hi_s = 1.0f;
         for (int axis = 0; axis < 2; ++axis) {
-            const double from = a.window[axis], delta = double(b.window[axis]) - from;
-            for (const double limit : {-double(guard_band), double(guard_band)}) {
+            const float from = a.window[axis], delta = b.window[axis] - from;
+            if (!std::isfinite(delta)) return false; // ends beyond float's range: nothing sensible to draw
+            for (const float limit : {-guard_band, guard_band}) {
                 const bool upper = limit > 0;
-                if (delta == 0.0) {
+                if (delta == 0.0f) {
                     if (upper ? from > limit : from < limit) return false;
                     continue;
                 }
-                const double s = (limit - from) / delta;
+                const float s = (limit - from) / delta;
                 if ((delta > 0) == upper) hi_s = std::min(hi_s, s);
                 else lo_s = std::max(lo_s, s);
             }
         }
         if (!(lo_s < hi_s)) return false;
         const light_point a0 = a, b0 = b;
-        const double ia = 1.0 / a0.w, ib = 1.0 / b0.w;
-        auto perspective = [&](double s) { return float(s * ib / ((1.0 - s) * ia + s * ib)); }; // window -> attribute parameter
-        auto end = [&](double s) {
-            return light_point{glm::vec2(float(a0.window.x + s * (double(b0.window.x) - a0.window.x)),
-                                         float(a0.window.y + s * (double(b0.window.y) - a0.window.y))),
-                               lerp_exact(a0.depth, b0.depth, perspective(s)), float(1.0 / ((1.0 - s) * ia + s * ib))};
+        const float ia = 1.0f / a0.w, ib = 1.0f / b0.w;
+        auto weights = [&](float s) { return rounded(rounded((1.0f - s) * ia) + rounded(s * ib)); }; // (1 - s) / w_a + s / w_b
+        auto perspective = [&](float s) { return rounded(s * ib) / weights(s); };                     // window -> attribute parameter
+        auto end = [&](float s) {
+            return light_point{glm::vec2(std::clamp(a0.window.x + rounded(s * (b0.window.x - a0.window.x)), -guard_band, guard_band),
+                                         std::clamp(a0.window.y + rounded(s * (b0.window.y - a0.window.y)), -guard_band, guard_band)),
+                               lerp_exact(a0.depth, b0.depth, perspective(s)), 1.0f / weights(s)};
         };
         const float u_lo = perspective(lo_s), u_hi = perspective(hi_s);
         at = {lerp_exact(at.thickness_a, at.thickness_b, u_lo), lerp_exact(at.thickness_a, at.thickness_b, u_hi),
@@ -159,16 +164,22 @@ class segment_shader {
 public:
     segment_shader(const light_space& light, const raster_options& options, const prepared_segment& s, const segment_attributes& at) noexcept
         : light_(&light), s_(s), at_(at), fixed_alpha_(options.fixed_alpha.value_or(-1.0f)),
-          dx_(std::int64_t(s.bx) - s.ax), dy_(std::int64_t(s.by) - s.ay),
-          inv_length2_(1.0 / double(dx_ * dx_ + dy_ * dy_)), perspective_(s.inv_w_a != s.inv_w_b),
+          dx_(float(std::int64_t(s.bx) - s.ax)), dy_(float(std::int64_t(s.by) - s.ay)), inv_length2_(1.0f / rounded(rounded(dx_ * dx_) + rounded(dy_ * dy_))),
+          perspective_(s.inv_w_a != s.inv_w_b),
           depth_varies_(light.perspective() && options.depth_weighting), footprint_(light.texel_size(0.5f)) {}
 
     /// Window-space parameter of the texel centre (x, y) along a -> b, clamped to [0, 1], as in GL's
-    /// line interpolation. The numerator is an exact integer: one rounding, in the product.
+    /// line interpolation: (p . d) / |d|^2 in float alone, every product rounded on its own (no fused
+    /// multiply-add) and the reciprocal of |d|^2 taken once per segment, so that the AVX-512 walk and
+    /// the GPU's compute build (shaders/compute/common.glsl, hs_parameter) make the same bits. The
+    /// offsets and differences are exact integers; they and their products round once each where they
+    /// pass 2^24, a few ULP of t on long segments.
+    /// Negative values and -0 clamp to +0.
     HAIRSHADOW_ALWAYS_INLINE float parameter(int x, int y) const noexcept {
-        constexpr std::int64_t S = subpixel_scale, H = subpixel_scale / 2;
-        const std::int64_t px = std::int64_t(x) * S + H - s_.ax, py = std::int64_t(y) * S + H - s_.ay;
-        return float(std::clamp(double(px * dx_ + py * dy_) * inv_length2_, 0.0, 1.0));
+        constexpr std::int64_t S = subpixel_scale, H = S / 2;
+        const float px = float(std::int64_t(x) * S + H - s_.ax), py = float(std::int64_t(y) * S + H - s_.ay);
+        const float t = rounded(rounded(px * dx_) + rounded(py * dy_)) * inv_length2_;
+        return t > 0.0f ? std::min(t, 1.0f) : 0.0f;
     }
 
     /// The fragment's linear depth at window parameter t (the depth of shade(t)).
@@ -198,8 +209,6 @@ public:
     }
 
     const prepared_segment& segment() const noexcept { return s_; }
-    /// 1 / |b - a|^2 in sub-pixel units, as parameter() uses it.
-    double inverse_length2() const noexcept { return inv_length2_; }
     /// 1/w changes along the segment: attributes are interpolated perspective-correctly.
     bool perspective() const noexcept { return perspective_; }
 
@@ -216,8 +225,8 @@ private:
     prepared_segment s_;
     segment_attributes at_;
     float fixed_alpha_;
-    std::int64_t dx_, dy_;
-    double inv_length2_;
+    float dx_, dy_;        // b - a in sub-pixels
+    float inv_length2_;    // 1 / |b - a|^2, correctly rounded
     bool perspective_, depth_varies_;
     float footprint_;
 };

@@ -11,8 +11,8 @@
 /// fragments. Longer segments are walked one at a time, sixteen texels
 /// per step. Either way the fragments are compressed into the tile's store segment after segment, so
 /// that segment order, and every sum, is the scalar walk's. Every quantity is an integer, or an
-/// integer held exactly in a double, until the depth: that is a + (b - a) t, rounded as the scalar
-/// walk rounds it. Where the build allows any order (fragment_order::any), the tile's segments are
+/// integer held exactly in a double, until the depth: that is a + (b - a) t, t in float, rounded as
+/// the scalar walk rounds them. Where the build allows any order (fragment_order::any), the tile's segments are
 /// sorted by their steps in the tile and every batch walks in lockstep, each step's fragments stored
 /// as they come: no transpose, and few idle lanes however long the segments.
 
@@ -58,30 +58,23 @@ HAIRSHADOW_AVX512_TARGET inline __m512d high_pd(__m512i x) noexcept { return _mm
 HAIRSHADOW_AVX512_TARGET inline __m512i join_epi32(__m256i low, __m256i high) noexcept {
     return _mm512_inserti64x4(_mm512_castsi256_si512(low), high, 1);
 }
-HAIRSHADOW_AVX512_TARGET inline __m512 join_ps(__m256 low, __m256 high) noexcept {
-    return _mm512_castpd_ps(_mm512_insertf64x4(_mm512_castps_pd(_mm512_castps256_ps512(low)), _mm256_castps_pd(high), 1));
-}
 
 /// The depth along sixteen segments (or one, broadcast) at texel centres: segment_shader::parameter,
-/// t = ((x S + H - ax) dx + (y S + H - ay) dy) / |d|^2 clamped to [0, 1], with an exact numerator
-/// and one rounding, then lerp_exact, rounded as the scalar walk rounds them.
+/// t = ((x S + H - ax) dx + (y S + H - ay) dy) / |d|^2 clamped to [0, 1] in float, each product
+/// rounded on its own, then lerp_exact, rounded as the scalar walk rounds them. (max returns its
+/// second operand on equal zeros, so -0 clamps to +0 as the scalar comparison does.)
 struct depth_along {
     __m512i ax, ay;
-    __m512d dx_low, dx_high, dy_low, dy_high, inv_length2_low, inv_length2_high;
+    __m512 dx, dy, inv_length2;
     __m512 depth_a, depth_delta;
 
     HAIRSHADOW_AVX512_TARGET __m512 at(__m512i x, __m512i y) const noexcept {
         constexpr int bits = HAIRSHADOW_SUBPIXEL_BITS;
         const __m512i half = _mm512_set1_epi32(std::int32_t(subpixel_scale / 2));
-        const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
-        const __m512i px = _mm512_sub_epi32(_mm512_add_epi32(_mm512_slli_epi32(x, bits), half), ax);
-        const __m512i py = _mm512_sub_epi32(_mm512_add_epi32(_mm512_slli_epi32(y, bits), half), ay);
-        const __m512d t_low = _mm512_max_pd(
-            _mm512_min_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(low_pd(px), dx_low), _mm512_mul_pd(low_pd(py), dy_low)), inv_length2_low), one), zero);
-        const __m512d t_high = _mm512_max_pd(
-            _mm512_min_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(high_pd(px), dx_high), _mm512_mul_pd(high_pd(py), dy_high)), inv_length2_high), one),
-            zero);
-        const __m512 param = join_ps(_mm512_cvtpd_ps(t_low), _mm512_cvtpd_ps(t_high));
+        const __m512 px = _mm512_cvtepi32_ps(_mm512_sub_epi32(_mm512_add_epi32(_mm512_slli_epi32(x, bits), half), ax));
+        const __m512 py = _mm512_cvtepi32_ps(_mm512_sub_epi32(_mm512_add_epi32(_mm512_slli_epi32(y, bits), half), ay));
+        const __m512 dot = rounded(_mm512_add_ps(rounded(_mm512_mul_ps(px, dx)), rounded(_mm512_mul_ps(py, dy))));
+        const __m512 param = _mm512_max_ps(_mm512_min_ps(_mm512_mul_ps(dot, inv_length2), _mm512_set1_ps(1.0f)), _mm512_setzero_ps());
         return _mm512_add_ps(depth_a, rounded(_mm512_mul_ps(depth_delta, param))); // lerp_exact
     }
 };
@@ -153,7 +146,8 @@ struct major_steps {
 struct alignas(64) batch {
     std::int32_t ax[16], ay[16], bx[16], by[16];
     std::int32_t m_begin[16], count[16], end_major[16], end_minor[16], minor_extent[16], start_x[16], start_y[16];
-    double num0[16], step[16], denom[16], inv_denom[16], inv_length2[16];
+    double num0[16], step[16], denom[16], inv_denom[16];
+    float inv_length2[16];
     float start_depth[16];
     float depth_a[16], depth_delta[16];
     std::uint16_t x_major, tie, start, simd;
@@ -162,14 +156,17 @@ struct alignas(64) batch {
     HAIRSHADOW_AVX512_TARGET depth_along depths() const noexcept {
         const __m512i a_x = _mm512_load_si512(ax), a_y = _mm512_load_si512(ay);
         const __m512i dx = _mm512_sub_epi32(_mm512_load_si512(bx), a_x), dy = _mm512_sub_epi32(_mm512_load_si512(by), a_y);
-        return {a_x, a_y, low_pd(dx), high_pd(dx), low_pd(dy), high_pd(dy), _mm512_load_pd(inv_length2), _mm512_load_pd(inv_length2 + 8),
-                _mm512_load_ps(depth_a), _mm512_load_ps(depth_delta)};
+        return {a_x, a_y, _mm512_cvtepi32_ps(dx), _mm512_cvtepi32_ps(dy), _mm512_load_ps(inv_length2), _mm512_load_ps(depth_a), _mm512_load_ps(depth_delta)};
     }
     /// The depth along lane l's segment, in every lane.
     HAIRSHADOW_AVX512_TARGET depth_along depths(int l) const noexcept {
-        const __m512d dx = _mm512_set1_pd(double(bx[l] - ax[l])), dy = _mm512_set1_pd(double(by[l] - ay[l]));
-        const __m512d inv = _mm512_set1_pd(inv_length2[l]);
-        return {_mm512_set1_epi32(ax[l]), _mm512_set1_epi32(ay[l]), dx, dx, dy, dy, inv, inv, _mm512_set1_ps(depth_a[l]), _mm512_set1_ps(depth_delta[l])};
+        return {_mm512_set1_epi32(ax[l]),
+                _mm512_set1_epi32(ay[l]),
+                _mm512_set1_ps(float(bx[l] - ax[l])),
+                _mm512_set1_ps(float(by[l] - ay[l])),
+                _mm512_set1_ps(inv_length2[l]),
+                _mm512_set1_ps(depth_a[l]),
+                _mm512_set1_ps(depth_delta[l])};
     }
 };
 
@@ -207,9 +204,9 @@ HAIRSHADOW_AVX512_TARGET inline void set_up(batch& b, int w, int h) noexcept {
     _mm512_store_pd(b.denom + 8, high_pd(denom));
     _mm512_store_pd(b.inv_denom, _mm512_div_pd(ones, low_pd(denom)));
     _mm512_store_pd(b.inv_denom + 8, _mm512_div_pd(ones, high_pd(denom)));
-    _mm512_store_pd(b.inv_length2, _mm512_div_pd(ones, _mm512_add_pd(_mm512_mul_pd(low_pd(dx), low_pd(dx)), _mm512_mul_pd(low_pd(dy), low_pd(dy)))));
-    _mm512_store_pd(b.inv_length2 + 8,
-                    _mm512_div_pd(ones, _mm512_add_pd(_mm512_mul_pd(high_pd(dx), high_pd(dx)), _mm512_mul_pd(high_pd(dy), high_pd(dy)))));
+    // 1 / |d|^2 in float, as segment_shader takes it: products rounded on their own, then an IEEE division.
+    const __m512 dx_f = _mm512_cvtepi32_ps(dx), dy_f = _mm512_cvtepi32_ps(dy);
+    _mm512_store_ps(b.inv_length2, _mm512_div_ps(_mm512_set1_ps(1.0f), rounded(_mm512_add_ps(rounded(_mm512_mul_ps(dx_f, dx_f)), rounded(_mm512_mul_ps(dy_f, dy_f))))));
     // Ties on the minor axis go to the lower row or left column unless the line is x-major and rising.
     const __mmask16 opposite = __mmask16(_mm512_cmpgt_epi32_mask(dx, zero) ^ _mm512_cmpgt_epi32_mask(dy, zero));
     b.tie = std::uint16_t(__mmask16(~xm) | _mm512_cmpeq_epi32_mask(dy, zero) | opposite);
