@@ -3,8 +3,8 @@
 composition below is what a program would concatenate (version line, defines, snippets, a main), so
 every snippet is compiled in every configuration it is used in. Each is also compiled to SPIR-V for
 OpenGL (-G), whose capabilities say what arithmetic it needs: double precision (Float64) and 64-bit
-integers (Int64) run slowly or not at all on most GPUs, so they are allowed only where wide_allowed
-says, and the check is exact both ways, so that the table shrinks as they go.
+integers (Int64) run slowly or not at all on most GPUs, and GL 4.3 core has no 64-bit integers, so no
+composition may need either. A probe that does need them checks first that the check can see them.
 
     scripts/validate_shaders.py [--validator PATH]   exit 1 on the first failure, printing the log
 """
@@ -175,7 +175,8 @@ for accumulation, eight in (("float", ""), ("emulated_8bit", "#define HS_EIGHT_B
             "comp", COMPUTE + f"#define HS_LAYERS {clusters}\n" + eight +
             f"#define HS_FIXED_SUMS\n#define HS_SUM_SLOTS {2 * clusters}\n#define HS_STRIP_ROWS {rows}\n#define HS_SUM_TEXELS {16 * rows}\n"
             f"#define HS_LAYERS_FORMAT {form}\n",
-            ["compute/common", "accumulation/" + accumulation, "compute/tile_sums", "placement/common", "placement/clustered", "compute/clusters"], "")
+            ["compute/common", "accumulation/" + accumulation, "compute/tile_sums", "placement/common", "placement/clustered",
+             "arithmetic/exact_square_root", "compute/clusters"], "")
     for layers, slabs in ((128, 4), (256, 8)):
         COMPOSITIONS[f"compute_occupancy_{layers}_{slabs}_{accumulation}"] = (
             "comp", COMPUTE + eight + f"#define HS_LAYERS {layers}\n#define HS_SLABS {slabs}\n#define HS_BIT_TARGETS {(layers + 127) // 128}\n"
@@ -213,27 +214,21 @@ for mode in ("OCCUPANCY_ORDER", "WEIGHTED_AVERAGE", "EXACT"):
 
 # The exact division (arithmetic/exact_division) goes before compute/common and placement/common, where the
 # library puts it (compute_pieces and every composition of placement/common), once: the snippet's guard
-# lets the library compose it twice.
+# lets the library compose it twice; the two-word integers (arithmetic/fixed_point) go after it in the
+# compute programs (compute_pieces).
 for name, (stage, defines, snippets, main_text) in COMPOSITIONS.items():
     first = next((i for i, s in enumerate(snippets) if s in ("compute/common", "placement/common")), None)
     if first is not None:
-        COMPOSITIONS[name] = (stage, defines, snippets[:first] + ["arithmetic/exact_division"] + snippets[first:], main_text)
-    if "compute/common" in snippets:  # compute_pieces enables the extension before any code
-        COMPOSITIONS[name] = (stage, "#extension GL_ARB_gpu_shader_int64 : require\n" + defines) + COMPOSITIONS[name][2:]
+        before = ["arithmetic/exact_division"] + (["arithmetic/fixed_point"] if snippets[first] == "compute/common" else [])
+        COMPOSITIONS[name] = (stage, defines, snippets[:first] + before + snippets[first:], main_text)
 
 
 WIDE = ("Float64", "Int64", "Int64Atomics")
 
 
-def wide_allowed(name: str) -> set:
-    """The wide capabilities composition `name` may need, and must. Raster and look-up programs need
-    none, nor do the compute passes that prepare the segments (float clip and snap), walk the lines
-    (32-bit words), shade fragments (float t) and sum them (compute/tile_sums, two 32-bit words).
-    Density clustering (compute/clusters) still takes its fixed-point terms, means and deviations
-    through double and 64-bit integers."""
-    if name.startswith("compute_clusters_"):
-        return {"Float64", "Int64"}
-    return set()
+# A program that needs both wide capabilities: the check must find them here, or it could find them nowhere.
+WIDE_PROBE = ("#version 430 core\n#extension GL_ARB_gpu_shader_int64 : require\nlayout(local_size_x = 1) in;\n"
+              "layout(std430, binding = 0) buffer b { double d; int64_t i; };\nvoid main() { d = d * 3.0lf; i = i * 3L; }\n")
 
 
 def wide_capabilities(validator: str, path: pathlib.Path) -> tuple:
@@ -262,8 +257,14 @@ def main() -> int:
     if "--validator" in sys.argv:
         validator = sys.argv[sys.argv.index("--validator") + 1]
     used = set()
-    wide_count = 0
     with tempfile.TemporaryDirectory() as tmp:
+        probe = pathlib.Path(tmp) / "wide_probe.comp"
+        probe.write_text(WIDE_PROBE, encoding="utf-8")
+        log, wide = wide_capabilities(validator, probe)
+        if log or wide != {"Float64", "Int64"}:
+            print(f"validate_shaders: the probe's doubles and 64-bit integers were not seen as Float64 and Int64 ({sorted(wide)}):\n{log}",
+                  file=sys.stderr)
+            return 1
         for name, (stage, defines, snippets, main_text) in COMPOSITIONS.items():
             used.update(snippets)
             source = VERSION + ALPHA + defines + "".join(expand(f"#include {s}") for s in snippets) + expand(main_text)
@@ -278,22 +279,17 @@ def main() -> int:
             if log:
                 print(f"validate_shaders: {name} failed to compile to SPIR-V:\n{log}", file=sys.stderr)
                 return 1
-            allowed = wide_allowed(name)
-            if wide - allowed:
-                print(f"validate_shaders: {name} needs {', '.join(sorted(wide - allowed))} (SPIR-V capability), which most GPUs "
+            if wide:
+                print(f"validate_shaders: {name} needs {', '.join(sorted(wide))} (SPIR-V capability), which most GPUs "
                       "run slowly or not at all", file=sys.stderr)
                 return 1
-            if allowed - wide:
-                print(f"validate_shaders: {name} no longer needs {', '.join(sorted(allowed - wide))}: shrink wide_allowed", file=sys.stderr)
-                return 1
-            wide_count += bool(wide)
     every = {str(p.relative_to(SHADERS).with_suffix("")) for p in SHADERS.rglob("*.glsl")}
     unvalidated = sorted(every - used)
     if unvalidated:
         print(f"validate_shaders: not validated by any composition: {', '.join(unvalidated)}", file=sys.stderr)
         return 1
-    print(f"validate_shaders: {len(COMPOSITIONS)} compositions of {len(every)} snippets are valid GLSL; in SPIR-V, "
-          f"{len(COMPOSITIONS) - wide_count} need neither Float64 nor Int64, and {wide_count} (compute) still need what wide_allowed says")
+    print(f"validate_shaders: {len(COMPOSITIONS)} compositions of {len(every)} snippets are valid GLSL, and in SPIR-V "
+          "none needs Float64 or Int64")
     return 0
 
 

@@ -1,10 +1,16 @@
+#include "test_support.hpp"
+
 #include <hairshadow/hairshadow.hpp>
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
+#include <random>
 #include <set>
 #include <utility>
+#include <vector>
 
 using namespace hairshadow;
 
@@ -58,6 +64,74 @@ std::set<texel> diamond_exit_brute_force(fixed_point a, fixed_point b) {
     return out;
 }
 
+/// The line rule as it was before issue 43, in 64-bit integers (the minor coordinate at a centre as
+/// n + rem / (|d_major| S)): the oracle that the 32-bit rule (k + r / |d_major| sub-pixels) must
+/// equal fragment for fragment, in order.
+namespace rule64 {
+std::int64_t floor_div(std::int64_t a, std::int64_t b) {
+    const std::int64_t q = a / b;
+    return (a % b != 0 && a < 0) ? q - 1 : q;
+}
+std::int64_t ceil_div(std::int64_t a, std::int64_t b) { return -floor_div(-a, b); }
+bool inside_diamond(const fixed_point& p, std::int64_t c, std::int64_t r) {
+    constexpr std::int64_t half = subpixel_scale / 2;
+    const std::int64_t u = p.x - (c * subpixel_scale + half), v = p.y - (r * subpixel_scale + half);
+    const std::int64_t l1 = std::llabs(u) + std::llabs(v);
+    return l1 < half || (l1 == half && u > 0);
+}
+template <class Emit>
+void rasterize_line(const fixed_point& a, const fixed_point& b, const texel_rect& clip, Emit&& emit) {
+    constexpr std::int64_t S = subpixel_scale, H = subpixel_scale / 2;
+    if (a == b) return;
+    const std::int64_t dx = b.x - a.x, dy = b.y - a.y;
+    const bool x_major = std::llabs(dx) >= std::llabs(dy);
+    const std::int64_t major_a = x_major ? a.x : a.y, major_b = x_major ? b.x : b.y;
+    const std::int64_t d_major = x_major ? dx : dy, d_minor = x_major ? dy : dx, minor_a = x_major ? a.y : a.x;
+    const std::int64_t lo_end = d_major > 0 ? major_a : major_b, hi_end = d_major > 0 ? major_b : major_a;
+    const std::int64_t first = ceil_div(lo_end - H, S), last = ceil_div(hi_end - H, S) - 1;
+    const std::int64_t m_begin = std::max<std::int64_t>(first, x_major ? clip.x0 : clip.y0);
+    const std::int64_t m_end = std::min<std::int64_t>(last, (x_major ? clip.x1 : clip.y1) - 1);
+    const std::int64_t denom = (d_major > 0 ? d_major : -d_major) * S, sign = d_major > 0 ? 1 : -1;
+    const bool lower_on_tie = !x_major || dy == 0 || (dx > 0) != (dy > 0);
+    if (m_begin <= m_end) {
+        const std::int64_t num0 = sign * (minor_a * d_major + (m_begin * S + H - major_a) * d_minor);
+        std::int64_t n = floor_div(num0, denom), rem = num0 - n * denom;
+        const std::int64_t step = sign * d_minor * S;
+        const std::int64_t step_q = step == denom ? 1 : (step < 0 ? -1 : 0), step_r = step - step_q * denom;
+        for (std::int64_t m = m_begin; m <= m_end; ++m) {
+            const std::int64_t minor = (lower_on_tie && rem == 0) ? n - 1 : n;
+            const std::int64_t x = x_major ? m : minor, y = x_major ? minor : m;
+            if (clip.contains(x, y) && !inside_diamond(b, x, y)) emit(int(x), int(y));
+            n += step_q;
+            rem += step_r;
+            if (rem >= denom) rem -= denom, ++n;
+        }
+    }
+    const std::int64_t ax = floor_div(a.x - 1, S), ay = floor_div(a.y - 1, S), a_major = x_major ? ax : ay;
+    if (inside_diamond(a, ax, ay) && (a_major < first || a_major > last) && !inside_diamond(b, ax, ay) && clip.contains(ax, ay))
+        emit(int(ax), int(ay));
+}
+} // namespace rule64
+
+/// Segments whose fragments by rasterize_line and walk_line (its kept ones) differ from rule64's, in
+/// order; reports the first few.
+std::size_t differing(const std::vector<std::pair<fixed_point, fixed_point>>& segments, const texel_rect& clip) {
+    std::size_t wrong = 0;
+    std::vector<std::array<int, 2>> expected, line, walked;
+    for (const auto& [a, b] : segments) {
+        expected.clear(), line.clear(), walked.clear();
+        rule64::rasterize_line(a, b, clip, [&](int x, int y) { expected.push_back({x, y}); });
+        rasterize_line(a, b, clip, [&](int x, int y) { line.push_back({x, y}); });
+        walk_line(a, b, clip, [&](int x, int y, bool keep) {
+            if (keep) walked.push_back({x, y});
+        });
+        if ((line != expected || walked != expected) && ++wrong <= 3)
+            UNSCOPED_INFO("(" << a.x << ", " << a.y << ") -> (" << b.x << ", " << b.y << "): " << expected.size() << " fragments by the 64-bit rule, "
+                              << line.size() << " by rasterize_line, " << walked.size() << " kept by walk_line");
+    }
+    return wrong;
+}
+
 } // namespace
 
 TEST_CASE("hand-worked segments give the hand-computed fragments", "[raster][line]") {
@@ -106,5 +180,69 @@ TEST_CASE("the line rule equals a brute-force reading of the GL specification", 
         if (i % 13 == 0) b = {a.x + (b.x - a.x), a.y + (b.x - a.x)}; // exact diagonal
         CAPTURE(a.x, a.y, b.x, b.y);
         REQUIRE(fragments_of(a, b) == diamond_exit_brute_force(a, b));
+    }
+}
+
+TEST_CASE("the 32-bit line rule gives the 64-bit rule's fragments, in order", "[raster][line]") {
+    // The brute-force test's segments (tie grids, horizontals, verticals, diagonals), clipped and not.
+    random_stream rng(12345);
+    const int grids[] = {128, 64, 32, 1};
+    std::vector<std::pair<fixed_point, fixed_point>> segments;
+    for (int i = 0; i < 20000; ++i) {
+        const int g = grids[i % 4];
+        auto coord = [&] { return std::int64_t(rng.uniform(-6.0f, 14.0f) * float(subpixel_scale) / float(g)) * g; };
+        fixed_point a{coord(), coord()}, b{coord(), coord()};
+        if (i % 7 == 0) b.y = a.y;
+        if (i % 11 == 0) b.x = a.x;
+        if (i % 13 == 0) b = {a.x + (b.x - a.x), a.y + (b.x - a.x)};
+        segments.push_back({a, b});
+    }
+    CHECK(differing(segments, {-64, -64, 64, 64}) == 0);
+    CHECK(differing(segments, {2, -1, 7, 5}) == 0);
+    // Segments of every length up to the guard band's diagonal, where the set-up's products need 64
+    // bits: ends anywhere in the band, a quarter of them on texel-centre or corner grids, walked
+    // through a 24-texel clip on their path.
+    std::mt19937 random(4304);
+    const std::int64_t band = std::int64_t(1 << 20) * subpixel_scale;
+    std::uniform_int_distribution<std::int64_t> anywhere(-band, band);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::size_t wrong = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const double length = std::exp2(unit(random) * 30.0);
+        fixed_point a{anywhere(random), anywhere(random)};
+        const double angle = unit(random) * 6.283185307179586;
+        fixed_point b{std::clamp<std::int64_t>(a.x + std::int64_t(length * std::cos(angle)), -band, band),
+                      std::clamp<std::int64_t>(a.y + std::int64_t(length * std::sin(angle)), -band, band)};
+        if (i % 4 == 0) { // on grids of centres (odd multiples of H) or corners
+            const std::int64_t g = i % 8 == 0 ? subpixel_scale : subpixel_scale / 2;
+            a = {a.x / g * g, a.y / g * g}, b = {b.x / g * g, b.y / g * g};
+        }
+        const double s = unit(random);
+        const int cx = int(std::floor((double(a.x) + s * double(b.x - a.x)) / double(subpixel_scale)));
+        const int cy = int(std::floor((double(a.y) + s * double(b.y - a.y)) / double(subpixel_scale)));
+        wrong += differing({{a, b}}, {cx - 12, cy - 12, cx + 12, cy + 12});
+    }
+    CHECK(wrong == 0);
+    // Every segment of the Sintel hair and of a curly model as the rasteriser prepares them, under a
+    // directional light and a spot light, over the whole map.
+    for (const auto& model : {read_tfx(test::sintel_hair()), load_model("procedural:curly:strands=2000:segments=100")}) {
+        const aabb box = model.bounds();
+        const glm::vec3 centre = box.center(), size = box.extent();
+        for (const auto& spec : {light_spec::directional({0.3f, -1, -0.5f}), light_spec::spot(centre + glm::vec3(0, 0, size.z), {0, 0, -1}, 40.0f)}) {
+            const auto ls = light_space::fit(spec, model.bounds(), 1024);
+            segments.clear();
+            for (std::size_t strand = 0; strand < model.strand_count(); ++strand) {
+                const std::size_t p0 = model.strand_offsets[strand], n = model.strand_size(strand);
+                for (std::size_t i = 0; i + 1 < n; ++i) {
+                    const glm::vec3 p = model.points[p0 + i], q = model.points[p0 + i + 1];
+                    detail::segment_attributes at{0.001f, 0.001f, 1.0f, 1.0f};
+                    detail::prepared_segment s{};
+                    if (detail::prepare_segment(ls, p, q, detail::project_point(ls, p), detail::project_point(ls, q), at, s))
+                        segments.push_back({s.a(), s.b()});
+                }
+            }
+            CHECK(segments.size() > 100000);
+            CHECK(differing(segments, {0, 0, 1024, 1024}) == 0);
+        }
     }
 }

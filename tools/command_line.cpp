@@ -48,7 +48,7 @@ void add_backend_options(CLI::App* cmd, map_options& o) {
         ->check(CLI::IsMember({"osmesa", "egl"}));
     cmd->add_option("--gl-path", o.gl_path,
                     "how --backend gl builds the maps: compute (compute shaders, the CPU's fragments) or raster (the papers' blended line "
-                    "passes); default compute wherever the context runs it")
+                    "passes); default compute (OpenGL 4.3 core, no extension)")
         ->check(CLI::IsMember({"compute", "raster"}));
 }
 

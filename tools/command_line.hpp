@@ -52,7 +52,7 @@ struct map_options {
     unsigned threads = 0;
     std::string backend = "cpu";
     std::string context = "egl";
-    std::string gl_path; ///< --gl-path: compute, raster, or "" for compute wherever the context runs it
+    std::string gl_path; ///< --gl-path: compute, raster, or "" for compute (the default)
 
     bool on_gl() const { return backend == "gl"; }
 

@@ -100,9 +100,10 @@ public:
 
 private:
     void choose_path(const std::string& path) {
-        if (path == "compute") gl::require_compute_path("--gl-path compute", "use --gl-path raster");
-        else if (!path.empty() && path != "raster") throw argument_error("unknown GL build path '" + path + "'; valid: compute, raster");
+        if (!path.empty() && path != "compute" && path != "raster") throw argument_error("unknown GL build path '" + path + "'; valid: compute, raster");
         path_ = path.empty() ? gl::default_build_path() : path == "compute" ? gl::build_path::compute : gl::build_path::raster;
+        gl::require_version(4, 3, "the GL back end"); // both paths: before pointing from one to the other
+        if (path_ == gl::build_path::compute) gl::require_compute_path(path.empty() ? "the default --gl-path (compute)" : "--gl-path compute", "use --gl-path raster");
     }
     std::unique_ptr<gl::any_gl_shadow_map> make(const method_spec& spec) const {
         auto maps = gl::make_gl_shadow_map(spec);

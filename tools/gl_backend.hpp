@@ -24,8 +24,8 @@ namespace cli {
 class gl_backend {
 public:
     /// Opens a context of `kind` ("osmesa" or "egl") and loads GL, building maps on `path` ("compute"
-    /// or "raster"; "": compute wherever the context runs it); throws hairshadow::error when it cannot
-    /// (gl::feature_error for a path the context lacks).
+    /// or "raster"; "": compute); throws hairshadow::error when it cannot (gl::feature_error below GL
+    /// 4.3, or for compute where the context lacks what it needs).
     static std::unique_ptr<gl_backend> open(const std::string& kind, const std::string& path = "");
     /// The same on a context the caller made (and keeps alive longer than the back end), with GL
     /// loaded; makes it current.

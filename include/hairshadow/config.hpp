@@ -14,7 +14,8 @@
 
 /// Sub-pixel precision of the line rasteriser, in bits. Window coordinates are snapped to 1/2^bits of a
 /// texel before the line rule is applied, as GL implementations do (GL_SUBPIXEL_BITS is 8 on llvmpipe
-/// and on NVIDIA), so that the CPU and GL back ends see the same fragments.
+/// and on NVIDIA), so that the CPU and GL back ends see the same fragments. 1 to 9: the line rule's
+/// 32-bit words hold guard-band coordinates at up to 9 bits (raster/line_rule.hpp).
 #ifndef HAIRSHADOW_SUBPIXEL_BITS
 #define HAIRSHADOW_SUBPIXEL_BITS 8
 #endif

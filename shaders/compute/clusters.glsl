@@ -3,8 +3,9 @@
 // segments per strip. Walk 1 sums each fragment's b and b depth into the cluster of its nearest initial
 // centre; walk 2 sums b (depth - mean)^2 into the cluster of its nearest mean; walk 3 adds b to the
 // bin placement/clustered assigns it. The k-means sums are hairshadow::clustered's fixed-point integers
-// (2^-36), so the means and deviations are the CPU's bit for bit; the histogram is summed as the
-// layers pass sums. Writes the state (means, then deviations) and the histogram where the raster passes
+// (2^-36) in two 32-bit words, and the means and deviations are taken from them with correctly rounded
+// float operations (hs_div_rn, hs_sqrt_rn), so they are the CPU's bit for bit with no double precision
+// or 64-bit integers; the histogram is summed as the layers pass sums. Writes the state (means, then deviations) and the histogram where the raster passes
 // put them.
 layout(local_size_x = 16, local_size_y = 16) in;
 layout(binding = 0, HS_LAYERS_FORMAT) writeonly uniform image2DArray hs_layers_image;
@@ -16,11 +17,13 @@ shared vec2 hs_texel_range[HS_STRIP];
 ivec2 hs_origin;
 int hs_walk_kind;
 
-const double HS_FIXED = 68719476736.0lf; // 2^36: clustered::fixed_sum
-uvec2 hs_fixed(double x) { // trunc(x 2^36), two's complement, as (low, high) words for hs_add_fixed
-    uint64_t v = uint64_t(int64_t(x * HS_FIXED));
-    return uvec2(uint(v & 0xffffffffUL), uint(v >> 32));
+// A signed fixed-point sum's value over another's, as clustered::set_means takes it: each rounded to
+// float, then the quotient correctly rounded.
+float hs_sum_quotient(uvec2 numerator, uvec2 denominator) {
+    return hs_div_rn(hs_float_of_signed_words(numerator), hs_float_of_signed_words(denominator));
 }
+// A signed fixed-point sum above zero.
+bool hs_positive(uvec2 v) { return (v.y & 0x80000000u) == 0u && (v.x | v.y) != 0u; }
 
 // Initial k-means centre j: the middle of the j-th of K equal parts of [nearest, furthest].
 float hs_centre(vec2 range, int j) {
@@ -41,8 +44,8 @@ void hs_emit(int x, int y) {
             unused[j] = 0.0;
         }
         uint j = uint(hs_nearest_cluster(centre, unused, true, depth));
-        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + j, hs_fixed(double(b)));
-        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + uint(HS_LAYERS) + j, hs_fixed(double(b) * double(depth)));
+        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + j, hs_fixed_product(b, 1.0));
+        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + uint(HS_LAYERS) + j, hs_fixed_product(b, depth));
         return;
     }
     float mean[HS_LAYERS], sigma[HS_LAYERS];
@@ -52,16 +55,14 @@ void hs_emit(int x, int y) {
     }
     if (hs_walk_kind == 1) {
         uint j = uint(hs_nearest_cluster(mean, sigma, false, depth));
-        precise double d = double(depth) - double(mean[j]);
-        precise double bdd = double(b) * d * d;
-        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + j, hs_fixed(double(b)));
-        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + uint(HS_LAYERS) + j, hs_fixed(bdd));
+        precise float d = depth - mean[j];
+        precise float squared = d * d; // clustered::squared_distance
+        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + j, hs_fixed_product(b, 1.0));
+        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + uint(HS_LAYERS) + j, hs_fixed_product(b, squared));
         return;
     }
     hs_add_sum(texel * uint(HS_SUM_SLOTS) + uint(hs_assign(mean, sigma, depth)), b);
 }
-
-int64_t hs_signed_sum(uint slot) { uvec2 s = hs_sum(slot); return int64_t((uint64_t(s.y) << 32) | uint64_t(s.x)); }
 
 void main() {
     uint tile = gl_WorkGroupID.y * uint(hs_tiles_x) + gl_WorkGroupID.x;
@@ -82,14 +83,15 @@ void main() {
             if (mine) {
                 uint sums = me * uint(HS_SUM_SLOTS), state = me * uint(HS_LAYERS);
                 for (int j = 0; j < HS_LAYERS; ++j) {
-                    int64_t weight = hs_signed_sum(sums + uint(j)), total = hs_signed_sum(sums + uint(HS_LAYERS + j));
+                    uvec2 weight = hs_sum(sums + uint(j)), total = hs_sum(sums + uint(HS_LAYERS + j));
+                    bool taken = hs_positive(weight);
                     if (hs_walk_kind == 0) {
-                        hs_mean[state + uint(j)] = weight > 0L ? float(double(total) / double(weight)) : hs_centre(hs_texel_range[me], j);
+                        hs_mean[state + uint(j)] = taken ? hs_sum_quotient(total, weight) : hs_centre(hs_texel_range[me], j);
                         // Selected as bits: a compiler may turn a select of 0.0 and -1.0 into -float(!cond),
                         // which gives -0 where the CPU has +0.
-                        hs_sigma[state + uint(j)] = uintBitsToFloat(weight > 0L ? 0u : floatBitsToUint(-1.0));
+                        hs_sigma[state + uint(j)] = uintBitsToFloat(taken ? 0u : floatBitsToUint(-1.0));
                     } else if (hs_walk_kind == 1) {
-                        if (hs_sigma[state + uint(j)] >= 0.0 && weight > 0L) hs_sigma[state + uint(j)] = float(sqrt(double(total) / double(weight)));
+                        if (hs_sigma[state + uint(j)] >= 0.0 && taken) hs_sigma[state + uint(j)] = hs_sqrt_rn(hs_sum_quotient(total, weight));
                     }
                 }
                 if (inside && hs_walk_kind == 1) {

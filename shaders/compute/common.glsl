@@ -2,12 +2,12 @@
 // tiles, and the line rule of raster/line_rule.hpp in 32-bit integers, so that a tile's work group
 // makes exactly the fragments the CPU rasteriser makes. A pass defines hs_emit(x, y), which the walk
 // calls for every fragment of the current segment inside the tile. Everything here is 32-bit: the
-// walk in integers, the fragments' parameter, depth and optical depth in float. compute_pieces still
-// enables GL_ARB_gpu_shader_int64 for every program (GLSL allows #extension only before any code),
-// for density clustering's sake, which still uses 64-bit integers and double precision.
+// walk in integers, the fragments' parameter, depth and optical depth in float; no program of the
+// compute path needs double precision, 64-bit integers or any extension (scripts/validate_shaders.py).
 
 // Coordinates lie within the guard band, |c| <= 2^(20 + bits) sub-pixels, so with at most 9 bits every
-// difference and every remainder of the walk below fits a 32-bit int (compute_path_missing says so).
+// difference and every remainder of the walk below fits a 32-bit int (the CPU's line rule asserts the
+// same range, raster/line_rule.hpp).
 #if HS_SUBPIXEL_BITS < 1 || HS_SUBPIXEL_BITS > 9
 #error "the compute line rule needs 1 <= HS_SUBPIXEL_BITS <= 9"
 #endif
@@ -129,9 +129,9 @@ void hs_emit(int x, int y); // defined by each pass
 
 // Every fragment of a -> b inside the texel rectangle clip = (x0, y0, x1, y1), half-open, by the
 // diamond-exit rule: the fragments of rasterize_line (set_up_line, the walk, then start_fragment), in
-// 32-bit words. The CPU keeps the minor coordinate at a centre as n + rem / (A S), A = |d_major|, a
-// numerator near 2^58; here it is k + r / A sub-pixels (n = k >> bits, rem = (k mod S) A + r), whose
-// parts stay within the guard band and below A: the same quotient, exactly, so the same fragments.
+// 32-bit words. The minor coordinate at a centre is k + r / A sub-pixels, A = |d_major|, whose parts
+// stay within the guard band and below A, as the CPU's set_up_line keeps it (the CPU takes the
+// set-up's quotients by one 64-bit division each, this by hs_product_quotient): the same fragments.
 void hs_walk(ivec2 a, ivec2 b, ivec4 clip) {
     if (a == b) return;
     int dx = b.x - a.x, dy = b.y - a.y;

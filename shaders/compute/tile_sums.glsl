@@ -49,8 +49,7 @@ uvec2 hs_fixed_words(float x) {
     precise float high = floor(scaled * (1.0 / 4294967296.0));
     precise float low = scaled - high * 4294967296.0;
     uvec2 magnitude = uvec2(uint(low), uint(high));
-    if (x >= 0.0) return magnitude;
-    return uvec2(~magnitude.x + 1u, ~magnitude.y + (magnitude.x == 0u ? 1u : 0u));
+    return x >= 0.0 ? magnitude : hs_negated_words(magnitude);
 }
 
 void hs_add_sum(uint slot, float b) {
@@ -78,16 +77,6 @@ uvec2 hs_combine(uvec2 a, uvec2 b) {
     return uvec2(low, a.y + b.y + (low < a.x ? 1u : 0u));
 #endif
 }
-// An unsigned 64-bit integer (low, high) as a float, rounded to nearest even once, as float(double(v))
-// is for the CPU's sums (below 2^53, a double holds them exactly): its top 32 bits, with a sticky bit
-// for any bit below them, convert correctly rounded (GLSL's uint-to-float conversion), then scale.
-float hs_float_of_words(uvec2 v) {
-    if (v.y == 0u) return float(v.x);
-    int shift = 31 - findMSB(v.y); // leading zeros of the high word
-    uint top = shift == 0 ? v.y : (v.y << shift) | (v.x >> (32 - shift));
-    uint below = v.x << shift; // shift < 32
-    return ldexp(float(top | (below != 0u ? 1u : 0u)), 32 - shift);
-}
 // The value a texture stores for a sum: the optical depth, or the 8-bit level over 255.
 float hs_stored(uvec2 sum) {
 #ifdef HS_EIGHT_BIT
@@ -99,5 +88,5 @@ float hs_stored(uvec2 sum) {
 // The same for a signed sum (two's complement), whose terms may be negative.
 float hs_stored_signed(uvec2 sum) {
     if ((sum.y & 0x80000000u) == 0u) return hs_stored(sum);
-    return -hs_stored(uvec2(~sum.x + 1u, ~sum.y + (sum.x == 0u ? 1u : 0u))); // the magnitude, as x >= 0 has it
+    return -hs_stored(hs_negated_words(sum)); // the magnitude, as x >= 0 has it
 }

@@ -26,7 +26,8 @@
 
 /// Sub-pixel precision of the line rasteriser, in bits. Window coordinates are snapped to 1/2^bits of a
 /// texel before the line rule is applied, as GL implementations do (GL_SUBPIXEL_BITS is 8 on llvmpipe
-/// and on NVIDIA), so that the CPU and GL back ends see the same fragments.
+/// and on NVIDIA), so that the CPU and GL back ends see the same fragments. 1 to 9: the line rule's
+/// 32-bit words hold guard-band coordinates at up to 9 bits (raster/line_rule.hpp).
 #ifndef HAIRSHADOW_SUBPIXEL_BITS
 #define HAIRSHADOW_SUBPIXEL_BITS 8
 #endif
@@ -2168,7 +2169,8 @@ private:
 // ---- begin hairshadow/raster/line_rule.hpp
 /// @file
 /// OpenGL's aliased line rule (the diamond-exit rule, GL 4.6 core section 14.5.1) in exact fixed-point
-/// arithmetic. Fragment f is produced when the segment meets f's diamond |x - xc| + |y - yc| < 1/2 and
+/// arithmetic of 32-bit integers (one 64-bit product and division per quotient of the set-up), the
+/// same as the GPU's compute walk (shaders/compute/common.glsl, hs_walk). Fragment f is produced when the segment meets f's diamond |x - xc| + |y - yc| < 1/2 and
 /// the segment's end is not inside it, with both endpoints moved by -(e, e^2) for a vanishing e, as the
 /// specification perturbs them, so that boundary cases are decided the way it describes.
 
@@ -2214,51 +2216,85 @@ inline bool inside_diamond(const fixed_point& p, std::int64_t c, std::int64_t r)
 } // namespace detail
 
 namespace detail {
+static_assert(HAIRSHADOW_SUBPIXEL_BITS >= 1 && HAIRSHADOW_SUBPIXEL_BITS <= 9,
+              "the line rule's 32-bit words hold guard-band coordinates at up to 9 sub-pixel bits");
+
+/// o v / A as q + r / A with 0 <= r < A, exactly, for 0 <= o and |v| <= A (o is at most A, or S for the
+/// step, so q fits 32 bits): the floor of the 64-bit product's quotient. (The GPU takes the same
+/// quotient from 32-bit words, hs_product_quotient.)
+struct quotient {
+    std::int32_t q, r;
+};
+HAIRSHADOW_ALWAYS_INLINE inline quotient product_quotient(std::int32_t o, std::int32_t v, std::int32_t A) noexcept {
+    const std::int64_t p = std::int64_t(o) * v;
+    const std::int64_t q = floor_div(p, A);
+    return {std::int32_t(q), std::int32_t(p - q * A)};
+}
+
 /// What both walks of the line rule work out for a segment a -> b and a clip rectangle: the major
 /// axis, the texel centres on it that the segment crosses, those inside the clip, and the minor
-/// coordinate at the first of them as an exact quotient and remainder with its step per texel.
+/// coordinate at the first of them as k + r / A sub-pixels (A = |d_major|, 0 <= r < A) with its step
+/// per texel, exactly, in 32-bit integers: every part stays within the guard band (2^20 texels of
+/// 2^9 sub-pixels at most, so |k| < 2^30 and A <= 2^30, and r plus its step stays below 2^31), as on
+/// the GPU (hs_walk).
 struct line_walk {
     bool x_major;
     bool lower_on_tie;                     ///< ties on the minor axis go to the lower row or left column
-    std::int64_t first, last;              ///< centres crossed on the major axis (texel indices)
-    std::int64_t m_begin, m_end;           ///< the part of [first, last] inside the clip
-    std::int64_t n, rem, denom;            ///< the minor coordinate at m_begin: n + rem / denom
-    std::int64_t step_q, step_r;           ///< its step per texel: step_q + step_r / denom
+    std::int32_t first, last;              ///< centres crossed on the major axis (texel indices)
+    std::int32_t m_begin, m_end;           ///< the part of [first, last] inside the clip
+    std::int32_t k, r, A;                  ///< the minor coordinate at m_begin: k + r / A sub-pixels
+    std::int32_t step_k, step_r;           ///< its step per texel: step_k + step_r / A
+
+    /// The minor texel at the current centre: the sub-pixel's texel, one lower on a tie (the
+    /// coordinate exactly on a texel boundary).
+    std::int32_t minor() const noexcept {
+        const std::int32_t n = k >> HAIRSHADOW_SUBPIXEL_BITS; // an arithmetic shift floors
+        return n - (std::int32_t(lower_on_tie) & std::int32_t(((k & std::int32_t(subpixel_scale - 1)) | r) == 0));
+    }
+    /// On to the next centre.
+    void advance() noexcept {
+        r += step_r;
+        const std::int32_t carry = r >= A;
+        r -= carry * A;
+        k += step_k + carry;
+    }
 };
 
-/// Sets up the walk of a -> b (not of zero length) in `clip`.
+/// Sets up the walk of a -> b (not of zero length, within the guard band) in `clip`.
 HAIRSHADOW_ALWAYS_INLINE inline line_walk set_up_line(const fixed_point& a, const fixed_point& b, const texel_rect& clip) noexcept {
-    constexpr std::int64_t S = subpixel_scale, H = subpixel_scale / 2;
-    const std::int64_t dx = b.x - a.x, dy = b.y - a.y;
+    constexpr std::int32_t S = std::int32_t(subpixel_scale), H = S / 2, bits = HAIRSHADOW_SUBPIXEL_BITS;
+    const auto ax = std::int32_t(a.x), ay = std::int32_t(a.y), bx = std::int32_t(b.x), by = std::int32_t(b.y);
+    const std::int32_t dx = bx - ax, dy = by - ay;
     line_walk w{};
-    w.x_major = std::llabs(dx) >= std::llabs(dy);
-    const std::int64_t major_a = w.x_major ? a.x : a.y, major_b = w.x_major ? b.x : b.y;
-    const std::int64_t d_major = w.x_major ? dx : dy, d_minor = w.x_major ? dy : dx;
-    const std::int64_t minor_a = w.x_major ? a.y : a.x;
+    w.x_major = std::abs(dx) >= std::abs(dy);
+    const std::int32_t major_a = w.x_major ? ax : ay, major_b = w.x_major ? bx : by;
+    const std::int32_t d_major = w.x_major ? dx : dy, d_minor = w.x_major ? dy : dx;
+    const std::int32_t minor_a = w.x_major ? ay : ax;
     // Texel centres c*S + H on the major axis that the perturbed segment crosses: for increasing
-    // coordinates major_a <= centre < major_b, for decreasing major_b <= centre < major_a.
-    const std::int64_t lo_end = d_major > 0 ? major_a : major_b, hi_end = d_major > 0 ? major_b : major_a;
-    w.first = ceil_div(lo_end - H, S);
-    w.last = ceil_div(hi_end - H, S) - 1;
-    const std::int64_t clip_lo = w.x_major ? clip.x0 : clip.y0, clip_hi = w.x_major ? clip.x1 : clip.y1;
+    // coordinates major_a <= centre < major_b, for decreasing major_b <= centre < major_a. The
+    // ceilings by the shift's floor.
+    const std::int32_t lo_end = d_major > 0 ? major_a : major_b, hi_end = d_major > 0 ? major_b : major_a;
+    w.first = (lo_end - H + S - 1) >> bits;
+    w.last = ((hi_end - H + S - 1) >> bits) - 1;
+    const std::int32_t clip_lo = w.x_major ? clip.x0 : clip.y0, clip_hi = w.x_major ? clip.x1 : clip.y1;
     w.m_begin = std::max(w.first, clip_lo);
     w.m_end = std::min(w.last, clip_hi - 1);
-    w.denom = (d_major > 0 ? d_major : -d_major) * S;
-    const std::int64_t sign = d_major > 0 ? 1 : -1;
+    w.A = std::abs(d_major);
     // Ties on the minor axis (the line through a texel corner row or column): an x-major line moves by
     // slope * e - e^2, so it goes to the lower row unless its slope is positive; a y-major line moves
     // by -e in x and always goes to the left column.
     w.lower_on_tie = !w.x_major || dy == 0 || (dx > 0) != (dy > 0);
     if (w.m_begin <= w.m_end) {
-        // The minor coordinate at successive centres, num / denom, advances by a constant step: keep
-        // its quotient and remainder exactly, with one division per call instead of one per texel.
-        // |d_minor| <= |d_major| puts the step within [-denom, denom]: its quotient needs no division.
-        const std::int64_t num0 = sign * (minor_a * d_major + (w.m_begin * S + H - major_a) * d_minor);
-        w.n = floor_div(num0, w.denom);
-        w.rem = num0 - w.n * w.denom;
-        const std::int64_t step = sign * d_minor * S;
-        w.step_q = step == w.denom ? 1 : (step < 0 ? -1 : 0);
-        w.step_r = step - w.step_q * w.denom;
+        // The first centre's distance from a along the major axis, o in [0, A] (first <= m_begin <=
+        // last), puts the minor coordinate there at minor_a + o d_minor / A; each centre adds
+        // S d_minor / A, |d_minor| <= A. Two divisions a call, none a texel.
+        const std::int32_t sign = d_major > 0 ? 1 : -1;
+        const quotient start = product_quotient(sign * (w.m_begin * S + H - major_a), d_minor, w.A);
+        const quotient step = product_quotient(S, sign * d_minor, w.A);
+        w.k = minor_a + start.q;
+        w.r = start.r;
+        w.step_k = step.q;
+        w.step_r = step.r;
     }
     return w;
 }
@@ -2277,19 +2313,15 @@ HAIRSHADOW_ALWAYS_INLINE inline void start_fragment(const fixed_point& a, const 
 
 /// Calls emit(x, y) for every fragment of the segment a -> b inside `clip`, following the diamond-exit
 /// rule. A zero-length segment produces nothing. Coordinates must be within +-2^20 texels (the
-/// rasteriser's guard band), which keeps every product below 2^63.
+/// rasteriser's guard band), which keeps the walk's 32-bit words from overflowing.
 template <class Emit>
 HAIRSHADOW_ALWAYS_INLINE inline void rasterize_line(const fixed_point& a, const fixed_point& b, const texel_rect& clip, Emit&& emit) {
     if (a == b) return;
-    const detail::line_walk w = detail::set_up_line(a, b, clip);
-    std::int64_t n = w.n, rem = w.rem;
-    for (std::int64_t m = w.m_begin; m <= w.m_end; ++m) {
-        const std::int64_t minor = (w.lower_on_tie && rem == 0) ? n - 1 : n;
-        const std::int64_t x = w.x_major ? m : minor, y = w.x_major ? minor : m;
+    detail::line_walk w = detail::set_up_line(a, b, clip);
+    for (std::int32_t m = w.m_begin; m <= w.m_end; ++m, w.advance()) {
+        const std::int32_t minor = w.minor();
+        const std::int32_t x = w.x_major ? m : minor, y = w.x_major ? minor : m;
         if (clip.contains(x, y) && !detail::inside_diamond(b, x, y)) emit(int(x), int(y));
-        n += w.step_q;
-        rem += w.step_r;
-        if (rem >= w.denom) rem -= w.denom, ++n;
     }
     detail::start_fragment(a, b, clip, w, emit);
 }
@@ -2305,24 +2337,18 @@ HAIRSHADOW_ALWAYS_INLINE inline void walk_line(const fixed_point& a, const fixed
     using detail::floor_div;
     constexpr std::int64_t S = subpixel_scale;
     if (a == b) return;
-    const detail::line_walk w = detail::set_up_line(a, b, clip);
+    detail::line_walk w = detail::set_up_line(a, b, clip);
     const std::int64_t minor_lo = w.x_major ? clip.y0 : clip.x0, minor_span = (w.x_major ? clip.y1 : clip.x1) - minor_lo;
-    const std::int64_t tie = w.lower_on_tie ? 1 : 0;
     // The one texel whose diamond holds the end, if any (the open diamonds are disjoint, and the
     // boundary rule gives a shared point to one of them): it makes no fragment.
     std::int64_t end_major = std::numeric_limits<std::int64_t>::min(), end_minor = 0;
     for (const std::int64_t cx : {floor_div(b.x - 1, S), floor_div(b.x, S)})
         for (const std::int64_t cy : {floor_div(b.y - 1, S), floor_div(b.y, S)})
             if (detail::inside_diamond(b, cx, cy)) end_major = w.x_major ? cx : cy, end_minor = w.x_major ? cy : cx;
-    std::int64_t n = w.n, rem = w.rem;
-    for (std::int64_t m = w.m_begin; m <= w.m_end; ++m) {
-        const std::int64_t minor = n - (tie & std::int64_t(rem == 0));
+    for (std::int32_t m = w.m_begin; m <= w.m_end; ++m, w.advance()) {
+        const std::int32_t minor = w.minor();
         const bool keep = std::uint64_t(minor - minor_lo) < std::uint64_t(minor_span) && !(m == end_major && minor == end_minor);
         emit(int(w.x_major ? m : minor), int(w.x_major ? minor : m), keep);
-        rem += w.step_r;
-        const std::int64_t carry = rem >= w.denom;
-        rem -= carry * w.denom;
-        n += w.step_q + carry;
     }
     detail::start_fragment(a, b, clip, w, [&](int x, int y) HAIRSHADOW_ALWAYS_INLINE { emit(x, y, true); });
 }
@@ -2670,8 +2696,8 @@ struct segment_attributes {
     float thickness_a, thickness_b, opacity_a, opacity_b;
 };
 
-/// Window coordinates of the guard band: +-2^20 texels keeps every product of the fixed-point line
-/// rule below 2^63 and every snapped coordinate inside 32 bits.
+/// Window coordinates of the guard band: +-2^20 texels keeps every snapped coordinate, and every
+/// word of the fixed-point line rule (raster/line_rule.hpp, at up to 9 sub-pixel bits), inside 32 bits.
 inline constexpr float guard_band = float(1 << 20);
 
 /// Window coordinate to sub-pixel fixed point, rounding half away from zero (std::llround, without
@@ -4543,7 +4569,7 @@ struct depth_along {
 
 /// floor(num / denom) along a walk, per lane, as quotient and remainder (0 <= r < denom): each
 /// advance() adds num's step, held as its own quotient and remainder, with a carry. Exact integers:
-/// r + r_step < 2 denom <= 2^31, so that no step divides.
+/// r + r_step < 2 denom < 2^32 (denom < 2^31: most_length), compared unsigned, so that no step divides.
 struct carried_quotient {
     __m512i q, r, q_step, r_step, denom;
 
@@ -8314,7 +8340,7 @@ HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __m512i lane_sums(const
 
 /// One of clustered::prepare_texel's k-means passes: for every fragment, the nearest of the `usable`
 /// centres j takes fixed_sum(b) into weight[j] and into sum[j] fixed_sum(b * depth) (the first pass)
-/// or, with Spread, fixed_sum(b * d * d) for d = depth - centre (the second). Sums of clusters that
+/// or, with Spread, fixed_sum(b * (depth - centre)^2), the square in float (the second). Sums of clusters that
 /// are not usable are left 0. With OneOpticalDepth, every fragment's b is the first one's
 /// (texel_scan_of), and weight[j] is fixed_sum(b) times the fragments j takes: the same integer, with
 /// no conversion per fragment. Returns false, with the sums unfinished, where a term is too large for the
@@ -8331,25 +8357,23 @@ HAIRSHADOW_AVX512_TARGET inline bool add_cluster_sums(std::span<const Fragment> 
     __mmask8 too_large = 0;
     const __m512d one_optical = _mm512_set1_pd(double(first_optical));
     const __m512 centre_floats = _mm512_maskz_loadu_ps(__mmask16((1u << K) - 1u), centres);
-    const __m512d centres_low = widen_half(centre_floats, 0), centres_high = widen_half(centre_floats, 1);
     for (std::size_t i = 0; i < fragments.size(); i += 16) {
         __m512 depth, optical;
         const __mmask16 lanes = load_fragments(fragments.data() + i, fragments.size() - i, depth, optical);
         const __m512i nearest = nearest_centre<K>(depth, centres, usable);
+        // The factor that multiplies b: the depth, or (Spread) clustered::squared_distance to the
+        // lane's own centre, picked from the (up to sixteen) centres by its index, in float.
+        __m512 factor = depth;
+        if constexpr (Spread) {
+            const __m512 from_centre = _mm512_sub_ps(depth, _mm512_permutexvar_ps(nearest, centre_floats));
+            factor = _mm512_mul_ps(from_centre, from_centre);
+        }
         for (int half = 0; half < 2; ++half) {
             const auto half_lanes = __mmask8(lanes >> (8 * half));
             if (half_lanes == 0) break;
-            const __m512d b = OneOpticalDepth ? one_optical : widen_half(optical, half), d = widen_half(depth, half);
+            const __m512d b = OneOpticalDepth ? one_optical : widen_half(optical, half);
             const __m512i weight_term = OneOpticalDepth ? _mm512_set1_epi64(1) : fixed_terms(b, half_lanes, too_large);
-            __m512i sum_term;
-            if constexpr (Spread) {
-                // Each lane's own centre, picked from the (up to sixteen) centres by its index.
-                const __m512i index = _mm512_cvtepi32_epi64(half == 0 ? _mm512_castsi512_si256(nearest) : _mm512_extracti64x4_epi64(nearest, 1));
-                const __m512d from_centre = _mm512_sub_pd(d, _mm512_permutex2var_pd(centres_low, index, centres_high));
-                sum_term = fixed_terms(_mm512_mul_pd(_mm512_mul_pd(b, from_centre), from_centre), half_lanes, too_large);
-            } else {
-                sum_term = fixed_terms(_mm512_mul_pd(b, d), half_lanes, too_large);
-            }
+            const __m512i sum_term = fixed_terms(_mm512_mul_pd(b, widen_half(factor, half)), half_lanes, too_large); // exact: two floats
             for (int j = 0; j < K; ++j) {
                 if (!(usable >> j & 1u)) continue;
                 const auto mine = __mmask8(__mmask8(_mm512_cmpeq_epi32_mask(nearest, _mm512_set1_epi32(j)) >> (8 * half)) & half_lanes);
@@ -8427,6 +8451,7 @@ HAIRSHADOW_AVX512_TARGET inline void count_in_bins(std::span<const Fragment> fra
 #include <cmath>
 #include <cstdint>
 #include <cstddef>
+#include <limits>
 #include <numbers>
 #include <span>
 #include <string_view>
@@ -8523,9 +8548,16 @@ public:
     }
 #endif
 
-    /// A k-means term in fixed point, 2^-36 (truncated toward zero): sums of up to 2^24 terms of
-    /// optical depth below 7 (alpha <= HAIRSHADOW_ALPHA_MAX) times a depth within [-2, 2] stay exact.
-    static std::int64_t fixed_sum(double x) noexcept { return std::int64_t(x * detail::cluster_fixed_scale); }
+    /// A k-means term in fixed point, 2^-36 (truncated toward zero), for x a product of two floats
+    /// (exact in double): sums of up to 2^24 terms of optical depth below 7 (alpha <=
+    /// HAIRSHADOW_ALPHA_MAX) times a depth within [-2, 2] stay exact. A term of 2^27 or more in size
+    /// saturates at 2^63 - 1 units, and NaN gives 0, as the GPU's hs_fixed_product does.
+    static std::int64_t fixed_sum(double x) noexcept {
+        const double units = x * detail::cluster_fixed_scale;
+        if (std::abs(units) < 0x1p63) [[likely]]
+            return std::int64_t(units);
+        return saturated(units);
+    }
 
     /// The bins of a texel in depth order; adjacent overlapping bins meet at the overlap's midpoint.
     std::array<bin, K> bins(const texel_state& s) const noexcept {
@@ -8590,6 +8622,11 @@ public:
     static constexpr std::size_t global_bytes() noexcept { return 0; }
 
 private:
+    /// fixed_sum beyond the int64 range: the largest in size, or 0 for NaN (out of the hot loops).
+    [[gnu::cold, gnu::noinline]] static std::int64_t saturated(double units) noexcept {
+        const std::int64_t most = std::numeric_limits<std::int64_t>::max();
+        return units > 0.0 ? most : units < 0.0 ? -most : 0;
+    }
     /// A k-means pass's sums per cluster, in fixed point (fixed_sum).
     struct cluster_sums {
         std::array<std::int64_t, K> weight, sum;
@@ -8619,9 +8656,9 @@ private:
         for (const auto& f : fragments) {
             const float depth = detail::depth_of(f);
             const auto j = std::size_t(nearest(s.mean, depth, [&](int i) { return usable(s, i); }));
-            const double b = optical_depth(f), d = double(depth) - s.mean[j];
+            const double b = optical_depth(f);
             spread.weight[j] += fixed_sum(b);
-            spread.sum[j] += fixed_sum(b * d * d);
+            spread.sum[j] += fixed_sum(b * double(squared_distance(depth, s.mean[j])));
         }
         set_sigmas(spread, s);
     }
@@ -8631,18 +8668,28 @@ private:
         for (int j = 0; j < K; ++j) centre[std::size_t(j)] = lo + (hi - lo) * (float(j) + 0.5f) / float(K);
         return centre;
     }
+    /// A fragment's term of the variance sums, before its weight: (depth - mean)^2, each operation
+    /// rounded to float (no fused multiply-add), as the GPU's compute pass takes it.
+    static float squared_distance(float depth, float mean) noexcept {
+        const float d = depth - mean;
+        return detail::rounded(d * d);
+    }
     /// The k-means step's result: each cluster's weighted mean, or its centre where it took nothing;
-    /// sigma 0 marks a cluster that took weight, -1 one that did not.
+    /// sigma 0 marks a cluster that took weight, -1 one that did not. The quotient of the two sums is
+    /// taken in float, each sum rounded to float first (their units cancel): operations IEEE 754
+    /// rounds correctly, which the GPU does the same from 32-bit words (hs_float_of_signed_words,
+    /// hs_div_rn) where a double quotient would need double precision there.
     static void set_means(const cluster_sums& sums, const std::array<float, K>& centre, texel_state& s) noexcept {
         for (std::size_t j = 0; j < std::size_t(K); ++j) {
-            s.mean[j] = sums.weight[j] > 0 ? float(double(sums.sum[j]) / double(sums.weight[j])) : centre[j];
+            s.mean[j] = sums.weight[j] > 0 ? float(sums.sum[j]) / float(sums.weight[j]) : centre[j];
             s.sigma[j] = sums.weight[j] > 0 ? 0.0f : -1.0f;
         }
     }
-    /// Each used cluster's weighted standard deviation from its variance sums.
+    /// Each used cluster's weighted standard deviation from its variance sums: the float quotient, as
+    /// set_means takes it, and its correctly rounded float square root (hs_sqrt_rn on the GPU).
     static void set_sigmas(const cluster_sums& spread, texel_state& s) noexcept {
         for (std::size_t j = 0; j < std::size_t(K); ++j)
-            if (s.sigma[j] >= 0.0f && spread.weight[j] > 0) s.sigma[j] = float(std::sqrt(double(spread.sum[j]) / double(spread.weight[j])));
+            if (s.sigma[j] >= 0.0f && spread.weight[j] > 0) s.sigma[j] = std::sqrt(float(spread.sum[j]) / float(spread.weight[j]));
     }
     static bool usable(const texel_state& s, int j) noexcept { return s.sigma[std::size_t(j)] >= 0.0f; }
     /// The clusters that took weight, as bits (the vector paths' `usable`).

@@ -22,8 +22,10 @@ inline hairshadow::gl::osmesa_context& gl_context() {
 
 #include <glm/matrix.hpp>
 
+#include <cstdint>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace test {
@@ -76,6 +78,30 @@ void check_lookup_and_read_back(GlMaps& on_gl, const Method& cpu, const std::vec
     std::size_t differ = 0;
     for (std::size_t i = 0; i < queries.size(); ++i) differ += std::abs(from_back[i] - on_cpu[i]) > 1e-5f;
     CHECK(differ == 0);
+}
+
+/// Runs a compute program over 32-bit words, one invocation per item (local size 64): `in` in the
+/// storage buffer at binding 0, as many words at binding 1 for the program to write, the item count
+/// in the uniform hs_count. Returns binding 1's words.
+inline std::vector<std::uint32_t> run_on_words(const std::string& defines, std::vector<std::string_view> pieces, const std::vector<std::uint32_t>& in,
+                                               std::uint32_t count, const std::string& name) {
+    gl_context();
+    const auto stage = hairshadow::gl::compile_stage(GL_COMPUTE_SHADER, defines, std::move(pieces), name);
+    const auto program = hairshadow::gl::link_program({&stage}, name);
+    auto input = hairshadow::gl::make_buffer(), output = hairshadow::gl::make_buffer();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, input.get());
+    glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(in.size() * 4), in.data(), GL_STATIC_DRAW);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, output.get());
+    glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(in.size() * 4), nullptr, GL_DYNAMIC_READ);
+    glUseProgram(program.get());
+    glUniform1ui(glGetUniformLocation(program.get(), "hs_count"), count);
+    glDispatchCompute((count + 63) / 64, 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<std::uint32_t> result(in.size());
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(result.size() * 4), result.data());
+    glUseProgram(0);
+    REQUIRE(glGetError() == GL_NO_ERROR);
+    return result;
 }
 
 } // namespace test

@@ -64,7 +64,7 @@ long check_every_method(const hair_model& model, const light_space& light, const
 
 TEST_CASE("compute-built maps equal the CPU maps built from the model, for every method", "[gl][compute]") {
     test::gl_context();
-    REQUIRE(gl::compute_path_missing().empty()); // llvmpipe has compute shaders and 64-bit integers
+    REQUIRE(gl::compute_path_missing().empty()); // llvmpipe has GL 4.5, and compute needs 4.3 alone
     SECTION("Sintel, directional light, 256x256") {
         const auto model = load_model(test::sintel_hair());
         CHECK(check_every_method(model, light_space::fit(light_spec::directional({0.2f, -1.0f, 0.1f}), model.bounds(), 256)) > 10000);

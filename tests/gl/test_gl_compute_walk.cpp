@@ -1,5 +1,5 @@
 // The compute build's line rule (hs_walk in shaders/compute/common.glsl, 32-bit words) against the
-// CPU's rasterize_line (64-bit integers), segment by segment: the same fragments, in the same order,
+// CPU's rasterize_line (32-bit words too, its set-up's quotients by 64-bit division), segment by segment: the same fragments, in the same order,
 // for short segments on the grids where the perturbation decides ties, and for segments up to the
 // guard band's length, where the walk's products no longer fit 32 bits and it takes its long path.
 #include <glad/gl.h>

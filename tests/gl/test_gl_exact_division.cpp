@@ -24,7 +24,6 @@ namespace {
 /// Runs hs_div_rn over `pairs` (bit patterns a0, b0, a1, b1, ...) with `native` as the estimate's
 /// division; returns, per pair, the quotient's bits and the estimate's own quotient's bits.
 std::vector<std::uint32_t> divide_on_gpu(const std::vector<std::uint32_t>& pairs, const std::string& native) {
-    test::gl_context();
     const std::string defines = native.empty() ? std::string() : "#define HS_NATIVE_DIVIDE(a, b) (" + native + ")\n";
     const std::string_view body = R"(
 layout(local_size_x = 64) in;
@@ -39,23 +38,7 @@ void main() {
     hs_out[2u * i + 1u] = floatBitsToUint(HS_NATIVE_DIVIDE(a, b));
 }
 )";
-    const auto stage = gl::compile_stage(GL_COMPUTE_SHADER, defines, {gl::shaders::arithmetic_exact_division, body}, "exact division test");
-    const auto program = gl::link_program({&stage}, "exact division test");
-    const std::uint32_t count = std::uint32_t(pairs.size() / 2);
-    auto in = gl::make_buffer(), out = gl::make_buffer();
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.get());
-    glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(pairs.size() * 4), pairs.data(), GL_STATIC_DRAW);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.get());
-    glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(pairs.size() * 4), nullptr, GL_DYNAMIC_READ);
-    glUseProgram(program.get());
-    glUniform1ui(glGetUniformLocation(program.get(), "hs_count"), count);
-    glDispatchCompute((count + 63) / 64, 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::vector<std::uint32_t> result(pairs.size());
-    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(result.size() * 4), result.data());
-    glUseProgram(0);
-    REQUIRE(glGetError() == GL_NO_ERROR);
-    return result;
+    return test::run_on_words(defines, {gl::shaders::arithmetic_exact_division, body}, pairs, std::uint32_t(pairs.size() / 2), "exact division test");
 }
 
 float from_bits(std::uint32_t u) { return std::bit_cast<float>(u); }

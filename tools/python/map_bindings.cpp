@@ -63,7 +63,7 @@ void bind_maps(py::module_& m) {
             py::arg("backend") = "cpu", py::arg("context") = "", py::arg("gl_path") = "",
             "A method's maps, not yet built: spec as the command line's --method ('dom:3', 'occ:128:4', 'adsm:auto', 'dsm'); backend "
             "'cpu' or 'gl' (built on the module's headless GL context: context 'egl' or 'osmesa', '' for the one open, else EGL; by "
-            "gl_path 'compute' or 'raster', '' for compute wherever the context runs it).");
+            "gl_path 'compute' or 'raster', '' for compute).");
     map.def("build", [](shadow_map_handle& h, const hair_model& model, const py::object& light, int resolution, std::optional<float> alpha,
                         float wide, unsigned threads) {
         const auto spec = light_of(light);

@@ -36,7 +36,9 @@ shadow_map_handle::shadow_map_handle(const std::string& spec, const std::string&
             throw argument_error("unknown GL build path '" + gl_path + "'; valid: compute, raster");
         gl_context(context);
         context_kind_ = gl_context_kind();
-        if (gl_path == "compute") gl::require_compute_path("gl_path='compute'", "use gl_path='raster'");
+        gl::require_version(4, 3, "the GL back end"); // both paths: before pointing from one to the other
+        if (path_of(gl_path) == gl::build_path::compute)
+            gl::require_compute_path(gl_path.empty() ? "the default gl_path ('compute')" : "gl_path='compute'", "use gl_path='raster'");
         gl_path_ = gl_path;
     } else if (backend != "cpu") {
         throw argument_error("unknown backend '" + backend + "'; valid: cpu, gl");

@@ -113,14 +113,124 @@ float hs_div_rn(float a, float b) {
 #endif
 )hs_glsl";
 
+/// shaders/arithmetic/exact_square_root.glsl
+inline constexpr std::string_view arithmetic_exact_square_root = R"hs_glsl(// A float square root every GPU rounds the same, from 32-bit integers: hs_sqrt_rn(x) is the IEEE 754
+// binary32 square root rounded to nearest even, which is the CPU's std::sqrt(float), for x >= 0
+// (subnormals and +inf included, -0 gives -0); a negative x or NaN gives the quiet NaN 0x7fc00000.
+// GLSL's sqrt may be off by more than an ULP (ARB_shader_precision: it inherits inversesqrt's 2 ULP),
+// so a root that must give the CPU's bits cannot come from it. Composed after
+// arithmetic/exact_division, whose hs_unpack_float it uses.
+#ifndef HS_EXACT_SQUARE_ROOT
+#define HS_EXACT_SQUARE_ROOT
+#ifndef HS_EXACT_DIVISION
+#error "arithmetic/exact_square_root needs arithmetic/exact_division before it"
+#endif
+
+float hs_sqrt_rn(float x) {
+    uint u = floatBitsToUint(x);
+    if ((u & 0x7fffffffu) == 0u || u == 0x7f800000u) return x; // +-0 and +inf are their own roots
+    if (u > 0x7f800000u) return uintBitsToFloat(0x7fc00000u);  // negative, or NaN
+    uint m;
+    int e;
+    hs_unpack_float(u, m, e); // x = m 2^(e - 150), m in [2^23, 2^24)
+    // x = M 2^(2k) with M = m 2^23 or m 2^24, in [2^46, 2^48), so that sqrt(M) is in [2^23, 2^24):
+    // its integer part r is the root's significand before rounding.
+    int p = e - 173; // x = (m 2^23) 2^p
+    bool odd = (p & 1) != 0;
+    uvec2 big = odd ? uvec2(m << 24, m >> 8) : uvec2(m << 23, m >> 9); // M as (low, high) words
+    int k = odd ? (p - 1) / 2 : p / 2;
+    // r = floor(sqrt(M)) bit by bit: a bit stays where the square does not pass M (squares below
+    // 2^48: umulExtended keeps them exactly).
+    uint r = 0u;
+    for (int bit = 23; bit >= 0; --bit) {
+        uint c = r | (1u << uint(bit)), high, low;
+        umulExtended(c, c, high, low);
+        if (high < big.y || (high == big.y && low <= big.x)) r = c;
+    }
+    // Round to nearest: up where sqrt(M) >= r + 1/2, that is M - r^2 >= r + 1/4, so M - r^2 > r (a
+    // tie cannot happen). M - r^2 <= 2r is below 2^25, so the low words' wrapped difference is exact.
+    uint high, low;
+    umulExtended(r, r, high, low);
+    if (big.x - low > r) ++r; // r = 2^24 stays exact in float
+    return ldexp(float(r), k); // a normal float: the root of any positive float is
+}
+
+#endif
+)hs_glsl";
+
+/// shaders/arithmetic/fixed_point.glsl
+inline constexpr std::string_view arithmetic_fixed_point = R"hs_glsl(// 64-bit integers as two 32-bit words (low, high), two's complement where signed, for programs that
+// must give the CPU's bits with no 64-bit integers or double precision (GL 4.3 core has neither): the
+// compute path's fixed-point sums and density clustering's k-means terms. Composed after
+// arithmetic/exact_division, whose hs_unpack_float it uses.
+#ifndef HS_FIXED_POINT
+#define HS_FIXED_POINT
+#ifndef HS_EXACT_DIVISION
+#error "arithmetic/fixed_point needs arithmetic/exact_division before it"
+#endif
+
+// -v for a 64-bit integer (low, high) in two's complement.
+uvec2 hs_negated_words(uvec2 v) { return uvec2(~v.x + 1u, ~v.y + (v.x == 0u ? 1u : 0u)); }
+
+// An unsigned 64-bit integer (low, high) as a float, rounded to nearest even once, as the CPU's
+// float(v) is (and float(double(v)) for v below 2^53, which a double holds exactly): its top 32
+// bits, with a sticky bit for any bit below them, convert correctly rounded (GLSL's uint-to-float
+// conversion), then scale.
+float hs_float_of_words(uvec2 v) {
+    if (v.y == 0u) return float(v.x);
+    int shift = 31 - findMSB(v.y); // leading zeros of the high word
+    uint top = shift == 0 ? v.y : (v.y << shift) | (v.x >> (32 - shift));
+    uint below = v.x << shift; // shift < 32
+    return ldexp(float(top | (below != 0u ? 1u : 0u)), 32 - shift);
+}
+// A signed 64-bit integer (two's complement) as a float, rounded to nearest even once: float(v) on
+// the CPU. The magnitude rounds as hs_float_of_words does, and rounding is symmetric.
+float hs_float_of_signed_words(uvec2 v) {
+    if ((v.y & 0x80000000u) == 0u) return hs_float_of_words(v);
+    return -hs_float_of_words(hs_negated_words(v)); // -2^63's magnitude, 2^63, is right as unsigned
+}
+
+// trunc(a b 2^36) as (low, high) words, two's complement: density clustering's k-means term,
+// clustered::fixed_sum of the product of two floats on the CPU (exact there in double). The
+// significands' product is exact in 48 bits (umulExtended), and shifting it by the exponents
+// truncates toward zero; 2^63 units or more saturate at 2^63 - 1 in size, and NaN (0 times infinity
+// too) gives 0, as fixed_sum does.
+uvec2 hs_fixed_product(float a, float b) {
+    uint ua = floatBitsToUint(a), ub = floatBitsToUint(b);
+    uint xa = ua & 0x7fffffffu, xb = ub & 0x7fffffffu;
+    const uint inf = 0x7f800000u;
+    if (xa > inf || xb > inf || xa == 0u || xb == 0u) return uvec2(0u);
+    const uvec2 most = uvec2(0xffffffffu, 0x7fffffffu);
+    uvec2 magnitude = most;
+    if (xa != inf && xb != inf) {
+        uint ma, mb, high, low;
+        int ea, eb;
+        hs_unpack_float(xa, ma, ea);
+        hs_unpack_float(xb, mb, eb);
+        umulExtended(ma, mb, high, low); // in [2^46, 2^48)
+        int shift = ea + eb - 264;       // a b 2^36 = (ma mb) 2^shift
+        int top = high >= 0x8000u ? 47 : 46; // the product's leading bit
+        if (top + shift >= 63) magnitude = most;
+        else if (shift >= 0) magnitude = uvec2(low << uint(shift), shift == 0 ? high : (high << uint(shift)) | (low >> uint(32 - shift)));
+        else if (shift <= -48) magnitude = uvec2(0u);
+        else if (shift > -32) magnitude = uvec2((low >> uint(-shift)) | (high << uint(32 + shift)), high >> uint(-shift));
+        else magnitude = uvec2(high >> uint(-shift - 32), 0u);
+    }
+    return ((ua ^ ub) & 0x80000000u) != 0u ? hs_negated_words(magnitude) : magnitude;
+}
+
+#endif
+)hs_glsl";
+
 /// shaders/compute/clusters.glsl
 inline constexpr std::string_view compute_clusters = R"hs_glsl(// Compute build of density clustering (Mertens et al. 2004, section 3.3; one work group per tile, in
 // strips of HS_STRIP_ROWS rows so that a strip's sums fit shared memory): three walks of the tile's
 // segments per strip. Walk 1 sums each fragment's b and b depth into the cluster of its nearest initial
 // centre; walk 2 sums b (depth - mean)^2 into the cluster of its nearest mean; walk 3 adds b to the
 // bin placement/clustered assigns it. The k-means sums are hairshadow::clustered's fixed-point integers
-// (2^-36), so the means and deviations are the CPU's bit for bit; the histogram is summed as the
-// layers pass sums. Writes the state (means, then deviations) and the histogram where the raster passes
+// (2^-36) in two 32-bit words, and the means and deviations are taken from them with correctly rounded
+// float operations (hs_div_rn, hs_sqrt_rn), so they are the CPU's bit for bit with no double precision
+// or 64-bit integers; the histogram is summed as the layers pass sums. Writes the state (means, then deviations) and the histogram where the raster passes
 // put them.
 layout(local_size_x = 16, local_size_y = 16) in;
 layout(binding = 0, HS_LAYERS_FORMAT) writeonly uniform image2DArray hs_layers_image;
@@ -132,11 +242,13 @@ shared vec2 hs_texel_range[HS_STRIP];
 ivec2 hs_origin;
 int hs_walk_kind;
 
-const double HS_FIXED = 68719476736.0lf; // 2^36: clustered::fixed_sum
-uvec2 hs_fixed(double x) { // trunc(x 2^36), two's complement, as (low, high) words for hs_add_fixed
-    uint64_t v = uint64_t(int64_t(x * HS_FIXED));
-    return uvec2(uint(v & 0xffffffffUL), uint(v >> 32));
+// A signed fixed-point sum's value over another's, as clustered::set_means takes it: each rounded to
+// float, then the quotient correctly rounded.
+float hs_sum_quotient(uvec2 numerator, uvec2 denominator) {
+    return hs_div_rn(hs_float_of_signed_words(numerator), hs_float_of_signed_words(denominator));
 }
+// A signed fixed-point sum above zero.
+bool hs_positive(uvec2 v) { return (v.y & 0x80000000u) == 0u && (v.x | v.y) != 0u; }
 
 // Initial k-means centre j: the middle of the j-th of K equal parts of [nearest, furthest].
 float hs_centre(vec2 range, int j) {
@@ -157,8 +269,8 @@ void hs_emit(int x, int y) {
             unused[j] = 0.0;
         }
         uint j = uint(hs_nearest_cluster(centre, unused, true, depth));
-        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + j, hs_fixed(double(b)));
-        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + uint(HS_LAYERS) + j, hs_fixed(double(b) * double(depth)));
+        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + j, hs_fixed_product(b, 1.0));
+        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + uint(HS_LAYERS) + j, hs_fixed_product(b, depth));
         return;
     }
     float mean[HS_LAYERS], sigma[HS_LAYERS];
@@ -168,16 +280,14 @@ void hs_emit(int x, int y) {
     }
     if (hs_walk_kind == 1) {
         uint j = uint(hs_nearest_cluster(mean, sigma, false, depth));
-        precise double d = double(depth) - double(mean[j]);
-        precise double bdd = double(b) * d * d;
-        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + j, hs_fixed(double(b)));
-        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + uint(HS_LAYERS) + j, hs_fixed(bdd));
+        precise float d = depth - mean[j];
+        precise float squared = d * d; // clustered::squared_distance
+        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + j, hs_fixed_product(b, 1.0));
+        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + uint(HS_LAYERS) + j, hs_fixed_product(b, squared));
         return;
     }
     hs_add_sum(texel * uint(HS_SUM_SLOTS) + uint(hs_assign(mean, sigma, depth)), b);
 }
-
-int64_t hs_signed_sum(uint slot) { uvec2 s = hs_sum(slot); return int64_t((uint64_t(s.y) << 32) | uint64_t(s.x)); }
 
 void main() {
     uint tile = gl_WorkGroupID.y * uint(hs_tiles_x) + gl_WorkGroupID.x;
@@ -198,14 +308,15 @@ void main() {
             if (mine) {
                 uint sums = me * uint(HS_SUM_SLOTS), state = me * uint(HS_LAYERS);
                 for (int j = 0; j < HS_LAYERS; ++j) {
-                    int64_t weight = hs_signed_sum(sums + uint(j)), total = hs_signed_sum(sums + uint(HS_LAYERS + j));
+                    uvec2 weight = hs_sum(sums + uint(j)), total = hs_sum(sums + uint(HS_LAYERS + j));
+                    bool taken = hs_positive(weight);
                     if (hs_walk_kind == 0) {
-                        hs_mean[state + uint(j)] = weight > 0L ? float(double(total) / double(weight)) : hs_centre(hs_texel_range[me], j);
+                        hs_mean[state + uint(j)] = taken ? hs_sum_quotient(total, weight) : hs_centre(hs_texel_range[me], j);
                         // Selected as bits: a compiler may turn a select of 0.0 and -1.0 into -float(!cond),
                         // which gives -0 where the CPU has +0.
-                        hs_sigma[state + uint(j)] = uintBitsToFloat(weight > 0L ? 0u : floatBitsToUint(-1.0));
+                        hs_sigma[state + uint(j)] = uintBitsToFloat(taken ? 0u : floatBitsToUint(-1.0));
                     } else if (hs_walk_kind == 1) {
-                        if (hs_sigma[state + uint(j)] >= 0.0 && weight > 0L) hs_sigma[state + uint(j)] = float(sqrt(double(total) / double(weight)));
+                        if (hs_sigma[state + uint(j)] >= 0.0 && taken) hs_sigma[state + uint(j)] = hs_sqrt_rn(hs_sum_quotient(total, weight));
                     }
                 }
                 if (inside && hs_walk_kind == 1) {
@@ -241,12 +352,12 @@ inline constexpr std::string_view compute_common = R"hs_glsl(// What every pass 
 // tiles, and the line rule of raster/line_rule.hpp in 32-bit integers, so that a tile's work group
 // makes exactly the fragments the CPU rasteriser makes. A pass defines hs_emit(x, y), which the walk
 // calls for every fragment of the current segment inside the tile. Everything here is 32-bit: the
-// walk in integers, the fragments' parameter, depth and optical depth in float. compute_pieces still
-// enables GL_ARB_gpu_shader_int64 for every program (GLSL allows #extension only before any code),
-// for density clustering's sake, which still uses 64-bit integers and double precision.
+// walk in integers, the fragments' parameter, depth and optical depth in float; no program of the
+// compute path needs double precision, 64-bit integers or any extension (scripts/validate_shaders.py).
 
 // Coordinates lie within the guard band, |c| <= 2^(20 + bits) sub-pixels, so with at most 9 bits every
-// difference and every remainder of the walk below fits a 32-bit int (compute_path_missing says so).
+// difference and every remainder of the walk below fits a 32-bit int (the CPU's line rule asserts the
+// same range, raster/line_rule.hpp).
 #if HS_SUBPIXEL_BITS < 1 || HS_SUBPIXEL_BITS > 9
 #error "the compute line rule needs 1 <= HS_SUBPIXEL_BITS <= 9"
 #endif
@@ -368,9 +479,9 @@ void hs_emit(int x, int y); // defined by each pass
 
 // Every fragment of a -> b inside the texel rectangle clip = (x0, y0, x1, y1), half-open, by the
 // diamond-exit rule: the fragments of rasterize_line (set_up_line, the walk, then start_fragment), in
-// 32-bit words. The CPU keeps the minor coordinate at a centre as n + rem / (A S), A = |d_major|, a
-// numerator near 2^58; here it is k + r / A sub-pixels (n = k >> bits, rem = (k mod S) A + r), whose
-// parts stay within the guard band and below A: the same quotient, exactly, so the same fragments.
+// 32-bit words. The minor coordinate at a centre is k + r / A sub-pixels, A = |d_major|, whose parts
+// stay within the guard band and below A, as the CPU's set_up_line keeps it (the CPU takes the
+// set-up's quotients by one 64-bit division each, this by hs_product_quotient): the same fragments.
 void hs_walk(ivec2 a, ivec2 b, ivec4 clip) {
     if (a == b) return;
     int dx = b.x - a.x, dy = b.y - a.y;
@@ -1134,8 +1245,7 @@ uvec2 hs_fixed_words(float x) {
     precise float high = floor(scaled * (1.0 / 4294967296.0));
     precise float low = scaled - high * 4294967296.0;
     uvec2 magnitude = uvec2(uint(low), uint(high));
-    if (x >= 0.0) return magnitude;
-    return uvec2(~magnitude.x + 1u, ~magnitude.y + (magnitude.x == 0u ? 1u : 0u));
+    return x >= 0.0 ? magnitude : hs_negated_words(magnitude);
 }
 
 void hs_add_sum(uint slot, float b) {
@@ -1163,16 +1273,6 @@ uvec2 hs_combine(uvec2 a, uvec2 b) {
     return uvec2(low, a.y + b.y + (low < a.x ? 1u : 0u));
 #endif
 }
-// An unsigned 64-bit integer (low, high) as a float, rounded to nearest even once, as float(double(v))
-// is for the CPU's sums (below 2^53, a double holds them exactly): its top 32 bits, with a sticky bit
-// for any bit below them, convert correctly rounded (GLSL's uint-to-float conversion), then scale.
-float hs_float_of_words(uvec2 v) {
-    if (v.y == 0u) return float(v.x);
-    int shift = 31 - findMSB(v.y); // leading zeros of the high word
-    uint top = shift == 0 ? v.y : (v.y << shift) | (v.x >> (32 - shift));
-    uint below = v.x << shift; // shift < 32
-    return ldexp(float(top | (below != 0u ? 1u : 0u)), 32 - shift);
-}
 // The value a texture stores for a sum: the optical depth, or the 8-bit level over 255.
 float hs_stored(uvec2 sum) {
 #ifdef HS_EIGHT_BIT
@@ -1184,7 +1284,7 @@ float hs_stored(uvec2 sum) {
 // The same for a signed sum (two's complement), whose terms may be negative.
 float hs_stored_signed(uvec2 sum) {
     if ((sum.y & 0x80000000u) == 0u) return hs_stored(sum);
-    return -hs_stored(uvec2(~sum.x + 1u, ~sum.y + (sum.x == 0u ? 1u : 0u))); // the magnitude, as x >= 0 has it
+    return -hs_stored(hs_negated_words(sum)); // the magnitude, as x >= 0 has it
 }
 )hs_glsl";
 
@@ -2922,10 +3022,12 @@ struct entry {
 };
 
 /// Every snippet, sorted by name.
-inline constexpr std::array<entry, 75> all{{
+inline constexpr std::array<entry, 77> all{{
     {"accumulation/emulated_8bit", accumulation_emulated_8bit},
     {"accumulation/float", accumulation_float},
     {"arithmetic/exact_division", arithmetic_exact_division},
+    {"arithmetic/exact_square_root", arithmetic_exact_square_root},
+    {"arithmetic/fixed_point", arithmetic_fixed_point},
     {"compute/clusters", compute_clusters},
     {"compute/common", compute_common},
     {"compute/fibre_count", compute_fibre_count},

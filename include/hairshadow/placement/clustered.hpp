@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstddef>
+#include <limits>
 #include <numbers>
 #include <span>
 #include <string_view>
@@ -111,9 +112,16 @@ public:
     }
 #endif
 
-    /// A k-means term in fixed point, 2^-36 (truncated toward zero): sums of up to 2^24 terms of
-    /// optical depth below 7 (alpha <= HAIRSHADOW_ALPHA_MAX) times a depth within [-2, 2] stay exact.
-    static std::int64_t fixed_sum(double x) noexcept { return std::int64_t(x * detail::cluster_fixed_scale); }
+    /// A k-means term in fixed point, 2^-36 (truncated toward zero), for x a product of two floats
+    /// (exact in double): sums of up to 2^24 terms of optical depth below 7 (alpha <=
+    /// HAIRSHADOW_ALPHA_MAX) times a depth within [-2, 2] stay exact. A term of 2^27 or more in size
+    /// saturates at 2^63 - 1 units, and NaN gives 0, as the GPU's hs_fixed_product does.
+    static std::int64_t fixed_sum(double x) noexcept {
+        const double units = x * detail::cluster_fixed_scale;
+        if (std::abs(units) < 0x1p63) [[likely]]
+            return std::int64_t(units);
+        return saturated(units);
+    }
 
     /// The bins of a texel in depth order; adjacent overlapping bins meet at the overlap's midpoint.
     std::array<bin, K> bins(const texel_state& s) const noexcept {
@@ -178,6 +186,11 @@ public:
     static constexpr std::size_t global_bytes() noexcept { return 0; }
 
 private:
+    /// fixed_sum beyond the int64 range: the largest in size, or 0 for NaN (out of the hot loops).
+    [[gnu::cold, gnu::noinline]] static std::int64_t saturated(double units) noexcept {
+        const std::int64_t most = std::numeric_limits<std::int64_t>::max();
+        return units > 0.0 ? most : units < 0.0 ? -most : 0;
+    }
     /// A k-means pass's sums per cluster, in fixed point (fixed_sum).
     struct cluster_sums {
         std::array<std::int64_t, K> weight, sum;
@@ -207,9 +220,9 @@ private:
         for (const auto& f : fragments) {
             const float depth = detail::depth_of(f);
             const auto j = std::size_t(nearest(s.mean, depth, [&](int i) { return usable(s, i); }));
-            const double b = optical_depth(f), d = double(depth) - s.mean[j];
+            const double b = optical_depth(f);
             spread.weight[j] += fixed_sum(b);
-            spread.sum[j] += fixed_sum(b * d * d);
+            spread.sum[j] += fixed_sum(b * double(squared_distance(depth, s.mean[j])));
         }
         set_sigmas(spread, s);
     }
@@ -219,18 +232,28 @@ private:
         for (int j = 0; j < K; ++j) centre[std::size_t(j)] = lo + (hi - lo) * (float(j) + 0.5f) / float(K);
         return centre;
     }
+    /// A fragment's term of the variance sums, before its weight: (depth - mean)^2, each operation
+    /// rounded to float (no fused multiply-add), as the GPU's compute pass takes it.
+    static float squared_distance(float depth, float mean) noexcept {
+        const float d = depth - mean;
+        return detail::rounded(d * d);
+    }
     /// The k-means step's result: each cluster's weighted mean, or its centre where it took nothing;
-    /// sigma 0 marks a cluster that took weight, -1 one that did not.
+    /// sigma 0 marks a cluster that took weight, -1 one that did not. The quotient of the two sums is
+    /// taken in float, each sum rounded to float first (their units cancel): operations IEEE 754
+    /// rounds correctly, which the GPU does the same from 32-bit words (hs_float_of_signed_words,
+    /// hs_div_rn) where a double quotient would need double precision there.
     static void set_means(const cluster_sums& sums, const std::array<float, K>& centre, texel_state& s) noexcept {
         for (std::size_t j = 0; j < std::size_t(K); ++j) {
-            s.mean[j] = sums.weight[j] > 0 ? float(double(sums.sum[j]) / double(sums.weight[j])) : centre[j];
+            s.mean[j] = sums.weight[j] > 0 ? float(sums.sum[j]) / float(sums.weight[j]) : centre[j];
             s.sigma[j] = sums.weight[j] > 0 ? 0.0f : -1.0f;
         }
     }
-    /// Each used cluster's weighted standard deviation from its variance sums.
+    /// Each used cluster's weighted standard deviation from its variance sums: the float quotient, as
+    /// set_means takes it, and its correctly rounded float square root (hs_sqrt_rn on the GPU).
     static void set_sigmas(const cluster_sums& spread, texel_state& s) noexcept {
         for (std::size_t j = 0; j < std::size_t(K); ++j)
-            if (s.sigma[j] >= 0.0f && spread.weight[j] > 0) s.sigma[j] = float(std::sqrt(double(spread.sum[j]) / double(spread.weight[j])));
+            if (s.sigma[j] >= 0.0f && spread.weight[j] > 0) s.sigma[j] = std::sqrt(float(spread.sum[j]) / float(spread.weight[j]));
     }
     static bool usable(const texel_state& s, int j) noexcept { return s.sigma[std::size_t(j)] >= 0.0f; }
     /// The clusters that took weight, as bits (the vector paths' `usable`).

@@ -39,7 +39,7 @@
 /// Every function is core OpenGL 4.5 or older (glClipControl is 4.5, asked for only on a 4.5 context;
 /// KHR_debug's groups are 4.3); the back end asks for a 4.3 context.
 
-#define HAIRSHADOW_GL_FUNCTION_COUNT 123
+#define HAIRSHADOW_GL_FUNCTION_COUNT 122
 
 /// X(glName, PFNGLNAMEPROC) for each GL function the library calls, sorted by name.
 #define HAIRSHADOW_GL_FUNCTIONS(X) \
@@ -122,7 +122,6 @@
     X(glGetShaderInfoLog, PFNGLGETSHADERINFOLOGPROC) \
     X(glGetShaderiv, PFNGLGETSHADERIVPROC) \
     X(glGetString, PFNGLGETSTRINGPROC) \
-    X(glGetStringi, PFNGLGETSTRINGIPROC) \
     X(glGetTexImage, PFNGLGETTEXIMAGEPROC) \
     X(glGetUniformLocation, PFNGLGETUNIFORMLOCATIONPROC) \
     X(glIsBuffer, PFNGLISBUFFERPROC) \

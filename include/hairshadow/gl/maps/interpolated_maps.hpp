@@ -44,7 +44,7 @@ class maps_base {
 public:
     const light_space& light() const noexcept { return light_; }
     /// The path build(mesh, light, options) takes from the next build on (build(pass) takes the
-    /// pass's): at first default_build_path(), compute wherever the context runs it. Throws
+    /// pass's): at first default_build_path(), compute. Throws
     /// feature_error for compute where the context lacks what it needs.
     void set_build_path(build_path path) {
         if (path == build_path::compute) require_compute_path("the compute build path");
@@ -329,7 +329,8 @@ private:
             return detail::link_compute_pass(defines(1) + format + "#define HS_FIXED_SUMS\n#define HS_SUM_SLOTS " + std::to_string(2 * layers) +
                                                  "\n#define HS_STRIP_ROWS " + std::to_string(rows) + "\n#define HS_SUM_TEXELS " +
                                                  std::to_string(detail::compute_tile * rows) + "\n",
-                                             {accumulation::source(), shaders::compute_tile_sums, shaders::arithmetic_exact_division, shaders::placement_common, placement_glsl<P>::sources().front()},
+                                             {accumulation::source(), shaders::compute_tile_sums, shaders::arithmetic_exact_division, shaders::arithmetic_exact_square_root,
+                                              shaders::placement_common, placement_glsl<P>::sources().front()},
                                              shaders::compute_clusters, "compute/clusters");
         }
     }

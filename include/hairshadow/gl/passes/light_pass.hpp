@@ -60,9 +60,8 @@ inline program link_line_pass(std::string_view pass_snippet, const std::string& 
 /// The depth-range map and depth extent of one hair mesh seen from one light.
 class light_pass {
 public:
-    /// Compiles the passes of `path` (by default compute wherever the context runs it); throws
-    /// feature_error without GL 4.3 (compute shaders), or for compute where the context lacks what
-    /// it needs (compute_path_missing()).
+    /// Compiles the passes of `path` (by default compute); throws feature_error without GL 4.3, or
+    /// for compute where the context lacks what it needs (compute_path_missing()).
     light_pass() : light_pass(default_build_path()) {}
     explicit light_pass(build_path path) : path_(path) {
         require_version(4, 3, "the GL light pass");

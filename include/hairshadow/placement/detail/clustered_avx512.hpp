@@ -146,7 +146,7 @@ HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __m512i lane_sums(const
 
 /// One of clustered::prepare_texel's k-means passes: for every fragment, the nearest of the `usable`
 /// centres j takes fixed_sum(b) into weight[j] and into sum[j] fixed_sum(b * depth) (the first pass)
-/// or, with Spread, fixed_sum(b * d * d) for d = depth - centre (the second). Sums of clusters that
+/// or, with Spread, fixed_sum(b * (depth - centre)^2), the square in float (the second). Sums of clusters that
 /// are not usable are left 0. With OneOpticalDepth, every fragment's b is the first one's
 /// (texel_scan_of), and weight[j] is fixed_sum(b) times the fragments j takes: the same integer, with
 /// no conversion per fragment. Returns false, with the sums unfinished, where a term is too large for the
@@ -163,25 +163,23 @@ HAIRSHADOW_AVX512_TARGET inline bool add_cluster_sums(std::span<const Fragment> 
     __mmask8 too_large = 0;
     const __m512d one_optical = _mm512_set1_pd(double(first_optical));
     const __m512 centre_floats = _mm512_maskz_loadu_ps(__mmask16((1u << K) - 1u), centres);
-    const __m512d centres_low = widen_half(centre_floats, 0), centres_high = widen_half(centre_floats, 1);
     for (std::size_t i = 0; i < fragments.size(); i += 16) {
         __m512 depth, optical;
         const __mmask16 lanes = load_fragments(fragments.data() + i, fragments.size() - i, depth, optical);
         const __m512i nearest = nearest_centre<K>(depth, centres, usable);
+        // The factor that multiplies b: the depth, or (Spread) clustered::squared_distance to the
+        // lane's own centre, picked from the (up to sixteen) centres by its index, in float.
+        __m512 factor = depth;
+        if constexpr (Spread) {
+            const __m512 from_centre = _mm512_sub_ps(depth, _mm512_permutexvar_ps(nearest, centre_floats));
+            factor = _mm512_mul_ps(from_centre, from_centre);
+        }
         for (int half = 0; half < 2; ++half) {
             const auto half_lanes = __mmask8(lanes >> (8 * half));
             if (half_lanes == 0) break;
-            const __m512d b = OneOpticalDepth ? one_optical : widen_half(optical, half), d = widen_half(depth, half);
+            const __m512d b = OneOpticalDepth ? one_optical : widen_half(optical, half);
             const __m512i weight_term = OneOpticalDepth ? _mm512_set1_epi64(1) : fixed_terms(b, half_lanes, too_large);
-            __m512i sum_term;
-            if constexpr (Spread) {
-                // Each lane's own centre, picked from the (up to sixteen) centres by its index.
-                const __m512i index = _mm512_cvtepi32_epi64(half == 0 ? _mm512_castsi512_si256(nearest) : _mm512_extracti64x4_epi64(nearest, 1));
-                const __m512d from_centre = _mm512_sub_pd(d, _mm512_permutex2var_pd(centres_low, index, centres_high));
-                sum_term = fixed_terms(_mm512_mul_pd(_mm512_mul_pd(b, from_centre), from_centre), half_lanes, too_large);
-            } else {
-                sum_term = fixed_terms(_mm512_mul_pd(b, d), half_lanes, too_large);
-            }
+            const __m512i sum_term = fixed_terms(_mm512_mul_pd(b, widen_half(factor, half)), half_lanes, too_large); // exact: two floats
             for (int j = 0; j < K; ++j) {
                 if (!(usable >> j & 1u)) continue;
                 const auto mine = __mmask8(__mmask8(_mm512_cmpeq_epi32_mask(nearest, _mm512_set1_epi32(j)) >> (8 * half)) & half_lanes);

@@ -58,8 +58,8 @@ struct segment_attributes {
     float thickness_a, thickness_b, opacity_a, opacity_b;
 };
 
-/// Window coordinates of the guard band: +-2^20 texels keeps every product of the fixed-point line
-/// rule below 2^63 and every snapped coordinate inside 32 bits.
+/// Window coordinates of the guard band: +-2^20 texels keeps every snapped coordinate, and every
+/// word of the fixed-point line rule (raster/line_rule.hpp, at up to 9 sub-pixel bits), inside 32 bits.
 inline constexpr float guard_band = float(1 << 20);
 
 /// Window coordinate to sub-pixel fixed point, rounding half away from zero (std::llround, without

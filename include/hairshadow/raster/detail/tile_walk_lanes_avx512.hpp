@@ -81,7 +81,7 @@ struct depth_along {
 
 /// floor(num / denom) along a walk, per lane, as quotient and remainder (0 <= r < denom): each
 /// advance() adds num's step, held as its own quotient and remainder, with a carry. Exact integers:
-/// r + r_step < 2 denom <= 2^31, so that no step divides.
+/// r + r_step < 2 denom < 2^32 (denom < 2^31: most_length), compared unsigned, so that no step divides.
 struct carried_quotient {
     __m512i q, r, q_step, r_step, denom;
 
