@@ -5,8 +5,8 @@
 // bin placement/clustered assigns it. The k-means sums are hairshadow::clustered's fixed-point integers
 // (2^-36) in two 32-bit words, and the means and deviations are taken from them with correctly rounded
 // float operations (hs_div_rn, hs_sqrt_rn), so they are the CPU's bit for bit with no double precision
-// or 64-bit integers; the histogram is summed as the layers pass sums. Writes the state (means, then deviations) and the histogram where the raster passes
-// put them.
+// or 64-bit integers; the histogram is summed as the layers pass sums. Writes the state (means, then
+// deviations) and the histogram where the raster passes put them.
 layout(local_size_x = 16, local_size_y = 16) in;
 layout(binding = 0, HS_LAYERS_FORMAT) writeonly uniform image2DArray hs_layers_image;
 layout(binding = 1, rgba32f) writeonly uniform image2DArray hs_state_image;

@@ -80,12 +80,21 @@ void check_lookup_and_read_back(GlMaps& on_gl, const Method& cpu, const std::vec
     CHECK(differ == 0);
 }
 
-/// Runs a compute program over 32-bit words, one invocation per item (local size 64): `in` in the
-/// storage buffer at binding 0, as many words at binding 1 for the program to write, the item count
-/// in the uniform hs_count. Returns binding 1's words.
-inline std::vector<std::uint32_t> run_on_words(const std::string& defines, std::vector<std::string_view> pieces, const std::vector<std::uint32_t>& in,
-                                               std::uint32_t count, const std::string& name) {
+/// Runs a compute program over 32-bit words, one invocation per item: `pieces`, then `main_text`,
+/// whose main() reads hs_in[] (binding 0, holding `in`) and writes hs_out[] (binding 1, as many
+/// words) for item gl_GlobalInvocationID.x below hs_count = `count` (local size 64, declared here).
+/// Returns hs_out's words.
+inline std::vector<std::uint32_t> run_on_words(const std::string& defines, std::vector<std::string_view> pieces, std::string_view main_text,
+                                               const std::vector<std::uint32_t>& in, std::uint32_t count, const std::string& name) {
     gl_context();
+    static constexpr std::string_view declarations = R"(
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) readonly buffer hs_in_block { uint hs_in[]; };
+layout(std430, binding = 1) writeonly buffer hs_out_block { uint hs_out[]; };
+uniform uint hs_count;
+)";
+    pieces.push_back(declarations);
+    pieces.push_back(main_text);
     const auto stage = hairshadow::gl::compile_stage(GL_COMPUTE_SHADER, defines, std::move(pieces), name);
     const auto program = hairshadow::gl::link_program({&stage}, name);
     auto input = hairshadow::gl::make_buffer(), output = hairshadow::gl::make_buffer();

@@ -26,10 +26,6 @@ namespace {
 std::vector<std::uint32_t> divide_on_gpu(const std::vector<std::uint32_t>& pairs, const std::string& native) {
     const std::string defines = native.empty() ? std::string() : "#define HS_NATIVE_DIVIDE(a, b) (" + native + ")\n";
     const std::string_view body = R"(
-layout(local_size_x = 64) in;
-layout(std430, binding = 0) readonly buffer hs_in_block { uint hs_in[]; };
-layout(std430, binding = 1) writeonly buffer hs_out_block { uint hs_out[]; };
-uniform uint hs_count;
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= hs_count) return;
@@ -38,7 +34,7 @@ void main() {
     hs_out[2u * i + 1u] = floatBitsToUint(HS_NATIVE_DIVIDE(a, b));
 }
 )";
-    return test::run_on_words(defines, {gl::shaders::arithmetic_exact_division, body}, pairs, std::uint32_t(pairs.size() / 2), "exact division test");
+    return test::run_on_words(defines, {gl::shaders::arithmetic_exact_division}, body, pairs, std::uint32_t(pairs.size() / 2), "exact division test");
 }
 
 float from_bits(std::uint32_t u) { return std::bit_cast<float>(u); }

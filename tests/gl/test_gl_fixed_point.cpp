@@ -26,10 +26,6 @@ namespace {
 /// pair of words in `in`; returns the results, two words an item.
 std::vector<std::uint32_t> run_on_gpu(const std::vector<std::uint32_t>& in, const std::string& statement) {
     const std::string body = R"(
-layout(local_size_x = 64) in;
-layout(std430, binding = 0) readonly buffer hs_in_block { uint hs_in[]; };
-layout(std430, binding = 1) writeonly buffer hs_out_block { uint hs_out[]; };
-uniform uint hs_count;
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= hs_count) return;
@@ -40,8 +36,8 @@ void main() {
     hs_out[2u * i + 1u] = result.y;
 }
 )";
-    return test::run_on_words("", {gl::shaders::arithmetic_exact_division, gl::shaders::arithmetic_fixed_point, gl::shaders::arithmetic_exact_square_root, body},
-                              in, std::uint32_t(in.size() / 2), "fixed point test");
+    return test::run_on_words("", {gl::shaders::arithmetic_exact_division, gl::shaders::arithmetic_fixed_point, gl::shaders::arithmetic_exact_square_root},
+                              body, in, std::uint32_t(in.size() / 2), "fixed point test");
 }
 
 float from_bits(std::uint32_t u) { return std::bit_cast<float>(u); }

@@ -2,8 +2,8 @@
 /// @file
 /// OpenGL's aliased line rule (the diamond-exit rule, GL 4.6 core section 14.5.1) in exact fixed-point
 /// arithmetic of 32-bit integers (one 64-bit product and division per quotient of the set-up), the
-/// same as the GPU's compute walk (shaders/compute/common.glsl, hs_walk). Fragment f is produced when the segment meets f's diamond |x - xc| + |y - yc| < 1/2 and
-/// the segment's end is not inside it, with both endpoints moved by -(e, e^2) for a vanishing e, as the
+/// same as the GPU's compute walk (shaders/compute/common.glsl, hs_walk). Fragment f is produced when
+/// the segment meets f's diamond |x - xc| + |y - yc| < 1/2 and the segment's end is not inside it, with both endpoints moved by -(e, e^2) for a vanishing e, as the
 /// specification perturbs them, so that boundary cases are decided the way it describes.
 
 #include <hairshadow/config.hpp>

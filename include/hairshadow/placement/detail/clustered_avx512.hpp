@@ -146,8 +146,8 @@ HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __m512i lane_sums(const
 
 /// One of clustered::prepare_texel's k-means passes: for every fragment, the nearest of the `usable`
 /// centres j takes fixed_sum(b) into weight[j] and into sum[j] fixed_sum(b * depth) (the first pass)
-/// or, with Spread, fixed_sum(b * (depth - centre)^2), the square in float (the second). Sums of clusters that
-/// are not usable are left 0. With OneOpticalDepth, every fragment's b is the first one's
+/// or, with Spread, fixed_sum(b * (depth - centre)^2), the square in float (the second). Sums of
+/// clusters that are not usable are left 0. With OneOpticalDepth, every fragment's b is the first one's
 /// (texel_scan_of), and weight[j] is fixed_sum(b) times the fragments j takes: the same integer, with
 /// no conversion per fragment. Returns false, with the sums unfinished, where a term is too large for the
 /// vector's exact conversion (|term| >= 2^15), which only absurd depths make. `first_optical` is the
