@@ -23,19 +23,29 @@ struct hs_segment {
 };
 layout(std430, binding = 0) buffer hs_segment_buffer { hs_segment hs_segments[]; };
 layout(std430, binding = 1) buffer hs_tile_count_buffer { uint hs_tile_counts[]; };   // per tile; the scatter's cursors
-// The whole map's extent as ordered bits (hs_ordered), the number of segment-tile pairs and of long
-// segments, and each tile's first pair (tiles + 1 exclusive prefix sums).
+// The whole map's extent as ordered bits (hs_ordered), the number of segment-tile pairs, the long
+// segments (below) in the long list and in the tiles' lists, the long pairs granted and wanted, and
+// each tile's first pair (tiles + 1 exclusive prefix sums).
 layout(std430, binding = 2) buffer hs_tile_offset_buffer {
     uint hs_nearest_bits;
     uint hs_furthest_bits;
     uint hs_pairs;
-    uint hs_long_count;
+    uint hs_long_count;    // long segments in the long list
+    uint hs_long_binned;   // long segments in the tiles' lists
+    uint hs_long_reserved; // their pairs, at most hs_long_capacity
+    uint hs_long_wanted;   // the pairs every long segment asked for (modulo 2^32): the next build's capacity
+    uint hs_offset_spare;
     uint hs_tile_offsets[];
 };
-// Segment indices: tile by tile in [0, hs_pairs), then from hs_long_first the long segments, whose
-// box covers more than HS_SHORT_TILES tiles. Binning only the short ones bounds the lists by the
-// segment count (HS_SHORT_TILES + 1 words a segment), so the buffer is sized before the build, with no
-// count read back; each tile's work group walks the few long ones that reach it as well.
+// Segment indices: tile by tile in [0, hs_pairs), then, from hs_long_first, one word for each segment.
+// A short segment (its box over at most HS_SHORT_TILES tiles) is listed in every tile of its box: at
+// most HS_SHORT_TILES words a segment. A long one is listed in the tiles its line reaches
+// (hs_long_tiles), while the hs_long_capacity words the build set aside for long pairs last; those past
+// it go to the long list (from hs_long_first up), which every tile's work group reads through, and the
+// listed ones are named from the other end (hs_long_first + segments - 1 down) for the scatter. The
+// buffer is sized before the passes that fill it: the capacity comes from an earlier build's
+// hs_long_wanted, or from a first prepare pass's when the resolution or segment count is new
+// (compute_segments::run).
 layout(std430, binding = 3) buffer hs_binned_buffer { uint hs_binned[]; };
 const int HS_SHORT_TILES = 4;
 uniform uint hs_long_first;
@@ -123,6 +133,46 @@ ivec2 hs_product_quotient(int o, int v, int A) {
         }
     }
     return qr;
+}
+
+// The tiles a long segment's fragments can reach, fewer than its box's (a diagonal segment's box holds
+// the square of the tiles its line crosses). Along the major axis, tile t holds the walk's centres m
+// in [16t, 16t + 15]; their fragments' minor texels are floor(minor(m) / S), or one less on a tie,
+// monotone in m (hs_walk), and the fragment at a's own texel lies one centre before the first or after
+// the last, within two texels of that centre's minor texel. So each major tile's centres (the
+// segment's taken from first - 1 to last + 1) and two texels either side of their minor texels
+// hold every fragment: a tile too many costs a
+// walk that emits nothing, a tile missed would lose fragments (the compute tests compare every texel).
+// Counts the tiles; mode 1 also counts the segment in each tile's count, mode 2 lists it there (the
+// scatter, in the same order, so the counts match).
+uint hs_long_tiles(ivec4 e, ivec4 box, int mode, uint segment) {
+    int dx = e.z - e.x, dy = e.w - e.y;
+    bool x_major = abs(dx) >= abs(dy);
+    int major_a = x_major ? e.x : e.y, major_b = x_major ? e.z : e.w, minor_a = x_major ? e.y : e.x;
+    int d_minor = x_major ? dy : dx, A = abs(major_b - major_a), sign = major_b > major_a ? 1 : -1;
+    int first = (min(major_a, major_b) - HS_H + HS_S - 1) >> HS_SUBPIXEL_BITS;
+    int last = ((max(major_a, major_b) - HS_H + HS_S - 1) >> HS_SUBPIXEL_BITS) - 1;
+    ivec2 majors = x_major ? box.xz : box.yw, minors = x_major ? box.yw : box.xz;
+    uint tiles = 0u;
+    for (int t = majors.x / HS_TILE; t <= majors.y / HS_TILE; ++t) {
+        int m0 = max(max(t * HS_TILE, majors.x), first - 1), m1 = min(min(t * HS_TILE + HS_TILE - 1, majors.y), last + 1);
+        if (m0 > m1) continue;
+        ivec2 reach = minors; // no centre crossed (never for a long segment): the whole box
+        if (first <= last) {
+            int c0 = clamp(m0, first, last), c1 = clamp(m1, first, last); // o in [0, A]: hs_product_quotient's range
+            int n0 = (minor_a + hs_product_quotient(sign * (c0 * HS_S + HS_H - major_a), d_minor, A).x) >> HS_SUBPIXEL_BITS;
+            int n1 = (minor_a + hs_product_quotient(sign * (c1 * HS_S + HS_H - major_a), d_minor, A).x) >> HS_SUBPIXEL_BITS;
+            reach = ivec2(max(min(n0, n1) - 2, minors.x), min(max(n0, n1) + 2, minors.y));
+        }
+        if (reach.x > reach.y) continue;
+        for (int u = reach.x / HS_TILE; u <= reach.y / HS_TILE; ++u) {
+            uint tile = uint(x_major ? u * hs_tiles_x + t : t * hs_tiles_x + u);
+            if (mode == 1) atomicAdd(hs_tile_counts[tile], 1u);
+            else if (mode == 2) hs_binned[hs_tile_offsets[tile] + atomicAdd(hs_tile_counts[tile], 1u)] = segment;
+            ++tiles;
+        }
+    }
+    return tiles;
 }
 
 void hs_emit(int x, int y); // defined by each pass

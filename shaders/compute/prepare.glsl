@@ -3,7 +3,8 @@
 // hairshadow::detail::prepare_segment does (the same operations in the same order, no fused
 // multiply-adds; every quotient by hs_div_rn, no double precision), counts it in every tile its box meets, and widens the
 // whole map's extent by its ends, as segment_bins does. A long segment (its box over more than
-// HS_SHORT_TILES tiles) goes to the long list instead of the tiles.
+// HS_SHORT_TILES tiles) is counted in the tiles its line reaches (hs_long_tiles) while the capacity set
+// aside for long pairs lasts, and goes to the long list past it.
 layout(local_size_x = 256) in;
 void hs_emit(int x, int y) {} // this pass walks no lines
 
@@ -147,6 +148,19 @@ bool hs_prepare(vec3 p0, vec3 p1, inout vec4 at, out hs_segment out_segment) {
     return out_segment.ends.xy != out_segment.ends.zw;
 }
 
+// Takes `pairs` words of the hs_long_capacity set aside for long segments' pairs, if that many are left:
+// a compare-and-swap loop, so the count never passes the capacity (an atomicAdd could wrap).
+uniform uint hs_long_capacity;
+bool hs_reserve_long(uint pairs) {
+    uint seen = hs_long_reserved;
+    for (;;) {
+        if (seen > hs_long_capacity || pairs > hs_long_capacity - seen) return false;
+        uint was = atomicCompSwap(hs_long_reserved, seen, seen + pairs);
+        if (was == seen) return true;
+        seen = was;
+    }
+}
+
 void main() {
     uint i = hs_segment_index();
     if (i >= hs_segment_count) return;
@@ -162,7 +176,14 @@ void main() {
     atomicMax(hs_furthest_bits, hs_ordered(max(s.depth_w.x, s.depth_w.y)));
     ivec4 tiles = box / HS_TILE;
     if ((tiles.z - tiles.x + 1) * (tiles.w - tiles.y + 1) > HS_SHORT_TILES) {
-        hs_binned[hs_long_first + atomicAdd(hs_long_count, 1u)] = i;
+        uint pairs = hs_long_tiles(s.ends, box, 0, i);
+        atomicAdd(hs_long_wanted, pairs);
+        if (hs_reserve_long(pairs)) {
+            hs_long_tiles(s.ends, box, 1, i);
+            hs_binned[hs_long_first + hs_segment_count - 1u - atomicAdd(hs_long_binned, 1u)] = i;
+        } else {
+            hs_binned[hs_long_first + atomicAdd(hs_long_count, 1u)] = i;
+        }
         return;
     }
     for (int ty = tiles.y; ty <= tiles.w; ++ty)

@@ -13,6 +13,7 @@
 #include "compute_comparison.hpp"
 
 #include <cmath>
+#include <random>
 
 
 using namespace hairshadow;
@@ -29,12 +30,9 @@ void for_every_method(Visit&& visit) {
     });
 }
 
-/// Builds every method on the CPU and on the compute path from one shared light pass, and compares.
-/// Returns the texels with a fragment.
-long check_every_method(const hair_model& model, const light_space& light, const raster_options& options = {}) {
-    const gl::hair_mesh mesh(model);
-    gl::light_pass pass(gl::build_path::compute);
-    pass.run(mesh, light, options);
+/// Builds every method on the CPU and on the compute path from `pass`, run last on `model` and
+/// `light`, and compares. Returns the texels with a fragment.
+long check_every_method_on(const gl::light_pass& pass, const hair_model& model, const light_space& light, const raster_options& options = {}) {
     const auto range = gl::detail::read_range(*pass.textures());
     const auto occupied = test::cpu_occupancy(model, light, options);
     detail::segment_bins bins;
@@ -58,6 +56,14 @@ long check_every_method(const hair_model& model, const light_space& light, const
         texels = c.occupied;
     });
     return texels;
+}
+
+/// check_every_method_on a compute light pass run once.
+long check_every_method(const hair_model& model, const light_space& light, const raster_options& options = {}) {
+    const gl::hair_mesh mesh(model);
+    gl::light_pass pass(gl::build_path::compute);
+    pass.run(mesh, light, options);
+    return check_every_method_on(pass, model, light, options);
 }
 
 } // namespace
@@ -87,25 +93,6 @@ TEST_CASE("compute-built maps equal the CPU maps built from the model, for every
         CHECK(check_every_method(model, light_space::fit(light_spec::point(b.center() + glm::vec3(0, 3, 1) * glm::length(b.max - b.min)), b, 96),
                                  options) > 1000);
     }
-    SECTION("long segments across many tiles, and per-point thickness and opacity") {
-        hair_model model; // three points a strand: segments across most of the map, through a dozen tiles each
-        for (int s = 0; s < 30; ++s) {
-            const std::vector<glm::vec3> points = {
-                {0.03f * float(s), 0.0f, 0.0f}, {1.0f - 0.02f * float(s), 1.0f, 0.2f}, {0.1f * float(s % 7), 0.1f, 0.4f + 0.01f * float(s)}};
-            model.add_strand(points);
-        }
-        model.default_thickness = 0.002f;
-        for (std::size_t i = 0; i < model.point_count(); ++i) {
-            model.thickness.push_back(0.002f + 0.001f * float(i % 5));
-            model.transparency.push_back(0.1f * float(i % 7));
-        }
-        const auto light = light_space::fit(light_spec::directional({0.1f, 0.2f, -1.0f}), model.bounds(), 200);
-        const gl::hair_mesh mesh(model);
-        gl::light_pass pass(gl::build_path::compute);
-        pass.run(mesh, light);
-        CHECK(pass.compute()->pairs().second >= 40); // segments over more than 4 tiles: the tiles' work groups find them in the long list
-        CHECK(check_every_method(model, light) > 500);
-    }
     SECTION("hair partly outside the map") {
         const auto model = load_model("procedural:straight:strands=400:segments=12");
         auto part = model.bounds();
@@ -129,6 +116,74 @@ TEST_CASE("compute-built maps equal the CPU maps built from the model, for every
     }
 }
 
+TEST_CASE("compute-built maps equal the CPU maps where segments cross many tiles", "[gl][compute]") {
+    test::gl_context();
+    SECTION("long segments across many tiles, and per-point thickness and opacity") {
+        hair_model model; // three points a strand: segments across most of the map, through a dozen tiles each
+        for (int s = 0; s < 30; ++s) {
+            const std::vector<glm::vec3> points = {
+                {0.03f * float(s), 0.0f, 0.0f}, {1.0f - 0.02f * float(s), 1.0f, 0.2f}, {0.1f * float(s % 7), 0.1f, 0.4f + 0.01f * float(s)}};
+            model.add_strand(points);
+        }
+        model.default_thickness = 0.002f;
+        for (std::size_t i = 0; i < model.point_count(); ++i) {
+            model.thickness.push_back(0.002f + 0.001f * float(i % 5));
+            model.transparency.push_back(0.1f * float(i % 7));
+        }
+        const auto light = light_space::fit(light_spec::directional({0.1f, 0.2f, -1.0f}), model.bounds(), 200);
+        const gl::hair_mesh mesh(model);
+        gl::light_pass pass(gl::build_path::compute);
+        // A run from afar (the map about eight times wider: no long segment) sets the capacity for long pairs
+        // that the next run like it (segments and resolution) starts from: a word a segment, too few
+        // here, so some long segments are listed in their tiles, the rest in the long list that every
+        // tile reads through.
+        pass.run(mesh, light_space::fit(light_spec::directional({0.1f, 0.2f, -1.0f}), model.bounds().expanded(5.0f), 200));
+        CHECK(pass.compute()->counts().long_pairs == 0);
+        pass.run(mesh, light);
+        const auto first = pass.compute()->counts();
+        CAPTURE(first.pairs, first.long_listed, first.long_binned, first.long_pairs, first.long_capacity);
+        CHECK(first.long_listed + first.long_binned >= 40); // segments over more than 4 tiles
+        CHECK(first.long_listed > 0);
+        CHECK(first.long_binned > 0);
+        CHECK(first.long_pairs > first.long_capacity);
+        CHECK(check_every_method_on(pass, model, light) > 500);
+        // The next sets aside what this one asked for: every long segment in its tiles' lists.
+        pass.run(mesh, light);
+        const auto second = pass.compute()->counts();
+        CHECK(second.long_listed == 0);
+        CHECK(second.long_binned == first.long_listed + first.long_binned);
+        CHECK(second.long_pairs == first.long_pairs);
+        CHECK(second.long_capacity >= second.long_pairs);
+        CHECK(check_every_method_on(pass, model, light) > 500);
+    }
+    SECTION("long segments at every angle, listed in the tiles their lines reach") {
+        // Segments of 20 to 250 texels through random points, flat, steep, diagonal and in between, so
+        // that many lines pass near a tile's edge: a tile that hs_long_tiles missed would lose fragments.
+        std::mt19937 random(43);
+        std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+        hair_model model;
+        for (int s = 0; s < 600; ++s) {
+            const float turn = unit(random), spread = unit(random), x = unit(random), y = unit(random), z = unit(random), rise = unit(random);
+            const float angle = s % 8 == 0 ? 0.7853982f * float(s / 8 % 8) : 6.2831853f * turn; // every eighth a multiple of 45 degrees
+            const float length = 0.08f + 0.9f * spread * spread;
+            const glm::vec3 from(x, y, 0.5f * z);
+            model.add_strand(std::vector<glm::vec3>{from, from + glm::vec3(length * std::cos(angle), length * std::sin(angle), 0.1f * rise)});
+        }
+        model.default_thickness = 0.001f;
+        aabb box;
+        box.min = glm::vec3(0.0f, 0.0f, -0.5f), box.max = glm::vec3(1.0f, 1.0f, 1.0f);
+        const auto light = light_space::fit(light_spec::directional({0.0f, 0.0f, -1.0f}), box, 256);
+        const gl::hair_mesh mesh(model);
+        gl::light_pass pass(gl::build_path::compute);
+        pass.run(mesh, light); // the first run at a resolution measures what long segments ask for first
+        const auto counts = pass.compute()->counts();
+        CAPTURE(counts.pairs, counts.long_listed, counts.long_binned, counts.long_pairs, counts.long_capacity);
+        CHECK(counts.long_listed == 0);
+        CHECK(counts.long_binned >= 300);
+        CHECK(check_every_method_on(pass, model, light) > 15000);
+    }
+}
+
 TEST_CASE("the compute path builds an empty map where no hair reaches it", "[gl][compute]") {
     test::gl_context();
     const auto model = load_model("procedural:straight:strands=50:segments=8");
@@ -142,7 +197,9 @@ TEST_CASE("the compute path builds an empty map where no hair reaches it", "[gl]
     const auto extent = gl::detail::read_extent(*pass.textures());
     CHECK(extent.nearest == 0.0f);
     CHECK(extent.furthest == 0.0f);
-    CHECK(pass.compute()->pairs() == std::pair<std::size_t, std::size_t>(0, 0));
+    const auto counts = pass.compute()->counts();
+    CHECK(counts.pairs == 0);
+    CHECK(counts.long_listed + counts.long_binned == 0);
     gl::maps<occupancy_maps<128, 4>> occ;
     occ.build(pass);
     using texel = occupancy_maps<128, 4>::texel_maps;

@@ -373,19 +373,29 @@ struct hs_segment {
 };
 layout(std430, binding = 0) buffer hs_segment_buffer { hs_segment hs_segments[]; };
 layout(std430, binding = 1) buffer hs_tile_count_buffer { uint hs_tile_counts[]; };   // per tile; the scatter's cursors
-// The whole map's extent as ordered bits (hs_ordered), the number of segment-tile pairs and of long
-// segments, and each tile's first pair (tiles + 1 exclusive prefix sums).
+// The whole map's extent as ordered bits (hs_ordered), the number of segment-tile pairs, the long
+// segments (below) in the long list and in the tiles' lists, the long pairs granted and wanted, and
+// each tile's first pair (tiles + 1 exclusive prefix sums).
 layout(std430, binding = 2) buffer hs_tile_offset_buffer {
     uint hs_nearest_bits;
     uint hs_furthest_bits;
     uint hs_pairs;
-    uint hs_long_count;
+    uint hs_long_count;    // long segments in the long list
+    uint hs_long_binned;   // long segments in the tiles' lists
+    uint hs_long_reserved; // their pairs, at most hs_long_capacity
+    uint hs_long_wanted;   // the pairs every long segment asked for (modulo 2^32): the next build's capacity
+    uint hs_offset_spare;
     uint hs_tile_offsets[];
 };
-// Segment indices: tile by tile in [0, hs_pairs), then from hs_long_first the long segments, whose
-// box covers more than HS_SHORT_TILES tiles. Binning only the short ones bounds the lists by the
-// segment count (HS_SHORT_TILES + 1 words a segment), so the buffer is sized before the build, with no
-// count read back; each tile's work group walks the few long ones that reach it as well.
+// Segment indices: tile by tile in [0, hs_pairs), then, from hs_long_first, one word for each segment.
+// A short segment (its box over at most HS_SHORT_TILES tiles) is listed in every tile of its box: at
+// most HS_SHORT_TILES words a segment. A long one is listed in the tiles its line reaches
+// (hs_long_tiles), while the hs_long_capacity words the build set aside for long pairs last; those past
+// it go to the long list (from hs_long_first up), which every tile's work group reads through, and the
+// listed ones are named from the other end (hs_long_first + segments - 1 down) for the scatter. The
+// buffer is sized before the passes that fill it: the capacity comes from an earlier build's
+// hs_long_wanted, or from a first prepare pass's when the resolution or segment count is new
+// (compute_segments::run).
 layout(std430, binding = 3) buffer hs_binned_buffer { uint hs_binned[]; };
 const int HS_SHORT_TILES = 4;
 uniform uint hs_long_first;
@@ -473,6 +483,46 @@ ivec2 hs_product_quotient(int o, int v, int A) {
         }
     }
     return qr;
+}
+
+// The tiles a long segment's fragments can reach, fewer than its box's (a diagonal segment's box holds
+// the square of the tiles its line crosses). Along the major axis, tile t holds the walk's centres m
+// in [16t, 16t + 15]; their fragments' minor texels are floor(minor(m) / S), or one less on a tie,
+// monotone in m (hs_walk), and the fragment at a's own texel lies one centre before the first or after
+// the last, within two texels of that centre's minor texel. So each major tile's centres (the
+// segment's taken from first - 1 to last + 1) and two texels either side of their minor texels
+// hold every fragment: a tile too many costs a
+// walk that emits nothing, a tile missed would lose fragments (the compute tests compare every texel).
+// Counts the tiles; mode 1 also counts the segment in each tile's count, mode 2 lists it there (the
+// scatter, in the same order, so the counts match).
+uint hs_long_tiles(ivec4 e, ivec4 box, int mode, uint segment) {
+    int dx = e.z - e.x, dy = e.w - e.y;
+    bool x_major = abs(dx) >= abs(dy);
+    int major_a = x_major ? e.x : e.y, major_b = x_major ? e.z : e.w, minor_a = x_major ? e.y : e.x;
+    int d_minor = x_major ? dy : dx, A = abs(major_b - major_a), sign = major_b > major_a ? 1 : -1;
+    int first = (min(major_a, major_b) - HS_H + HS_S - 1) >> HS_SUBPIXEL_BITS;
+    int last = ((max(major_a, major_b) - HS_H + HS_S - 1) >> HS_SUBPIXEL_BITS) - 1;
+    ivec2 majors = x_major ? box.xz : box.yw, minors = x_major ? box.yw : box.xz;
+    uint tiles = 0u;
+    for (int t = majors.x / HS_TILE; t <= majors.y / HS_TILE; ++t) {
+        int m0 = max(max(t * HS_TILE, majors.x), first - 1), m1 = min(min(t * HS_TILE + HS_TILE - 1, majors.y), last + 1);
+        if (m0 > m1) continue;
+        ivec2 reach = minors; // no centre crossed (never for a long segment): the whole box
+        if (first <= last) {
+            int c0 = clamp(m0, first, last), c1 = clamp(m1, first, last); // o in [0, A]: hs_product_quotient's range
+            int n0 = (minor_a + hs_product_quotient(sign * (c0 * HS_S + HS_H - major_a), d_minor, A).x) >> HS_SUBPIXEL_BITS;
+            int n1 = (minor_a + hs_product_quotient(sign * (c1 * HS_S + HS_H - major_a), d_minor, A).x) >> HS_SUBPIXEL_BITS;
+            reach = ivec2(max(min(n0, n1) - 2, minors.x), min(max(n0, n1) + 2, minors.y));
+        }
+        if (reach.x > reach.y) continue;
+        for (int u = reach.x / HS_TILE; u <= reach.y / HS_TILE; ++u) {
+            uint tile = uint(x_major ? u * hs_tiles_x + t : t * hs_tiles_x + u);
+            if (mode == 1) atomicAdd(hs_tile_counts[tile], 1u);
+            else if (mode == 2) hs_binned[hs_tile_offsets[tile] + atomicAdd(hs_tile_counts[tile], 1u)] = segment;
+            ++tiles;
+        }
+    }
+    return tiles;
 }
 
 void hs_emit(int x, int y); // defined by each pass
@@ -798,7 +848,8 @@ inline constexpr std::string_view compute_prepare = R"hs_glsl(// Compute build, 
 // hairshadow::detail::prepare_segment does (the same operations in the same order, no fused
 // multiply-adds; every quotient by hs_div_rn, no double precision), counts it in every tile its box meets, and widens the
 // whole map's extent by its ends, as segment_bins does. A long segment (its box over more than
-// HS_SHORT_TILES tiles) goes to the long list instead of the tiles.
+// HS_SHORT_TILES tiles) is counted in the tiles its line reaches (hs_long_tiles) while the capacity set
+// aside for long pairs lasts, and goes to the long list past it.
 layout(local_size_x = 256) in;
 void hs_emit(int x, int y) {} // this pass walks no lines
 
@@ -942,6 +993,19 @@ bool hs_prepare(vec3 p0, vec3 p1, inout vec4 at, out hs_segment out_segment) {
     return out_segment.ends.xy != out_segment.ends.zw;
 }
 
+// Takes `pairs` words of the hs_long_capacity set aside for long segments' pairs, if that many are left:
+// a compare-and-swap loop, so the count never passes the capacity (an atomicAdd could wrap).
+uniform uint hs_long_capacity;
+bool hs_reserve_long(uint pairs) {
+    uint seen = hs_long_reserved;
+    for (;;) {
+        if (seen > hs_long_capacity || pairs > hs_long_capacity - seen) return false;
+        uint was = atomicCompSwap(hs_long_reserved, seen, seen + pairs);
+        if (was == seen) return true;
+        seen = was;
+    }
+}
+
 void main() {
     uint i = hs_segment_index();
     if (i >= hs_segment_count) return;
@@ -957,7 +1021,14 @@ void main() {
     atomicMax(hs_furthest_bits, hs_ordered(max(s.depth_w.x, s.depth_w.y)));
     ivec4 tiles = box / HS_TILE;
     if ((tiles.z - tiles.x + 1) * (tiles.w - tiles.y + 1) > HS_SHORT_TILES) {
-        hs_binned[hs_long_first + atomicAdd(hs_long_count, 1u)] = i;
+        uint pairs = hs_long_tiles(s.ends, box, 0, i);
+        atomicAdd(hs_long_wanted, pairs);
+        if (hs_reserve_long(pairs)) {
+            hs_long_tiles(s.ends, box, 1, i);
+            hs_binned[hs_long_first + hs_segment_count - 1u - atomicAdd(hs_long_binned, 1u)] = i;
+        } else {
+            hs_binned[hs_long_first + atomicAdd(hs_long_count, 1u)] = i;
+        }
         return;
     }
     for (int ty = tiles.y; ty <= tiles.w; ++ty)
@@ -1173,7 +1244,8 @@ void main() {
 
 /// shaders/compute/scatter.glsl
 inline constexpr std::string_view compute_scatter = R"hs_glsl(// Compute build, step 3 (one invocation per segment): each drawn short segment's index into the list
-// of every tile its box meets. The order within a tile does not matter: every later sum is exact.
+// of every tile its box meets, and each long segment that prepare counted in tiles into theirs. The
+// order within a tile does not matter: every later sum is exact.
 layout(local_size_x = 256) in;
 void hs_emit(int x, int y) {} // this pass walks no lines
 uniform uint hs_segment_count;
@@ -1181,10 +1253,15 @@ uniform uint hs_segment_count;
 void main() {
     uint i = hs_segment_index();
     if (i >= hs_segment_count) return;
+    if (i < hs_long_binned) { // the long segments prepare counted in tiles, one an invocation
+        uint segment = hs_binned[hs_long_first + hs_segment_count - 1u - i];
+        ivec4 long_box;
+        if (hs_segment_box(hs_segments[segment].ends, long_box)) hs_long_tiles(hs_segments[segment].ends, long_box, 2, segment);
+    }
     ivec4 ends = hs_segments[i].ends, box;
     if (ends.xy == ends.zw || !hs_segment_box(ends, box)) return;
     ivec4 tiles = box / HS_TILE;
-    if ((tiles.z - tiles.x + 1) * (tiles.w - tiles.y + 1) > HS_SHORT_TILES) return; // in the long list
+    if ((tiles.z - tiles.x + 1) * (tiles.w - tiles.y + 1) > HS_SHORT_TILES) return; // long: listed above, or in the long list
     for (int ty = tiles.y; ty <= tiles.w; ++ty)
         for (int tx = tiles.x; tx <= tiles.z; ++tx) {
             uint tile = uint(ty * hs_tiles_x + tx);

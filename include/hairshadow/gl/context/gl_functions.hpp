@@ -39,7 +39,7 @@
 /// Every function is core OpenGL 4.5 or older (glClipControl is 4.5, asked for only on a 4.5 context;
 /// KHR_debug's groups are 4.3); the back end asks for a 4.3 context.
 
-#define HAIRSHADOW_GL_FUNCTION_COUNT 122
+#define HAIRSHADOW_GL_FUNCTION_COUNT 126
 
 /// X(glName, PFNGLNAMEPROC) for each GL function the library calls, sorted by name.
 #define HAIRSHADOW_GL_FUNCTIONS(X) \
@@ -69,10 +69,12 @@
     X(glClearBufferData, PFNGLCLEARBUFFERDATAPROC) \
     X(glClearBufferfv, PFNGLCLEARBUFFERFVPROC) \
     X(glClearBufferuiv, PFNGLCLEARBUFFERUIVPROC) \
+    X(glClientWaitSync, PFNGLCLIENTWAITSYNCPROC) \
     X(glClipControl, PFNGLCLIPCONTROLPROC) \
     X(glColorMask, PFNGLCOLORMASKPROC) \
     X(glColorMaski, PFNGLCOLORMASKIPROC) \
     X(glCompileShader, PFNGLCOMPILESHADERPROC) \
+    X(glCopyBufferSubData, PFNGLCOPYBUFFERSUBDATAPROC) \
     X(glCreateProgram, PFNGLCREATEPROGRAMPROC) \
     X(glCreateShader, PFNGLCREATESHADERPROC) \
     X(glDeleteBuffers, PFNGLDELETEBUFFERSPROC) \
@@ -81,6 +83,7 @@
     X(glDeleteQueries, PFNGLDELETEQUERIESPROC) \
     X(glDeleteRenderbuffers, PFNGLDELETERENDERBUFFERSPROC) \
     X(glDeleteShader, PFNGLDELETESHADERPROC) \
+    X(glDeleteSync, PFNGLDELETESYNCPROC) \
     X(glDeleteTextures, PFNGLDELETETEXTURESPROC) \
     X(glDeleteVertexArrays, PFNGLDELETEVERTEXARRAYSPROC) \
     X(glDepthFunc, PFNGLDEPTHFUNCPROC) \
@@ -95,6 +98,7 @@
     X(glEnableVertexAttribArray, PFNGLENABLEVERTEXATTRIBARRAYPROC) \
     X(glEnablei, PFNGLENABLEIPROC) \
     X(glEndQuery, PFNGLENDQUERYPROC) \
+    X(glFenceSync, PFNGLFENCESYNCPROC) \
     X(glFinish, PFNGLFINISHPROC) \
     X(glFramebufferParameteri, PFNGLFRAMEBUFFERPARAMETERIPROC) \
     X(glFramebufferRenderbuffer, PFNGLFRAMEBUFFERRENDERBUFFERPROC) \

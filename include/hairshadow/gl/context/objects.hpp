@@ -57,6 +57,39 @@ using program = object<detail::delete_program>;
 using query = object<detail::delete_query>;
 using renderbuffer = object<detail::delete_renderbuffer>;
 
+/// Owns a fence (glFenceSync): has the GPU passed the commands issued before it?
+class fence_sync {
+public:
+    fence_sync() = default;
+    ~fence_sync() { reset(); }
+    fence_sync(fence_sync&& o) noexcept : sync_(std::exchange(o.sync_, nullptr)) {}
+    fence_sync& operator=(fence_sync&& o) noexcept {
+        if (this != &o) reset(), sync_ = std::exchange(o.sync_, nullptr);
+        return *this;
+    }
+    fence_sync(const fence_sync&) = delete;
+    fence_sync& operator=(const fence_sync&) = delete;
+    /// A fence after every command issued so far (the last one placed is dropped).
+    void place() {
+        reset();
+        sync_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    }
+    /// True when a fence is placed and the GPU has passed it. Never waits; flushes the commands
+    /// before it, so that it will pass.
+    bool passed() const {
+        if (!sync_) return false;
+        const GLenum state = glClientWaitSync(sync_, GL_SYNC_FLUSH_COMMANDS_BIT, 0);
+        return state == GL_ALREADY_SIGNALED || state == GL_CONDITION_SATISFIED;
+    }
+    void reset() noexcept {
+        if (sync_) glDeleteSync(sync_);
+        sync_ = nullptr;
+    }
+
+private:
+    GLsync sync_ = nullptr;
+};
+
 inline buffer make_buffer() {
     GLuint n = 0;
     glGenBuffers(1, &n);

@@ -16,6 +16,7 @@
 #include <hairshadow/gl/context/state_guard.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -95,6 +96,10 @@ inline void set_uniform_u(GLuint prog, const char* name, std::uint32_t v) { glUn
 
 /// The segments of one mesh seen from one light, prepared and binned on the GPU.
 class compute_segments {
+    // compute/common's hs_tile_offset_buffer: its words before hs_tile_offsets, and which is which.
+    static constexpr std::size_t header_bytes = 32;
+    static constexpr std::size_t pairs_word = 2, long_listed_word = 3, long_binned_word = 4, long_wanted_word = 6;
+
 public:
     compute_segments() {
         require_compute_path("the compute build path");
@@ -108,12 +113,13 @@ public:
         scan_ = program_of(shaders::compute_scan, "", "compute/scan");
         scatter_ = program_of(shaders::compute_scatter, "", "compute/scatter");
         range_ = program_of(shaders::compute_range, "#define HS_DEPTH_ONLY\n", "compute/range");
-        for (auto* b : {&segments_, &counts_, &offsets_, &binned_}) *b = make_buffer();
+        for (auto* b : {&segments_, &counts_, &offsets_, &binned_, &header_copy_}) *b = make_buffer();
     }
 
     /// Prepares and bins `mesh`'s segments for `light`, writes the range map and the map's extent
-    /// into `range` (RGBA32F, res x res + 1), all on the GPU, reading nothing back. The caller holds a
-    /// state_guard.
+    /// into `range` (RGBA32F, res x res + 1), all on the GPU. A run like the last (as many segments, the
+    /// same resolution) reads back only the last run's binning counts; any other runs the prepare pass
+    /// twice, waiting for the first's count of long segments' tiles. The caller holds a state_guard.
     void run(const hair_mesh& mesh, const light_space& light, const raster_options& options, GLuint range) {
         if (options.wide_line_width > 0.0f)
             throw feature_error("build_path::compute draws thin lines only: wide lines need build_path::raster");
@@ -122,56 +128,45 @@ public:
         const int res = light.resolution();
         tiles_x_ = (res + compute_tile - 1) / compute_tile;
         const std::size_t tiles = std::size_t(tiles_x_) * std::size_t(tiles_x_);
-        segment_count_ = mesh.segment_count();
         // The buffers the shaders index: 48 bytes a segment, and their indices in 32 bits.
         GLint64 block = 0;
         glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &block);
-        if (segment_count_ > std::numeric_limits<std::uint32_t>::max() / (short_tiles + 1) || double(segment_count_) * 48.0 > double(block))
-            throw feature_error("build_path::compute holds 48 bytes a segment in one shader storage block: " + std::to_string(segment_count_) +
+        const std::size_t segments = mesh.segment_count();
+        if (segments > std::numeric_limits<std::uint32_t>::max() / (short_tiles + 2) || double(segments) * 48.0 > double(block))
+            throw feature_error("build_path::compute holds 48 bytes a segment in one shader storage block: " + std::to_string(segments) +
                                 " segments need more than this context's " + std::to_string(block) + " bytes; use build_path::raster");
+        // The capacity for long segments' pairs: what an earlier run like this one asked for (the same
+        // number of segments, the same resolution), otherwise measured first (learn_long_capacity).
+        const bool known = built_ && segments == segment_count_ && res == resolution_;
+        if (known) learn_long_capacity();
+        segment_count_ = segments;
+        resolution_ = res;
+        built_ = true;
         grow(segments_, segment_bytes_, std::max<std::size_t>(segment_count_, 1) * 48);
         grow(counts_, count_bytes_, tiles * 4);
-        grow(offsets_, offset_bytes_, 16 + (tiles + 1) * 4);
-        // Short segments (a box over at most 4 tiles) in at most 4 tiles' lists each, long ones in a
-        // list of their own: a bound from the segment count alone (compute/common's hs_binned).
-        grow(binned_, binned_bytes_, (short_tiles + 1) * std::max<std::size_t>(segment_count_, 1) * 4);
-        const GLuint zero = 0;
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, counts_.get());
-        glClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-        const std::uint32_t totals[4] = {0xffffffffu, 0u, 0u, 0u}; // nearest, furthest (ordered bits), pairs, long segments
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, offsets_.get());
-        glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof totals, totals);
-        bind_lists();
+        grow(offsets_, offset_bytes_, header_bytes + (tiles + 1) * 4);
+        grow(header_copy_, header_copy_bytes_, header_bytes);
+        const std::size_t most_words = std::min<std::size_t>(std::numeric_limits<std::uint32_t>::max(), std::size_t(block) / 4);
+        const auto size_lists = [&] {
+            // Short segments in at most 4 tiles' lists each, long ones in the tiles their lines reach while
+            // the capacity for them lasts, and a word each for the long list (compute/common's hs_binned).
+            const std::size_t words_before = (short_tiles + 1) * std::max<std::size_t>(segment_count_, 1);
+            long_capacity_ = std::min(std::max(long_capacity_, segment_count_), most_words - std::min(most_words, words_before));
+            grow(binned_, binned_bytes_, (words_before + long_capacity_) * 4, most_words * 4);
+        };
 
         // 1. Prepare and count.
-        const auto& src = mesh.sources();
-        const GLuint p = prepare_.get();
-        glUseProgram(p);
-        set_light_uniforms(p);
-        const auto layout = [&](const char* name, const buffer_attribute& a, std::size_t floats) {
-            const std::size_t stride = a.stride == 0 ? floats : std::size_t(a.stride) / 4;
-            glUniform2ui(glGetUniformLocation(p, name), GLuint(std::size_t(a.offset) / 4), GLuint(stride));
-        };
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, src.points.positions.buffer);
-        layout("hs_position_layout", src.points.positions, 3);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, src.points.thickness ? src.points.thickness->buffer : src.points.positions.buffer);
-        if (src.points.thickness) layout("hs_thickness_layout", *src.points.thickness, 1);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, src.points.opacity ? src.points.opacity->buffer : src.points.positions.buffer);
-        if (src.points.opacity) layout("hs_opacity_layout", *src.points.opacity, 1);
-        set_uniform(p, "hs_thickness_constant", src.points.thickness ? 0 : 1);
-        set_uniform(p, "hs_opacity_constant", src.points.opacity ? 0 : 1);
-        glUniform1f(glGetUniformLocation(p, "hs_thickness_value"), src.points.uniform_thickness);
-        glUniform1f(glGetUniformLocation(p, "hs_opacity_value"), src.points.uniform_opacity);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, src.index_buffer);
-        set_uniform_u(p, "hs_index_first", GLuint(std::size_t(src.index_offset) / 4));
-        set_uniform_u(p, "hs_segment_count", GLuint(segment_count_));
-        set_uniform(p, "hs_tile_size", compute_tile);
-        glUniformMatrix4fv(glGetUniformLocation(p, "hs_view_projection"), 1, GL_FALSE, &light.view_projection()[0][0]);
-        glUniformMatrix4fv(glGetUniformLocation(p, "hs_view"), 1, GL_FALSE, &light.view()[0][0]);
-        glUniform1f(glGetUniformLocation(p, "hs_near"), light.near_plane());
-        glUniform1f(glGetUniformLocation(p, "hs_far"), light.far_plane());
-        dispatch_segments();
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        set_prepare_uniforms(mesh, light);
+        if (!known) { // a first pass that lists no long segment in tiles, for what they ask (a wait for the GPU)
+            long_capacity_ = 0;
+            size_lists();
+            prepare(0);
+            glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+            const std::size_t wanted = read_header()[long_wanted_word];
+            long_capacity_ = wanted + wanted / 4;
+        }
+        size_lists();
+        prepare(GLuint(long_capacity_));
 
         // 2. Offsets and the extent.
         glUseProgram(scan_.get());
@@ -194,6 +189,13 @@ public:
         set_shading_uniforms(range_.get());
         glBindImageTexture(0, range, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         dispatch_tiles();
+
+        // 5. This run's counts, copied for the next run to read once the GPU has passed the fence.
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, offsets_.get());
+        glBindBuffer(GL_ARRAY_BUFFER, header_copy_.get());
+        glCopyBufferSubData(GL_SHADER_STORAGE_BUFFER, GL_ARRAY_BUFFER, 0, 0, header_bytes);
+        header_fence_.place();
     }
 
     /// Binds the segment lists (storage bindings 0 to 3) and sets the uniforms every tile pass reads.
@@ -204,20 +206,98 @@ public:
     }
     /// One work group per tile.
     void dispatch_tiles() const { glDispatchCompute(GLuint(tiles_x_), GLuint(tiles_x_), 1); }
-    /// Segment-tile pairs of the last run, and its long segments: read back (a wait for the GPU),
-    /// for tests and inspection.
-    std::pair<std::size_t, std::size_t> pairs() const {
+    /// How the last run binned its segments.
+    struct binning {
+        std::size_t pairs = 0;        ///< segment-tile pairs in the tiles' lists
+        std::size_t long_listed = 0;  ///< long segments in the long list, read through by every tile
+        std::size_t long_binned = 0;  ///< long segments in the lists of the tiles their lines reach
+        std::size_t long_pairs = 0;   ///< the pairs the long segments asked for (modulo 2^32)
+        std::size_t long_capacity = 0; ///< the words the run set aside for them
+        friend bool operator==(const binning&, const binning&) = default;
+    };
+    /// The last run's binning, read back (a wait for the GPU), for tests and inspection.
+    binning counts() const {
         state_guard guard("hairshadow: compute pair counts"); // the caller's storage buffer binding stays
-        std::uint32_t counts[2] = {0, 0};
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, offsets_.get());
-        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 8, sizeof counts, counts);
-        return {counts[0], counts[1]};
+        if (!built_) return {};
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        const auto words = read_header();
+        return {words[pairs_word], words[long_listed_word], words[long_binned_word], words[long_wanted_word], long_capacity_};
     }
 
 private:
-    static void grow(buffer& b, std::size_t& bytes, std::size_t needed) {
+    /// Clears the counts and the header, and runs the prepare pass with `long_capacity` words for
+    /// long segments' pairs.
+    void prepare(GLuint long_capacity) const {
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // the clears below wait for the last run's shaders
+        const GLuint zero = 0;
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, counts_.get());
+        glClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        std::uint32_t header[header_bytes / 4] = {}; // compute/common's hs_tile_offset_buffer, before the offsets
+        header[0] = 0xffffffffu;                     // the nearest depth's ordered bits: none yet
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, offsets_.get());
+        glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof header, header);
+        bind_lists();
+        const GLuint p = prepare_.get();
+        glUseProgram(p);
+        set_light_uniforms(p);
+        set_uniform_u(p, "hs_long_capacity", long_capacity);
+        dispatch_segments();
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    /// The prepare pass's uniforms and bindings that stay for a run: the mesh's buffers and the light.
+    void set_prepare_uniforms(const hair_mesh& mesh, const light_space& light) const {
+        const auto& src = mesh.sources();
+        const GLuint p = prepare_.get();
+        glUseProgram(p);
+        const auto layout = [&](const char* name, const buffer_attribute& a, std::size_t floats) {
+            const std::size_t stride = a.stride == 0 ? floats : std::size_t(a.stride) / 4;
+            glUniform2ui(glGetUniformLocation(p, name), GLuint(std::size_t(a.offset) / 4), GLuint(stride));
+        };
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, src.points.positions.buffer);
+        layout("hs_position_layout", src.points.positions, 3);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, src.points.thickness ? src.points.thickness->buffer : src.points.positions.buffer);
+        if (src.points.thickness) layout("hs_thickness_layout", *src.points.thickness, 1);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, src.points.opacity ? src.points.opacity->buffer : src.points.positions.buffer);
+        if (src.points.opacity) layout("hs_opacity_layout", *src.points.opacity, 1);
+        set_uniform(p, "hs_thickness_constant", src.points.thickness ? 0 : 1);
+        set_uniform(p, "hs_opacity_constant", src.points.opacity ? 0 : 1);
+        glUniform1f(glGetUniformLocation(p, "hs_thickness_value"), src.points.uniform_thickness);
+        glUniform1f(glGetUniformLocation(p, "hs_opacity_value"), src.points.uniform_opacity);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, src.index_buffer);
+        set_uniform_u(p, "hs_index_first", GLuint(std::size_t(src.index_offset) / 4));
+        set_uniform_u(p, "hs_segment_count", GLuint(segment_count_));
+        set_uniform(p, "hs_tile_size", compute_tile);
+        glUniformMatrix4fv(glGetUniformLocation(p, "hs_view_projection"), 1, GL_FALSE, &light.view_projection()[0][0]);
+        glUniformMatrix4fv(glGetUniformLocation(p, "hs_view"), 1, GL_FALSE, &light.view()[0][0]);
+        glUniform1f(glGetUniformLocation(p, "hs_near"), light.near_plane());
+        glUniform1f(glGetUniformLocation(p, "hs_far"), light.far_plane());
+    }
+    /// compute/common's hs_tile_offset_buffer header of the last run (a wait for the GPU).
+    std::array<std::uint32_t, header_bytes / 4> read_header() const {
+        std::array<std::uint32_t, header_bytes / 4> words{};
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, offsets_.get());
+        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof words, words.data());
+        return words;
+    }
+    /// The capacity for long segments' pairs in a run like the last (the same segment count and
+    /// resolution): what the last run's long segments asked for, and a quarter more for a moving mesh,
+    /// read from the copy run() made, once the GPU has passed it; until then, the last capacity (no
+    /// wait). A run whose long segments ask for more lists those past it in the long list: the same
+    /// maps, slower passes.
+    void learn_long_capacity() {
+        if (!header_fence_.passed()) return;
+        header_fence_.reset();
+        std::array<std::uint32_t, header_bytes / 4> words{};
+        glBindBuffer(GL_ARRAY_BUFFER, header_copy_.get());
+        glGetBufferSubData(GL_ARRAY_BUFFER, 0, header_bytes, words.data());
+        const std::size_t wanted = words[long_wanted_word];
+        if (words[long_listed_word] != 0) long_capacity_ = std::max(long_capacity_ * 2, wanted + wanted / 4); // wanted may have wrapped
+        else long_capacity_ = std::max(long_capacity_, wanted + wanted / 4);
+    }
+    /// Grows `b` to `needed` bytes and a quarter more, within `most` (where the shaders index it).
+    static void grow(buffer& b, std::size_t& bytes, std::size_t needed, std::size_t most = std::numeric_limits<std::size_t>::max()) {
         if (needed <= bytes) return;
-        bytes = std::max(needed, bytes + bytes / 4);
+        bytes = std::max(needed, std::min(bytes + bytes / 4, most));
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, b.get());
         glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes), nullptr, GL_DYNAMIC_COPY);
     }
@@ -230,7 +310,7 @@ private:
     void set_light_uniforms(GLuint prog) const {
         set_uniform(prog, "hs_resolution", light_.resolution());
         set_uniform(prog, "hs_tiles_x", tiles_x_);
-        set_uniform_u(prog, "hs_long_first", GLuint(short_tiles * segment_count_));
+        set_uniform_u(prog, "hs_long_first", GLuint(short_tiles * segment_count_ + long_capacity_));
     }
     void set_shading_uniforms(GLuint prog) const {
         set_uniform(prog, "hs_use_fixed_alpha", options_.fixed_alpha ? 1 : 0);
@@ -249,10 +329,13 @@ private:
     }
 
     program prepare_, scan_, scatter_, range_;
-    buffer segments_, counts_, offsets_, binned_;
-    std::size_t segment_bytes_ = 0, count_bytes_ = 0, offset_bytes_ = 0, binned_bytes_ = 0;
-    static constexpr std::size_t short_tiles = 4; // HS_SHORT_TILES
-    std::size_t segment_count_ = 0;
+    buffer segments_, counts_, offsets_, binned_, header_copy_;
+    fence_sync header_fence_;
+    std::size_t segment_bytes_ = 0, count_bytes_ = 0, offset_bytes_ = 0, binned_bytes_ = 0, header_copy_bytes_ = 0;
+    static constexpr std::size_t short_tiles = 4;  // HS_SHORT_TILES
+    std::size_t segment_count_ = 0, long_capacity_ = 0;
+    int resolution_ = 0;
+    bool built_ = false;
     int tiles_x_ = 0;
     light_space light_;
     raster_options options_;
