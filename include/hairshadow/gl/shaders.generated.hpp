@@ -485,14 +485,27 @@ ivec2 hs_product_quotient(int o, int v, int A) {
     return qr;
 }
 
+// The texel centres a segment crosses along its major axis, [first, last] (empty when first > last),
+// from its ends' major coordinates in sub-pixels: ceil((end - H) / S), by the shift's floor.
+ivec2 hs_centres_crossed(int major_a, int major_b) {
+    int lo_end = min(major_a, major_b), hi_end = max(major_a, major_b);
+    return ivec2((lo_end - HS_H + HS_S - 1) >> HS_SUBPIXEL_BITS, ((hi_end - HS_H + HS_S - 1) >> HS_SUBPIXEL_BITS) - 1);
+}
+// The minor coordinate at centre m (first <= m <= last), minor_a + o d_minor / A sub-pixels with o its
+// distance from a along the major axis, in [0, A]: as (k, r), k + r / A, 0 <= r < A.
+ivec2 hs_minor_at(int m, int major_a, int minor_a, int sign, int d_minor, int A) {
+    ivec2 qr = hs_product_quotient(sign * (m * HS_S + HS_H - major_a), d_minor, A);
+    return ivec2(minor_a + qr.x, qr.y);
+}
+
 // The tiles a long segment's fragments can reach, fewer than its box's (a diagonal segment's box holds
 // the square of the tiles its line crosses). Along the major axis, tile t holds the walk's centres m
 // in [16t, 16t + 15]; their fragments' minor texels are floor(minor(m) / S), or one less on a tie,
 // monotone in m (hs_walk), and the fragment at a's own texel lies one centre before the first or after
 // the last, within two texels of that centre's minor texel. So each major tile's centres (the
-// segment's taken from first - 1 to last + 1) and two texels either side of their minor texels
-// hold every fragment: a tile too many costs a
-// walk that emits nothing, a tile missed would lose fragments (the compute tests compare every texel).
+// segment's taken from first - 1 to last + 1) and two texels either side of their minor texels hold
+// every fragment: a tile too many costs a walk that emits nothing, a tile missed would lose fragments
+// (the compute tests compare every texel).
 // Counts the tiles; mode 1 also counts the segment in each tile's count, mode 2 lists it there (the
 // scatter, in the same order, so the counts match).
 uint hs_long_tiles(ivec4 e, ivec4 box, int mode, uint segment) {
@@ -500,8 +513,8 @@ uint hs_long_tiles(ivec4 e, ivec4 box, int mode, uint segment) {
     bool x_major = abs(dx) >= abs(dy);
     int major_a = x_major ? e.x : e.y, major_b = x_major ? e.z : e.w, minor_a = x_major ? e.y : e.x;
     int d_minor = x_major ? dy : dx, A = abs(major_b - major_a), sign = major_b > major_a ? 1 : -1;
-    int first = (min(major_a, major_b) - HS_H + HS_S - 1) >> HS_SUBPIXEL_BITS;
-    int last = ((max(major_a, major_b) - HS_H + HS_S - 1) >> HS_SUBPIXEL_BITS) - 1;
+    ivec2 crossed = hs_centres_crossed(major_a, major_b);
+    int first = crossed.x, last = crossed.y;
     ivec2 majors = x_major ? box.xz : box.yw, minors = x_major ? box.yw : box.xz;
     uint tiles = 0u;
     for (int t = majors.x / HS_TILE; t <= majors.y / HS_TILE; ++t) {
@@ -509,9 +522,8 @@ uint hs_long_tiles(ivec4 e, ivec4 box, int mode, uint segment) {
         if (m0 > m1) continue;
         ivec2 reach = minors; // no centre crossed (never for a long segment): the whole box
         if (first <= last) {
-            int c0 = clamp(m0, first, last), c1 = clamp(m1, first, last); // o in [0, A]: hs_product_quotient's range
-            int n0 = (minor_a + hs_product_quotient(sign * (c0 * HS_S + HS_H - major_a), d_minor, A).x) >> HS_SUBPIXEL_BITS;
-            int n1 = (minor_a + hs_product_quotient(sign * (c1 * HS_S + HS_H - major_a), d_minor, A).x) >> HS_SUBPIXEL_BITS;
+            int n0 = hs_minor_at(clamp(m0, first, last), major_a, minor_a, sign, d_minor, A).x >> HS_SUBPIXEL_BITS;
+            int n1 = hs_minor_at(clamp(m1, first, last), major_a, minor_a, sign, d_minor, A).x >> HS_SUBPIXEL_BITS;
             reach = ivec2(max(min(n0, n1) - 2, minors.x), min(max(n0, n1) + 2, minors.y));
         }
         if (reach.x > reach.y) continue;
@@ -539,19 +551,15 @@ void hs_walk(ivec2 a, ivec2 b, ivec4 clip) {
     int major_a = x_major ? a.x : a.y, major_b = x_major ? b.x : b.y;
     int d_major = x_major ? dx : dy, d_minor = x_major ? dy : dx;
     int minor_a = x_major ? a.y : a.x;
-    int lo_end = d_major > 0 ? major_a : major_b, hi_end = d_major > 0 ? major_b : major_a;
-    // Centres crossed: ceil((end - H) / S), by the shift's floor.
-    int first = (lo_end - HS_H + HS_S - 1) >> HS_SUBPIXEL_BITS, last = ((hi_end - HS_H + HS_S - 1) >> HS_SUBPIXEL_BITS) - 1;
+    ivec2 crossed = hs_centres_crossed(major_a, major_b);
+    int first = crossed.x, last = crossed.y;
     int m_begin = max(first, x_major ? clip.x : clip.y), m_end = min(last, (x_major ? clip.z : clip.w) - 1);
     bool lower_on_tie = !x_major || dy == 0 || ((dx > 0) != (dy > 0));
     if (m_begin <= m_end) {
         int A = abs(d_major), sign = d_major > 0 ? 1 : -1;
-        // The first centre's distance from a along the major axis, in [0, A] (first <= m_begin <= last),
-        // and the minor coordinate there: minor_a + o d_minor / A.
-        int o = sign * (m_begin * HS_S + HS_H - major_a);
-        ivec2 start = hs_product_quotient(o, d_minor, A);
+        ivec2 start = hs_minor_at(m_begin, major_a, minor_a, sign, d_minor, A); // first <= m_begin <= last
         ivec2 step = hs_product_quotient(HS_S, sign * d_minor, A); // per centre
-        int k = minor_a + start.x, r = start.y;
+        int k = start.x, r = start.y;
         for (int m = m_begin; m <= m_end; ++m) {
             int n = k >> HS_SUBPIXEL_BITS;
             int minor = (lower_on_tie && r == 0 && (k & (HS_S - 1)) == 0) ? n - 1 : n;

@@ -158,7 +158,6 @@ public:
         // 1. Prepare and count.
         set_prepare_uniforms(mesh, light);
         if (!known) { // a first pass that lists no long segment in tiles, for what they ask (a wait for the GPU)
-            long_capacity_ = 0;
             size_lists();
             prepare(0);
             glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -213,7 +212,6 @@ public:
         std::size_t long_binned = 0;  ///< long segments in the lists of the tiles their lines reach
         std::size_t long_pairs = 0;   ///< the pairs the long segments asked for (modulo 2^32)
         std::size_t long_capacity = 0; ///< the words the run set aside for them
-        friend bool operator==(const binning&, const binning&) = default;
     };
     /// The last run's binning, read back (a wait for the GPU), for tests and inspection.
     binning counts() const {
