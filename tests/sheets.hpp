@@ -37,4 +37,16 @@ inline sheets_scene make_sheets(int sheets, int res) {
     return scene;
 }
 
+/// Rasteriser options with every fragment's alpha `a`.
+inline hairshadow::raster_options alpha(float a) {
+    hairshadow::raster_options o;
+    o.fixed_alpha = a;
+    return o;
+}
+
+/// The light depth of world z on the sheets' middle row.
+inline float depth_at(const sheets_scene& scene, float z) {
+    return scene.light.locate(glm::vec3(0.2f, scene.row_y[scene.row_y.size() / 2], z))->depth;
+}
+
 } // namespace test

@@ -18,12 +18,6 @@ using namespace hairshadow;
 
 namespace {
 
-raster_options alpha(float a) {
-    raster_options o;
-    o.fixed_alpha = a;
-    return o;
-}
-
 /// Sheets of strands at the given world z (the light travels along -z), one strand per texel row.
 test::sheets_scene sheets_at(const std::vector<float>& zs, int res) {
     auto scene = test::make_sheets(int(zs.size()), res);
@@ -50,7 +44,7 @@ TEST_CASE("avsm with four nodes behind three sheets removes the nodes of least a
     // first two sheets, and is exact behind the second.
     const auto scene = sheets_at({0.5f, 0.3f, -0.5f}, 64);
     adaptive_volumetric_shadow_maps<4> avsm;
-    avsm.build(scene.model, scene.light, alpha(0.3f));
+    avsm.build(scene.model, scene.light, test::alpha(0.3f));
     const double b = -std::log(0.7);
     CHECK(avsm.stored_optical_depth(32, 32, 0) == 0.0f);
     CHECK(avsm.stored_optical_depth(32, 32, 1) == Approx(2 * b).epsilon(1e-6));
@@ -69,7 +63,7 @@ TEST_CASE("avsm with a node for every step keeps the exact function", "[methods]
     // Five sheets make ten nodes; sixteen keep them all: 0.7^k behind k sheets, at and between them.
     const auto scene = test::make_sheets(5, 64);
     adaptive_volumetric_shadow_maps<16> avsm;
-    avsm.build(scene.model, scene.light, alpha(0.3f));
+    avsm.build(scene.model, scene.light, test::alpha(0.3f));
     const float y = scene.row_y[scene.row_y.size() / 2];
     for (int k = 0; k <= 5; ++k) {
         const float z = 0.6f - 0.2f * float(k); // between sheet k - 1 and sheet k

@@ -25,19 +25,13 @@ std::vector<float> along_row(const Map& map, const test::sheets_scene& scene, st
     return t;
 }
 
-raster_options alpha(float a) {
-    raster_options o;
-    o.fixed_alpha = a;
-    return o;
-}
-
 } // namespace
 
 TEST_CASE("approximate deep shadow maps give TressFX's transmittance behind sheets of strands", "[methods][adsm]") {
     const auto scene = test::make_sheets(3, 64); // sheets at z = 0.5, 0.3, 0.1, the light travelling along -z
     // One fibre every 0.5 x 0.2 = 0.1 world units behind the first sheet, each of alpha 0.3.
     approximate_deep_shadow_maps adsm(per_pixel_depth<1>(), fibre_density<>({.spacing = 0.5f, .radius = 0.2f, .alpha = 0.3f}));
-    adsm.build(scene.model, scene.light, alpha(0.9f)); // the fragments' own alpha plays no part
+    adsm.build(scene.model, scene.light, test::alpha(0.9f)); // the fragments' own alpha plays no part
     // d = 0 (in front of and on the first sheet), 0.05 (raised to one fibre), 0.2, 0.4, 1.0 behind it.
     const auto t = along_row(adsm, scene, {0.9f, 0.5f, 0.45f, 0.3f, 0.1f, -0.5f});
     CHECK(t[0] == 1.0f);
@@ -70,8 +64,8 @@ TEST_CASE("approximate deep shadow maps give TressFX's transmittance behind shee
 TEST_CASE("the measured fibre density equals the exact answer at evenly spaced sheets", "[methods][adsm]") {
     const auto scene = test::make_sheets(5, 64); // z = 0.5, 0.3, ..., -0.3
     measured_density_shadow_maps measured;
-    measured.build(scene.model, scene.light, alpha(0.4f));
-    const deep_shadow_map exact(rasterize(scene.model, scene.light, alpha(0.4f)), scene.light);
+    measured.build(scene.model, scene.light, test::alpha(0.4f));
+    const deep_shadow_map exact(rasterize(scene.model, scene.light, test::alpha(0.4f)), scene.light);
     const auto at_sheets = {0.5f, 0.3f, 0.1f, -0.1f, -0.3f, -0.35f, -0.9f};
     const auto t = along_row(measured, scene, at_sheets), e = along_row(exact, scene, at_sheets);
     for (std::size_t j = 0; j < t.size(); ++j) {

@@ -20,14 +20,6 @@ using namespace hairshadow;
 
 namespace {
 
-raster_options alpha(float a) {
-    raster_options o;
-    o.fixed_alpha = a;
-    return o;
-}
-
-float depth_at(const test::sheets_scene& scene, float z) { return scene.light.locate(glm::vec3(0.2f, scene.row_y[scene.row_y.size() / 2], z))->depth; }
-
 /// The paper's series by hand, in double: spikes of optical depth b at periods' positions t.
 struct hand_series {
     int harmonics;
@@ -65,14 +57,14 @@ TEST_CASE("Fourier opacity maps store the paper's coefficients and give its seri
     for (const bool damped : {false, true}) {
         CAPTURE(damped);
         fourier_opacity_maps<7> fom{depth_range<1>(), fourier_series<7>(damped)};
-        fom.build(scene.model, scene.light, alpha(0.3f));
-        const float near = depth_at(scene, 0.5f), far = depth_at(scene, -0.3f);
+        fom.build(scene.model, scene.light, test::alpha(0.3f));
+        const float near = test::depth_at(scene, 0.5f), far = test::depth_at(scene, -0.3f);
         // The range's margin in the period: 1/7, damped 1/7 + 1/8 (the sigma factors' wider lobe).
         const double m = damped ? 1.0 / 7.0 + 1.0 / 8.0 : 1.0 / 7.0;
         CHECK(fom.reconstruction().margin() == Approx(m).epsilon(1e-7));
         const auto period = [&](float depth) { return m + (1 - 2 * m) * (double(depth) - near) / (double(far) - near); };
         std::vector<double> t;
-        for (const float z : scene.sheet_z) t.push_back(period(depth_at(scene, z)));
+        for (const float z : scene.sheet_z) t.push_back(period(test::depth_at(scene, z)));
         const hand_series hand(t, b, 3, damped);
         for (int k = 0; k < 7; ++k) {
             CAPTURE(k);
@@ -85,7 +77,7 @@ TEST_CASE("Fourier opacity maps store the paper's coefficients and give its seri
         // Between: exp(-tau(t)), tau held within [0, total].
         for (const float z : {0.49f, 0.4f, 0.3f, 0.25f, 0.1f, -0.05f, -0.2f, -0.29f}) {
             CAPTURE(z);
-            const double tau = std::clamp(hand.tau(period(depth_at(scene, z))), 0.0, 5 * b);
+            const double tau = std::clamp(hand.tau(period(test::depth_at(scene, z))), 0.0, 5 * b);
             CHECK(fom.transmittance(glm::vec3(0.2f, y, z)) == Approx(std::exp(-tau)).epsilon(2e-5));
         }
         // The series is not the staircase: just behind the first sheet, part of its own shadow (0.41
@@ -108,7 +100,7 @@ TEST_CASE("Fourier opacity maps ring between two sheets, and the sigma factors d
     const float y = scene.row_y[scene.row_y.size() / 2];
     const auto largest_fall = [&](bool damped) {
         fourier_opacity_maps<7> fom{depth_range<1>(), fourier_series<7>(damped)};
-        fom.build(scene.model, scene.light, alpha(0.3f));
+        fom.build(scene.model, scene.light, test::alpha(0.3f));
         double highest = 0, fall = 0;
         for (int i = 1; i < 200; ++i) {
             const float z = 0.5f - 0.2f * float(i) / 200.0f;
@@ -166,7 +158,7 @@ TEST_CASE("8-bit Fourier opacity maps store each term's steps, within their roun
         // alpha 0.3: b = 0.3567, one step of kappa / 255 = 0.02175 is 16.4, rounded to 16 a sheet.
         const auto scene = test::make_sheets(2, 64);
         fourier_opacity_maps<7, emulated_8bit> eight;
-        eight.build(scene.model, scene.light, alpha(0.3f));
+        eight.build(scene.model, scene.light, test::alpha(0.3f));
         const auto& steps = eight.texel(32, 32).data.sums;
         CHECK(int(steps[0]) == 32);
         // The sheets sit at the period's t = m and 1 - m (m = 1/7): cos(2 pi k t) is the same at both,

@@ -13,21 +13,6 @@
 
 using namespace hairshadow;
 
-namespace {
-
-raster_options alpha(float a) {
-    raster_options o;
-    o.fixed_alpha = a;
-    return o;
-}
-
-/// The light depth of world z on the sheets' middle row.
-float depth_at(const test::sheets_scene& scene, float z) {
-    return scene.light.locate(glm::vec3(0.2f, scene.row_y[scene.row_y.size() / 2], z))->depth;
-}
-
-} // namespace
-
 TEST_CASE("power_layers place Unreal's boundaries: (k / (K + 1))^(1 + 5.2 distribution) of the hair's depth", "[methods][ue]") {
     const power_layers<4> unreal; // LayerDistribution 0.5: exponent 3.6
     CHECK(unreal.fraction(0) == 0.0f);
@@ -69,7 +54,7 @@ TEST_CASE("hair-count deep shadows give Unreal's count and A^max(0, count - 1) b
     const auto scene = test::make_sheets(5, 64);
     const float b = -std::log(0.7f);
     hair_count_deep_shadows<4> ue(power_layers<4>(), hair_count({.hair_alpha = 0.3f}));
-    ue.build(scene.model, scene.light, alpha(0.3f));
+    ue.build(scene.model, scene.light, test::alpha(0.3f));
     // Stored: the optical depth in front of each boundary (cumulative): the first sheet in all four,
     // the second in the last.
     CHECK(ue.stored_optical_depth(32, 32, 0) == Approx(b).epsilon(1e-6));
@@ -77,11 +62,11 @@ TEST_CASE("hair-count deep shadows give Unreal's count and A^max(0, count - 1) b
     CHECK(ue.stored_optical_depth(32, 32, 3) == Approx(2.0f * b).epsilon(1e-6));
 
     const depth_extent extent = ue.map_extent();
-    const float D = extent.furthest - extent.nearest, z0 = depth_at(scene, 0.5f), bias = 0.05f * D * ue.placement().fraction(1);
+    const float D = extent.furthest - extent.nearest, z0 = test::depth_at(scene, 0.5f), bias = 0.05f * D * ue.placement().fraction(1);
     // The count at a query depth, by hand: 0 at z0, 1 at boundary 1 (and 2 and 3), 2 at boundary 4,
     // linear between (Unreal's ComputeHairCount); T = 0.7^max(0, count - 1), one hair being alpha 0.3.
     const auto count_at = [&](float z) {
-        const float d = std::max(depth_at(scene, z) - z0 - bias, 0.0f) / D;
+        const float d = std::max(test::depth_at(scene, z) - z0 - bias, 0.0f) / D;
         const auto& p = ue.placement();
         if (d < p.fraction(1)) return d / p.fraction(1);
         if (d < p.fraction(3)) return 1.0f;
@@ -100,7 +85,7 @@ TEST_CASE("hair-count deep shadows give Unreal's count and A^max(0, count - 1) b
 
     // Counted from zero, the same maps give interpolation's T: 0.7^count.
     hair_count_deep_shadows<4> zero(power_layers<4>(), hair_count({.hair_alpha = 0.3f, .minus_one = false}));
-    zero.build(scene.model, scene.light, alpha(0.3f));
+    zero.build(scene.model, scene.light, test::alpha(0.3f));
     CHECK(zero.transmittance(glm::vec3(0.2f, y, -0.9f)) == Approx(0.49f).epsilon(1e-5));
     CHECK(zero.transmittance(glm::vec3(0.2f, y, 0.45f)) == Approx(0.7f).epsilon(1e-5));
     // Off the sheets' rows the texels hold no hair: no shadow at any depth.

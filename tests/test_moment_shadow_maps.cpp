@@ -20,12 +20,6 @@ using namespace hairshadow;
 
 namespace {
 
-raster_options alpha(float a) {
-    raster_options o;
-    o.fixed_alpha = a;
-    return o;
-}
-
 template <int M = 4>
 moment_shadow_maps<M> with_overestimation(float overestimation) {
     return moment_shadow_maps<M>{depth_range<1>(), power_moments<M>({.overestimation = overestimation})};
@@ -93,7 +87,7 @@ TEST_CASE("moment shadow maps store the optical depth and its power moments behi
     const auto scene = test::make_sheets(5, 64);
     const double b = -std::log(0.7);
     moment_shadow_maps<> msm;
-    msm.build(scene.model, scene.light, alpha(0.3f));
+    msm.build(scene.model, scene.light, test::alpha(0.3f));
     CHECK(msm.stored_optical_depth(32, 32, 0) == Approx(5 * b).epsilon(1e-6));
     CHECK(msm.stored_optical_depth(32, 32, 1) == Approx(0.0).margin(1e-5));
     CHECK(msm.stored_optical_depth(32, 32, 2) == Approx(2.5 * b).epsilon(1e-5));  // 1 + 1/4 + 0 + 1/4 + 1
@@ -111,7 +105,7 @@ TEST_CASE("six and eight moments store every power behind sheets of strands", "[
     const auto scene = test::make_sheets(3, 64);
     const double b = -std::log(0.7);
     moment_shadow_maps<8> msm;
-    msm.build(scene.model, scene.light, alpha(0.3f));
+    msm.build(scene.model, scene.light, test::alpha(0.3f));
     CHECK(msm.stored_optical_depth(32, 32, 0) == Approx(3 * b).epsilon(1e-6));
     for (int j = 1; j <= 8; ++j) {
         CAPTURE(j);
@@ -130,7 +124,7 @@ TEST_CASE("M / 2 sheets, which M moments determine, give the sheets' shadow betw
         const float y = scene.row_y[scene.row_y.size() / 2];
         for (const float overestimation : {0.0f, 0.25f, 1.0f}) {
             auto msm = with_overestimation<M>(overestimation);
-            msm.build(scene.model, scene.light, alpha(0.3f));
+            msm.build(scene.model, scene.light, test::alpha(0.3f));
             for (int behind = 1; behind < sheets; ++behind)
                 for (const float between : {0.1f, 0.5f, 0.9f}) {
                     const float z = scene.sheet_z[std::size_t(behind - 1)] + between * (scene.sheet_z[std::size_t(behind)] - scene.sheet_z[std::size_t(behind - 1)]);
@@ -205,9 +199,9 @@ TEST_CASE("the moment bound: overestimation 0 never above the exact optical dept
     };
     SECTION("five sheets") {
         const auto scene = test::make_sheets(5, 64);
-        check_bounds(std::integral_constant<int, 4>{}, scene.model, scene.light, alpha(0.3f), 1000);
-        check_bounds(std::integral_constant<int, 6>{}, scene.model, scene.light, alpha(0.3f), 1000);
-        check_bounds(std::integral_constant<int, 8>{}, scene.model, scene.light, alpha(0.3f), 1000);
+        check_bounds(std::integral_constant<int, 4>{}, scene.model, scene.light, test::alpha(0.3f), 1000);
+        check_bounds(std::integral_constant<int, 6>{}, scene.model, scene.light, test::alpha(0.3f), 1000);
+        check_bounds(std::integral_constant<int, 8>{}, scene.model, scene.light, test::alpha(0.3f), 1000);
     }
     SECTION("Sintel, 128x128") {
         const auto m = read_tfx(test::sintel_hair());

@@ -22,6 +22,7 @@ inline hairshadow::gl::osmesa_context& gl_context() {
 
 #include <glm/matrix.hpp>
 
+#include <bit>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -79,6 +80,10 @@ void check_lookup_and_read_back(GlMaps& on_gl, const Method& cpu, const std::vec
     for (std::size_t i = 0; i < queries.size(); ++i) differ += std::abs(from_back[i] - on_cpu[i]) > 1e-5f;
     CHECK(differ == 0);
 }
+
+/// A float from its bits, and back: the words run_on_words moves.
+inline float from_bits(std::uint32_t u) { return std::bit_cast<float>(u); }
+inline std::uint32_t bits_of(float f) { return std::bit_cast<std::uint32_t>(f); }
 
 /// Runs a compute program over 32-bit words, one invocation per item: `pieces`, then `main_text`,
 /// whose main() reads hs_in[] (binding 0, holding `in`) and writes hs_out[] (binding 1, as many

@@ -37,9 +37,6 @@ void main() {
     return test::run_on_words(defines, {gl::shaders::arithmetic_exact_division}, body, pairs, std::uint32_t(pairs.size() / 2), "exact division test");
 }
 
-float from_bits(std::uint32_t u) { return std::bit_cast<float>(u); }
-std::uint32_t bits_of(float f) { return std::bit_cast<std::uint32_t>(f); }
-
 /// Operand pairs that reach every branch: special values against each other, random bit patterns
 /// (any exponents), quotients near 1 (dense significands), near the overflow and subnormal
 /// thresholds, and exact quotients and halfway cases built from small integers.
@@ -47,22 +44,22 @@ std::vector<std::uint32_t> test_pairs() {
     std::vector<float> special{0.0f, -0.0f, 1.0f, -1.0f, 3.0f, 0.1f, 7.0f, 1.5f, 2.0f, 0.5f,
                                std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
                                std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::denorm_min(),
-                               -std::numeric_limits<float>::denorm_min(), from_bits(0x007fffffu), from_bits(0x00400001u),
+                               -std::numeric_limits<float>::denorm_min(), test::from_bits(0x007fffffu), test::from_bits(0x00400001u),
                                std::numeric_limits<float>::min(), std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(),
-                               std::nextafter(1.0f, 2.0f), std::nextafter(1.0f, 0.0f), 16777215.0f, 16777216.0f, from_bits(0x3fffffffu)};
+                               std::nextafter(1.0f, 2.0f), std::nextafter(1.0f, 0.0f), 16777215.0f, 16777216.0f, test::from_bits(0x3fffffffu)};
     std::vector<std::uint32_t> pairs;
-    const auto add = [&](float a, float b) { pairs.push_back(bits_of(a)), pairs.push_back(bits_of(b)); };
+    const auto add = [&](float a, float b) { pairs.push_back(test::bits_of(a)), pairs.push_back(test::bits_of(b)); };
     for (float a : special)
         for (float b : special) add(a, b);
     std::mt19937 random(43);
     std::uniform_int_distribution<std::uint32_t> any;
     std::uniform_int_distribution<std::uint32_t> significand(0, 0x7fffffu);
     const auto with_exponent = [&](int e, bool negative) {
-        return from_bits((negative ? 0x80000000u : 0u) | (std::uint32_t(e) << 23) | significand(random));
+        return test::from_bits((negative ? 0x80000000u : 0u) | (std::uint32_t(e) << 23) | significand(random));
     };
     for (int i = 0; i < 200000; ++i) {
-        const float a = from_bits(any(random));
-        add(a, from_bits(any(random)));
+        const float a = test::from_bits(any(random));
+        add(a, test::from_bits(any(random)));
     }
     std::uniform_int_distribution<int> offset(-2, 2), sign(0, 1);
     // (Each operand drawn in its own statement: the pairs are the same whatever order a compiler
@@ -84,12 +81,12 @@ std::vector<std::uint32_t> test_pairs() {
         const int e = std::uniform_int_distribution<int>(1, 127 + sub)(random), eb_sub = e - sub + 127; // in [126, 254]
         const float a_sub = with_exponent(e, sign(random) != 0);
         add(a_sub, with_exponent(eb_sub, false));
-        const float subnormal = from_bits(significand(random));
+        const float subnormal = test::from_bits(significand(random));
         add(subnormal, with_exponent(std::uniform_int_distribution<int>(100, 130)(random), false)); // subnormal / normal
         const float small_normal = with_exponent(std::uniform_int_distribution<int>(1, 30)(random), false);
-        add(small_normal, from_bits(significand(random) | 1u)); // small / subnormal
+        add(small_normal, test::from_bits(significand(random) | 1u)); // small / subnormal
     }
-    add(from_bits(0x007fffffu), from_bits(0x3f7ffffeu)); // rounds from the largest subnormal up to the smallest normal
+    add(test::from_bits(0x007fffffu), test::from_bits(0x3f7ffffeu)); // rounds from the largest subnormal up to the smallest normal
     std::uniform_int_distribution<int> small(1, 1 << 24);
     for (int i = 0; i < 100000; ++i) { // exact quotients and ties: integers over powers of two and small integers
         const float n = float(small(random));
@@ -104,11 +101,11 @@ std::vector<std::uint32_t> test_pairs() {
 std::size_t mismatches(const std::vector<std::uint32_t>& pairs, const std::vector<std::uint32_t>& gpu, std::size_t slot) {
     std::size_t wrong = 0;
     for (std::size_t i = 0; i < pairs.size(); i += 2) {
-        const float expected = from_bits(pairs[i]) / from_bits(pairs[i + 1]);
+        const float expected = test::from_bits(pairs[i]) / test::from_bits(pairs[i + 1]);
         const std::uint32_t got = gpu[i + slot];
-        const bool same = std::isnan(expected) ? std::isnan(from_bits(got)) : got == bits_of(expected);
+        const bool same = std::isnan(expected) ? std::isnan(test::from_bits(got)) : got == test::bits_of(expected);
         if (!same && ++wrong <= 3 && slot == 0)
-            UNSCOPED_INFO("0x" << std::hex << pairs[i] << " / 0x" << pairs[i + 1] << ": CPU 0x" << bits_of(expected) << ", GPU 0x" << got);
+            UNSCOPED_INFO("0x" << std::hex << pairs[i] << " / 0x" << pairs[i + 1] << ": CPU 0x" << test::bits_of(expected) << ", GPU 0x" << got);
     }
     return wrong;
 }
@@ -163,8 +160,8 @@ void main() {
         glUseProgram(0);
         int wrong = 0;
         for (int i = 0; i <= layers; ++i)
-            if (result[std::size_t(i)] != bits_of(float(i) / float(layers)) && ++wrong <= 3)
-                UNSCOPED_INFO(i << " / " << layers << ": CPU " << float(i) / float(layers) << ", GPU " << from_bits(result[std::size_t(i)]));
+            if (result[std::size_t(i)] != test::bits_of(float(i) / float(layers)) && ++wrong <= 3)
+                UNSCOPED_INFO(i << " / " << layers << ": CPU " << float(i) / float(layers) << ", GPU " << test::from_bits(result[std::size_t(i)]));
         CHECK(wrong == 0);
     }
 }

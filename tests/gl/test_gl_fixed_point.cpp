@@ -40,9 +40,6 @@ void main() {
                               body, in, std::uint32_t(in.size() / 2), "fixed point test");
 }
 
-float from_bits(std::uint32_t u) { return std::bit_cast<float>(u); }
-std::uint32_t bits_of(float f) { return std::bit_cast<std::uint32_t>(f); }
-
 /// Floats of every kind: specials, random bit patterns (any exponent, subnormals), and values near 1.
 std::vector<float> test_floats(std::mt19937& random, int count) {
     std::vector<float> out{0.0f,
@@ -55,7 +52,7 @@ std::vector<float> test_floats(std::mt19937& random, int count) {
                            -std::numeric_limits<float>::infinity(),
                            std::numeric_limits<float>::quiet_NaN(),
                            std::numeric_limits<float>::denorm_min(),
-                           from_bits(0x007fffffu),
+                           test::from_bits(0x007fffffu),
                            std::numeric_limits<float>::min(),
                            std::numeric_limits<float>::max(),
                            std::nextafter(1.0f, 2.0f),
@@ -66,7 +63,7 @@ std::vector<float> test_floats(std::mt19937& random, int count) {
     std::uniform_int_distribution<std::uint32_t> any;
     std::uniform_real_distribution<float> near_one(-2.0f, 2.0f);
     while (int(out.size()) < count) {
-        out.push_back(from_bits(any(random)));
+        out.push_back(test::from_bits(any(random)));
         out.push_back(near_one(random));
     }
     return out;
@@ -78,7 +75,7 @@ TEST_CASE("hs_fixed_product gives clustered::fixed_sum of the two floats' produc
     std::mt19937 random(4301);
     const auto floats = test_floats(random, 200);
     std::vector<std::uint32_t> pairs;
-    const auto add = [&](float a, float b) { pairs.push_back(bits_of(a)), pairs.push_back(bits_of(b)); };
+    const auto add = [&](float a, float b) { pairs.push_back(test::bits_of(a)), pairs.push_back(test::bits_of(b)); };
     for (float a : floats)
         for (float b : floats) add(a, b);
     // Products at the edges of the shifts: each exponent sum from far below 2^-36 (zero) to past 2^27
@@ -86,19 +83,19 @@ TEST_CASE("hs_fixed_product gives clustered::fixed_sum of the two floats' produc
     std::uniform_int_distribution<std::uint32_t> significand(0, 0x7fffffu), sign(0, 1);
     for (int ea = 1; ea < 255; ea += 3)
         for (int eb = 1; eb < 255; eb += 2) {
-            const float a = from_bits(sign(random) << 31 | std::uint32_t(ea) << 23 | significand(random));
-            add(a, from_bits(sign(random) << 31 | std::uint32_t(eb) << 23 | significand(random)));
+            const float a = test::from_bits(sign(random) << 31 | std::uint32_t(ea) << 23 | significand(random));
+            add(a, test::from_bits(sign(random) << 31 | std::uint32_t(eb) << 23 | significand(random)));
         }
     const auto gpu = run_on_gpu(pairs, "result = hs_fixed_product(uintBitsToFloat(word.x), uintBitsToFloat(word.y))");
     std::size_t wrong = 0, saturated = 0, zero = 0, between = 0;
     for (std::size_t i = 0; i < pairs.size(); i += 2) {
-        const std::int64_t expected = clustered<1>::fixed_sum(double(from_bits(pairs[i])) * double(from_bits(pairs[i + 1])));
+        const std::int64_t expected = clustered<1>::fixed_sum(double(test::from_bits(pairs[i])) * double(test::from_bits(pairs[i + 1])));
         const auto got = std::int64_t(std::uint64_t(gpu[i]) | std::uint64_t(gpu[i + 1]) << 32);
         saturated += expected == std::numeric_limits<std::int64_t>::max() || expected == -std::numeric_limits<std::int64_t>::max();
         zero += expected == 0;
         between += std::abs(double(expected)) > 1.0 && std::abs(double(expected)) < 0x1p62;
         if (got != expected && ++wrong <= 3)
-            UNSCOPED_INFO(std::hexfloat << from_bits(pairs[i]) << " * " << from_bits(pairs[i + 1]) << ": CPU " << expected << ", GPU " << got);
+            UNSCOPED_INFO(std::hexfloat << test::from_bits(pairs[i]) << " * " << test::from_bits(pairs[i + 1]) << ": CPU " << expected << ", GPU " << got);
     }
     CHECK(wrong == 0);
     CHECK(saturated > 1000); // every branch was reached
@@ -121,27 +118,27 @@ TEST_CASE("hs_float_of_signed_words rounds a 64-bit integer to float as the CPU'
     const auto gpu = run_on_gpu(words, "result.x = floatBitsToUint(hs_float_of_signed_words(word))");
     std::size_t wrong = 0;
     for (std::size_t i = 0; i < values.size(); ++i)
-        if (gpu[2 * i] != bits_of(float(values[i])) && ++wrong <= 3)
-            UNSCOPED_INFO(values[i] << ": CPU " << std::hexfloat << float(values[i]) << ", GPU " << from_bits(gpu[2 * i]));
+        if (gpu[2 * i] != test::bits_of(float(values[i])) && ++wrong <= 3)
+            UNSCOPED_INFO(values[i] << ": CPU " << std::hexfloat << float(values[i]) << ", GPU " << test::from_bits(gpu[2 * i]));
     CHECK(wrong == 0);
 }
 
 TEST_CASE("hs_sqrt_rn gives std::sqrt's float bit for bit", "[gl][compute][fixed]") {
     std::mt19937 random(4303);
     std::vector<std::uint32_t> in;
-    for (float x : test_floats(random, 200000)) in.push_back(bits_of(x)), in.push_back(0u);
+    for (float x : test_floats(random, 200000)) in.push_back(test::bits_of(x)), in.push_back(0u);
     for (std::uint32_t bits = 0x3f800000u; bits < 0x40800000u; bits += 13) in.push_back(bits), in.push_back(0u); // [1, 4): both parities
     for (std::uint32_t bits = 1; bits < 0x00800000u; bits += 4099) in.push_back(bits), in.push_back(0u);          // subnormals
     for (std::uint32_t r = 1; r < 20000; ++r) { // perfect squares and the floats either side of them
         const float square = float(r) * float(r);
-        for (float x : {square, std::nextafter(square, 0.0f), std::nextafter(square, 1e30f)}) in.push_back(bits_of(x)), in.push_back(0u);
+        for (float x : {square, std::nextafter(square, 0.0f), std::nextafter(square, 1e30f)}) in.push_back(test::bits_of(x)), in.push_back(0u);
     }
     const auto gpu = run_on_gpu(in, "result.x = floatBitsToUint(hs_sqrt_rn(uintBitsToFloat(word.x)))");
     std::size_t wrong = 0;
     for (std::size_t i = 0; i < in.size(); i += 2) {
-        const float x = from_bits(in[i]), expected = std::sqrt(x);
-        const bool same = std::isnan(expected) ? gpu[i] == 0x7fc00000u : gpu[i] == bits_of(expected);
-        if (!same && ++wrong <= 3) UNSCOPED_INFO(std::hexfloat << x << ": CPU " << expected << ", GPU " << from_bits(gpu[i]));
+        const float x = test::from_bits(in[i]), expected = std::sqrt(x);
+        const bool same = std::isnan(expected) ? gpu[i] == 0x7fc00000u : gpu[i] == test::bits_of(expected);
+        if (!same && ++wrong <= 3) UNSCOPED_INFO(std::hexfloat << x << ": CPU " << expected << ", GPU " << test::from_bits(gpu[i]));
     }
     CHECK(wrong == 0);
 }

@@ -33,6 +33,7 @@ public:
     /// n fragments of b, added one by one.
     sum_type operator()(std::size_t n) noexcept {
         if (n < filled_) return sums_[n];
+        if (filled_ == 0) sums_[0] = sum_type{}, filled_ = 1; // not yet used: the sums of b = 0 (b_)
         const std::size_t last = std::min(n, tabled - 1);
         for (; filled_ <= last; ++filled_) sums_[filled_] = Accumulation::add(sums_[filled_ - 1], b_);
         sum_type sum = sums_[last];
