@@ -184,6 +184,11 @@ for accumulation, eight in (("float", ""), ("emulated_8bit", "#define HS_EIGHT_B
             ["compute/common", "accumulation/" + accumulation, "compute/tile_sums", "placement/common", "placement/depth_range",
              "texel_state/depth_range", "compute/occupancy"], "")
 
+# Each tile pass also in its form for runs whose segments each have one alpha (compute_pass_program).
+for name in [n for n in COMPOSITIONS if n.startswith("compute_") and n not in ("compute_prepare", "compute_scan", "compute_scatter", "compute_range")]:
+    stage, defines, snippets, main_text = COMPOSITIONS[name]
+    COMPOSITIONS[name + "_one_alpha"] = (stage, "#define HS_ONE_ALPHA\n" + defines, snippets, main_text)
+
 # The shaded renderer (gl/render/scene_renderer.hpp), over one method's look-up.
 DOM_LOOKUP = ["accumulation/float", "placement/common", "placement/per_pixel_depth", "texel_state/per_pixel_depth", "lookup/layers",
               "reconstruction/interpolation", "lookup/light", "lookup/interpolation"]

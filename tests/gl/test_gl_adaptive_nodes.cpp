@@ -17,7 +17,7 @@ using namespace hairshadow;
 namespace {
 
 template <class Method>
-void check_compute_path(const hair_model& model, const light_space& light, const gl::hair_mesh& mesh, const fragment_buffer& fragments) {
+void check_nodes_compute_path(const hair_model& model, const light_space& light, const gl::hair_mesh& mesh, const fragment_buffer& fragments) {
     Method cpu;
     cpu.build(model, light);
     gl::light_pass pass(gl::build_path::compute);
@@ -40,9 +40,9 @@ TEST_CASE("GL adaptive volumetric shadow maps equal the CPU maps bit for bit, an
     const auto light = light_space::fit(light_spec::directional({0, -1, -1}), model.bounds(), 256);
     const gl::hair_mesh mesh(model);
     const auto fragments = rasterize(model, light);
-    SECTION("8 nodes") { check_compute_path<adaptive_volumetric_shadow_maps<8>>(model, light, mesh, fragments); }
-    SECTION("4 nodes") { check_compute_path<adaptive_volumetric_shadow_maps<4>>(model, light, mesh, fragments); }
-    SECTION("16 nodes") { check_compute_path<adaptive_volumetric_shadow_maps<16>>(model, light, mesh, fragments); }
+    SECTION("8 nodes") { check_nodes_compute_path<adaptive_volumetric_shadow_maps<8>>(model, light, mesh, fragments); }
+    SECTION("4 nodes") { check_nodes_compute_path<adaptive_volumetric_shadow_maps<4>>(model, light, mesh, fragments); }
+    SECTION("16 nodes") { check_nodes_compute_path<adaptive_volumetric_shadow_maps<16>>(model, light, mesh, fragments); }
     SECTION("a rebuild whose fragments outgrow the lists walks again") {
         // A first build at 32x32 sizes the lists for its fragments; 256x256 makes more.
         gl::maps<adaptive_volumetric_shadow_maps<16>> on_gl;

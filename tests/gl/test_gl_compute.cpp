@@ -184,6 +184,36 @@ TEST_CASE("compute-built maps equal the CPU maps where segments cross many tiles
     }
 }
 
+TEST_CASE("a light pass takes one optical depth a segment where every segment has one alpha", "[gl][compute]") {
+    test::gl_context();
+    hair_model model = load_model("procedural:straight:strands=40:segments=6");
+    model.thickness.clear(), model.transparency.clear();
+    model.default_thickness = 0.002f;
+    const auto box = model.bounds();
+    const auto directional = light_space::fit(light_spec::directional({0.1f, -1.0f, 0.2f}), box, 64);
+    const auto point = light_space::fit(light_spec::point(box.center() + glm::vec3(0, 3, 1) * glm::length(box.max - box.min)), box, 64);
+    gl::light_pass pass(gl::build_path::compute);
+    const auto one_alpha = [&](const gl::hair_mesh& mesh, const light_space& light, const raster_options& options) {
+        pass.run(mesh, light, options);
+        return pass.compute()->one_alpha();
+    };
+    raster_options weighted, unweighted, fixed;
+    unweighted.depth_weighting = false;
+    fixed.fixed_alpha = 0.4f;
+    const gl::hair_mesh uniform(model);
+    CHECK(uniform.uniform_attributes());
+    CHECK(one_alpha(uniform, directional, weighted));
+    CHECK_FALSE(one_alpha(uniform, point, weighted)); // the footprint, and so alpha, changes with depth
+    CHECK(one_alpha(uniform, point, unweighted));
+    for (std::size_t i = 0; i < model.point_count(); ++i) model.thickness.push_back(0.001f + 0.001f * float(i % 3));
+    const gl::hair_mesh varying(model);
+    CHECK_FALSE(varying.uniform_attributes());
+    CHECK_FALSE(one_alpha(varying, directional, weighted));
+    CHECK(one_alpha(varying, point, fixed));
+    // Either form gives the CPU's maps: the sections above run both (Sintel's directional light and the
+    // fixed alpha in one form, the point light and per-point thickness in the other).
+}
+
 TEST_CASE("the compute path builds an empty map where no hair reaches it", "[gl][compute]") {
     test::gl_context();
     const auto model = load_model("procedural:straight:strands=50:segments=8");

@@ -19,14 +19,14 @@ namespace {
 
 gl::osmesa_context& context() { return test::gl_context(); }
 
-const std::string_view glsl_version = "#version 450 core\n";
+const std::string_view glsl_450 = "#version 450 core\n";
 const std::string_view alpha_max_define = "#define HS_ALPHA_MAX 0.999\n";
 
 /// The light-space line program: the raster snippets, and a main writing (1, alpha, depth, 0).
 gl::program line_program() {
-    const auto vs = gl::compile_shader(GL_VERTEX_SHADER, {glsl_version, gl::shaders::raster_vertex}, "raster/vertex");
+    const auto vs = gl::compile_shader(GL_VERTEX_SHADER, {glsl_450, gl::shaders::raster_vertex}, "raster/vertex");
     const std::string_view main_text = "out vec4 hs_out;\nvoid main() { hs_out = vec4(1.0, hs_fragment_alpha(), hs_v_depth, 0.0); }\n";
-    const auto fs = gl::compile_shader(GL_FRAGMENT_SHADER, {glsl_version, alpha_max_define, gl::shaders::raster_coverage, main_text}, "raster/coverage");
+    const auto fs = gl::compile_shader(GL_FRAGMENT_SHADER, {glsl_450, alpha_max_define, gl::shaders::raster_coverage, main_text}, "raster/coverage");
     return gl::link_program({&vs, &fs}, "light-space lines");
 }
 
@@ -40,7 +40,7 @@ TEST_CASE("OSMesa gives a core 4.5 context", "[gl]") {
 
 TEST_CASE("a shader that does not compile raises gl_error with its log", "[gl]") {
     context();
-    CHECK_THROWS_WITH(gl::compile_shader(GL_FRAGMENT_SHADER, {glsl_version, "void main() { undefined_thing = 1.0; }\n"}, "broken"),
+    CHECK_THROWS_WITH(gl::compile_shader(GL_FRAGMENT_SHADER, {glsl_450, "void main() { undefined_thing = 1.0; }\n"}, "broken"),
                       Catch::Contains("cannot compile broken") && Catch::Contains("undefined_thing"));
 }
 
@@ -54,7 +54,7 @@ TEST_CASE("a feature the context lacks is named", "[gl]") {
 TEST_CASE("the embedded snippets compile and link in the driver", "[gl]") {
     context();
     CHECK(gl::shaders::all.size() >= 10);
-    const auto vs = gl::compile_shader(GL_VERTEX_SHADER, {glsl_version, gl::shaders::raster_vertex}, "raster/vertex");
+    const auto vs = gl::compile_shader(GL_VERTEX_SHADER, {glsl_450, gl::shaders::raster_vertex}, "raster/vertex");
     const std::string_view occupancy_main = R"(
 out vec4 hs_out;
 void main() {
@@ -67,7 +67,7 @@ void main() {
 }
 )";
     const auto fs = gl::compile_shader(GL_FRAGMENT_SHADER,
-                                       {glsl_version, alpha_max_define, "#define HS_LAYERS 128\n#define HS_SLABS 4\n", gl::shaders::raster_coverage,
+                                       {glsl_450, alpha_max_define, "#define HS_LAYERS 128\n#define HS_SLABS 4\n", gl::shaders::raster_coverage,
                                         gl::shaders::accumulation_float, gl::shaders::arithmetic_exact_division, gl::shaders::placement_common, gl::shaders::placement_depth_range,
                                         gl::shaders::reconstruction_occupancy_bitcount, occupancy_main},
                                        "occupancy composition");

@@ -111,11 +111,14 @@ TEST_CASE("a mesh without thickness or opacity buffers takes the uniform values"
     const auto light = light_space::fit(light_spec::directional({0, -1, -1}), model.bounds(), 128);
     const gl::buffer user = engine_buffer(model);
     gl::point_buffers points = engine_points(model, user.get());
-    points.thickness.reset();
-    points.opacity.reset();
     points.uniform_thickness = 0.002f;
     points.uniform_opacity = 0.75f;
+    CHECK_FALSE(gl::hair_mesh(points, gl::strand_segments{model.strand_count(), model.strand_size(0)}).uniform_attributes());
+    points.thickness.reset();
+    CHECK_FALSE(gl::hair_mesh(points, gl::strand_segments{model.strand_count(), model.strand_size(0)}).uniform_attributes()); // opacity varies
+    points.opacity.reset();
     const gl::hair_mesh mesh(points, gl::strand_segments{model.strand_count(), model.strand_size(0)});
+    CHECK(mesh.uniform_attributes()); // every segment has one alpha: the compute build's HS_ONE_ALPHA form
     using maps = gl::maps<opacity_shadow_maps<16>>;
     CHECK(differing(maps_of<maps>(mesh, light), maps_of<maps>(gl::hair_mesh(model), light)) == 0);
 }

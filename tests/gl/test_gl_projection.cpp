@@ -44,7 +44,7 @@ void check_lookup_on_read_back(GlMaps& on_gl, const Method& cpu, const std::vect
 constexpr float level_tolerance = 0.05f;
 
 template <class Method>
-void check_compute_path(const Method& parameters, const hair_model& model, const light_space& light, const gl::hair_mesh& mesh,
+void check_projected_compute_path(const Method& parameters, const hair_model& model, const light_space& light, const gl::hair_mesh& mesh,
                         const fragment_buffer& fragments) {
     Method cpu = parameters;
     cpu.build(model, light);
@@ -72,11 +72,11 @@ TEST_CASE("GL Fourier opacity maps equal the CPU maps, and the GLSL look-up the 
     const auto light = light_space::fit(light_spec::directional({0, -1, -1}), model.bounds(), 256);
     const gl::hair_mesh mesh(model);
     const auto fragments = rasterize(model, light);
-    SECTION("7 coefficients, undamped") { check_compute_path(fourier_opacity_maps<7>(), model, light, mesh, fragments); }
-    SECTION("7 coefficients in 8 bits: the encoded terms' steps") { check_compute_path(fourier_opacity_maps<7, emulated_8bit>(), model, light, mesh, fragments); }
+    SECTION("7 coefficients, undamped") { check_projected_compute_path(fourier_opacity_maps<7>(), model, light, mesh, fragments); }
+    SECTION("7 coefficients in 8 bits: the encoded terms' steps") { check_projected_compute_path(fourier_opacity_maps<7, emulated_8bit>(), model, light, mesh, fragments); }
     SECTION("15 coefficients, damped: more sums than one walk holds at 32 KiB") {
         const fourier_opacity_maps<15> damped{depth_range<1>(), fourier_series<15>(true)};
-        check_compute_path(damped, model, light, mesh, fragments);
+        check_projected_compute_path(damped, model, light, mesh, fragments);
         gl::maps<fourier_opacity_maps<15>> on_gl(damped);
         on_gl.build(mesh, light);
         CHECK(on_gl.to_cpu().reconstruction().damped());
@@ -177,15 +177,15 @@ TEST_CASE("GL moment shadow maps equal the CPU maps, and the GLSL look-up the CP
     // The upper bound (overestimation 1): a look-up that lost its uniform would read 0 and differ.
     SECTION("4 moments") {
         const moment_shadow_maps<4> upper{depth_range<1>(), power_moments<4>({.overestimation = 1.0f})};
-        check_compute_path(upper, model, light, mesh, fragments);
+        check_projected_compute_path(upper, model, light, mesh, fragments);
         gl::maps<moment_shadow_maps<4>> on_gl(upper);
         on_gl.build(mesh, light);
         CHECK(on_gl.to_cpu().reconstruction().parameters() == upper.reconstruction().parameters());
     }
     // The cubic's and the quartic's roots by bisection, and a bias of the user's own.
-    SECTION("6 moments") { check_compute_path(moment_shadow_maps<6>{depth_range<1>(), power_moments<6>({.overestimation = 1.0f})}, model, light, mesh, fragments); }
+    SECTION("6 moments") { check_projected_compute_path(moment_shadow_maps<6>{depth_range<1>(), power_moments<6>({.overestimation = 1.0f})}, model, light, mesh, fragments); }
     SECTION("8 moments") {
-        check_compute_path(moment_shadow_maps<8>{depth_range<1>(), power_moments<8>({.overestimation = 0.0f, .bias = 2e-5f})}, model, light, mesh, fragments);
+        check_projected_compute_path(moment_shadow_maps<8>{depth_range<1>(), power_moments<8>({.overestimation = 0.0f, .bias = 2e-5f})}, model, light, mesh, fragments);
     }
 }
 

@@ -10,7 +10,7 @@
 using namespace hairshadow;
 
 namespace {
-scene small_scene() {
+scene small_render_scene() {
     scene sc;
     sc.hair = make_procedural({.style = hair_style::wavy, .strands = 3000, .segments = 16});
     sc.mesh = make_sphere({0, 0, 0}, 0.1f, 32);
@@ -22,7 +22,7 @@ scene small_scene() {
 template <class Method>
 void check_renderers_agree() {
     test::gl_context();
-    const auto sc = small_scene();
+    const auto sc = small_render_scene();
     const auto cam = camera::framing(sc.bounds(), 20.0f, 10.0f, 160, 160);
     std::vector<lit_light> cpu_lights;
     std::vector<std::unique_ptr<Method>> cpu_maps;

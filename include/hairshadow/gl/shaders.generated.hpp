@@ -679,8 +679,12 @@ void hs_begin_segment(uint index) {
     precise float dx2 = hs_delta.x * hs_delta.x, dy2 = hs_delta.y * hs_delta.y;
     precise float length2 = dx2 + dy2;
     hs_inv_length2 = hs_div_rn(1.0, length2);
+#ifdef HS_ONE_ALPHA
+    hs_constant_alpha = true; // every segment of the run has one alpha (compute_segments::one_alpha)
+#else
     hs_constant_alpha = hs_use_fixed_alpha || (!hs_footprint_varies && hs_current.attributes.x == hs_current.attributes.y &&
                                                 hs_current.attributes.z == hs_current.attributes.w);
+#endif
 #ifndef HS_DEPTH_ONLY
     if (hs_constant_alpha) hs_constant_b = hs_optical_depth_of(hs_fragment_alpha_at(0.0, hs_current.depth_w.x));
 #endif
@@ -692,7 +696,11 @@ float hs_fragment_depth_of(int x, int y) { return hs_fragment_depth_at(hs_attrib
 void hs_shade(int x, int y, out float depth, out float b) {
     float s = hs_attribute_parameter(hs_parameter(x, y));
     depth = hs_fragment_depth_at(s);
+#ifdef HS_ONE_ALPHA
+    b = hs_constant_b;
+#else
     b = hs_constant_alpha ? hs_constant_b : hs_optical_depth_of(hs_fragment_alpha_at(s, depth));
+#endif
 }
 )hs_glsl";
 

@@ -60,11 +60,12 @@ public:
             }
             if (pass.compute()) {
                 // shaders/compute/fibre_count: one work group per tile of the light pass's lists.
-                if (!compute_program_)
-                    compute_program_ = detail::link_compute_pass("#define HS_SUM_SLOTS 1\n", {shaders::accumulation_float, shaders::compute_tile_sums},
-                                                                 shaders::compute_fibre_count, "compute/fibre_count");
-                glUseProgram(compute_program_.get());
-                pass.compute()->bind_for_tiles(compute_program_.get());
+                const GLuint prog = compute_program_.for_run(*pass.compute(), [](const std::string& alpha) {
+                    return detail::link_compute_pass(alpha + "#define HS_SUM_SLOTS 1\n", {shaders::accumulation_float, shaders::compute_tile_sums},
+                                                     shaders::compute_fibre_count, "compute/fibre_count");
+                });
+                glUseProgram(prog);
+                pass.compute()->bind_for_tiles(prog);
                 glBindImageTexture(0, sums_.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
                 pass.compute()->dispatch_tiles();
                 glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -165,7 +166,8 @@ public:
 private:
     R reconstruction_;
     int allocated_ = 0;
-    program count_program_, compute_program_;
+    program count_program_;
+    detail::compute_pass_program compute_program_;
     texture sums_;
 };
 

@@ -305,20 +305,20 @@ private:
     /// The compute build, one work group per tile of the light pass's lists: shaders/compute/layers,
     /// or for density clustering shaders/compute/clusters, which also writes the cluster state.
     void build_compute(const light_pass& pass) {
-        if (!compute_program_) compute_program_ = link_compute_program();
-        this->begin_compute_pass(pass, compute_program_.get());
+        const GLuint prog = compute_program_.for_run(*pass.compute(), [](const std::string& alpha) { return link_compute_program(alpha); });
+        this->begin_compute_pass(pass, prog);
         glBindImageTexture(0, layers_.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, accumulation::texture_format);
         if constexpr (!range_placement<P>)
             glBindImageTexture(1, state_.state_texture(this->light_.resolution()), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         pass.compute()->dispatch_tiles();
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
     }
-    static program link_compute_program() {
+    static program link_compute_program(const std::string& alpha) {
         const std::string format = accumulation::image_defines("HS_LAYERS_FORMAT");
         if constexpr (range_placement<P>) {
             // Layers summed per walk: 8 bytes a sum (4 for 8-bit steps), beside the texels' ranges.
             const int group = detail::sums_per_walk(layers, accumulation::unorm8 ? 4 : 8, detail::compute_tile * detail::compute_tile * 8);
-            return detail::link_compute_pass(defines(1) + format + "#define HS_LAYER_GROUP " + std::to_string(group) + "\n#define HS_SUM_SLOTS " +
+            return detail::link_compute_pass(alpha + defines(1) + format + "#define HS_LAYER_GROUP " + std::to_string(group) + "\n#define HS_SUM_SLOTS " +
                                                  std::to_string(group) + "\n",
                                              around_placement<P>({accumulation::source(), shaders::compute_tile_sums, shaders::arithmetic_exact_division, shaders::placement_common}, {}),
                                              shaders::compute_layers, "compute/layers");
@@ -326,7 +326,7 @@ private:
             // Strips of the tile small enough that a strip's k-means sums, state and range fit 30 KiB.
             int rows = detail::compute_tile;
             while (rows > 1 && detail::compute_tile * rows * (6 * layers + 2) * 4 > 30 * 1024) rows /= 2;
-            return detail::link_compute_pass(defines(1) + format + "#define HS_FIXED_SUMS\n#define HS_SUM_SLOTS " + std::to_string(2 * layers) +
+            return detail::link_compute_pass(alpha + defines(1) + format + "#define HS_FIXED_SUMS\n#define HS_SUM_SLOTS " + std::to_string(2 * layers) +
                                                  "\n#define HS_STRIP_ROWS " + std::to_string(rows) + "\n#define HS_SUM_TEXELS " +
                                                  std::to_string(detail::compute_tile * rows) + "\n",
                                              {accumulation::source(), shaders::compute_tile_sums, shaders::arithmetic_exact_division, shaders::arithmetic_exact_square_root,
@@ -338,7 +338,8 @@ private:
     R reconstruction_;
     int allocated_ = 0, targets_per_pass_ = 1;
     state_pass state_;
-    program layers_program_, compute_program_;
+    program layers_program_;
+    detail::compute_pass_program compute_program_;
     texture layers_;
 };
 

@@ -154,9 +154,10 @@ private:
     /// Appends every fragment of the pass to its texel's list.
     void list_fragments(const light_pass& pass) {
         if (pass.compute()) {
-            if (!list_program_)
-                list_program_ = detail::link_compute_pass(defines(), {shaders::passes_fragment_lists}, shaders::compute_fragment_lists, "compute/fragment_lists");
-            this->begin_compute_pass(pass, list_program_.get());
+            const GLuint prog = list_program_.for_run(*pass.compute(), [](const std::string& alpha) {
+                return detail::link_compute_pass(alpha + defines(), {shaders::passes_fragment_lists}, shaders::compute_fragment_lists, "compute/fragment_lists");
+            });
+            this->begin_compute_pass(pass, prog);
             bind_lists();
             pass.compute()->dispatch_tiles();
             return;
@@ -219,7 +220,8 @@ private:
 
     int allocated_ = 0;
     std::size_t capacity_ = 0, last_fragments_ = 0;
-    program raster_program_, list_program_, resolve_program_;
+    program raster_program_, resolve_program_;
+    detail::compute_pass_program list_program_;
     texture nodes_;
     buffer heads_ = make_buffer(), records_ = make_buffer();
 };

@@ -193,12 +193,12 @@ private:
 
     /// The compute build (shaders/compute/occupancy): one work group per tile of the light pass's lists.
     void build_compute(const light_pass& pass) {
-        if (!compute_program_) {
-            const std::string d = defines() + "#define HS_SUM_SLOTS " + std::to_string(B) + "\n" + accumulation::image_defines("HS_SLABS_FORMAT");
-            compute_program_ = detail::link_compute_pass(d, around_placement<P>({accumulation::source(), shaders::compute_tile_sums, shaders::arithmetic_exact_division, shaders::placement_common}, {}),
-                                                         shaders::compute_occupancy, "compute/occupancy");
-        }
-        this->begin_compute_pass(pass, compute_program_.get());
+        const GLuint prog = compute_program_.for_run(*pass.compute(), [](const std::string& alpha) {
+            const std::string d = alpha + defines() + "#define HS_SUM_SLOTS " + std::to_string(B) + "\n" + accumulation::image_defines("HS_SLABS_FORMAT");
+            return detail::link_compute_pass(d, around_placement<P>({accumulation::source(), shaders::compute_tile_sums, shaders::arithmetic_exact_division, shaders::placement_common}, {}),
+                                             shaders::compute_occupancy, "compute/occupancy");
+        });
+        this->begin_compute_pass(pass, prog);
         for (int t = 0; t < bit_targets; ++t)
             glBindImageTexture(GLuint(t), bits_[std::size_t(t)].get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32UI);
         for (int t = 0; t < slab_targets; ++t)
@@ -225,7 +225,8 @@ private:
     }
 
     int allocated_ = 0;
-    program bits_program_, slabs_program_, compute_program_;
+    program bits_program_, slabs_program_;
+    detail::compute_pass_program compute_program_;
     std::vector<texture> bits_, slabs_;
 };
 

@@ -75,16 +75,16 @@ public:
         if (pass.compute()) {
             // shaders/compute/projection: one work group per tile of the light pass's lists, as many sums
             // a walk as shared memory holds beside the texels' ranges (8 bytes a sum, 4 for 8-bit steps).
-            if (!compute_program_)
-                compute_program_ = detail::link_compute_pass(compute_defines() + "#define HS_SUM_SLOTS " +
-                                                                 std::to_string(detail::sums_per_walk(sums, accumulation::unorm8 ? 4 : 8,
-                                                                                                      detail::compute_tile * detail::compute_tile * 8)) +
-                                                                 "\n",
-                                                             {accumulation::source(), shaders::compute_tile_sums, shaders::arithmetic_exact_division, shaders::placement_common,
-                                                              reconstruction_source(), shaders::reconstruction_depth_projection},
-                                                             shaders::compute_projection, "compute/projection");
-            this->begin_compute_pass(pass, compute_program_.get());
-            detail::set_policy_uniforms(lookup_binder::for_pass(compute_program_.get(), 1), reconstruction_);
+            const GLuint prog = compute_program_.for_run(*pass.compute(), [this](const std::string& alpha) {
+                return detail::link_compute_pass(alpha + compute_defines() + "#define HS_SUM_SLOTS " +
+                                                     std::to_string(detail::sums_per_walk(sums, accumulation::unorm8 ? 4 : 8, detail::compute_tile * detail::compute_tile * 8)) +
+                                                     "\n",
+                                                 {accumulation::source(), shaders::compute_tile_sums, shaders::arithmetic_exact_division, shaders::placement_common,
+                                                  reconstruction_source(), shaders::reconstruction_depth_projection},
+                                                 shaders::compute_projection, "compute/projection");
+            });
+            this->begin_compute_pass(pass, prog);
+            detail::set_policy_uniforms(lookup_binder::for_pass(prog, 1), reconstruction_);
             glBindImageTexture(0, sums_.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, accumulation::texture_format);
             pass.compute()->dispatch_tiles();
             glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
@@ -194,7 +194,8 @@ private:
 
     R reconstruction_;
     int allocated_ = 0;
-    program raster_program_, compute_program_;
+    program raster_program_;
+    detail::compute_pass_program compute_program_;
     texture sums_;
 };
 

@@ -125,6 +125,7 @@ public:
             throw feature_error("build_path::compute draws thin lines only: wide lines need build_path::raster");
         light_ = light;
         options_ = options;
+        one_alpha_ = options.fixed_alpha || (mesh.uniform_attributes() && !(light.perspective() && options.depth_weighting));
         const int res = light.resolution();
         tiles_x_ = (res + compute_tile - 1) / compute_tile;
         const std::size_t tiles = std::size_t(tiles_x_) * std::size_t(tiles_x_);
@@ -203,6 +204,10 @@ public:
         set_light_uniforms(prog);
         set_shading_uniforms(prog);
     }
+    /// Every segment of the last run has one alpha (a fixed alpha, or uniform attributes and a
+    /// footprint that does not vary): its tile passes may take the segment's optical depth for each
+    /// fragment (HS_ONE_ALPHA, compute_pass_program).
+    bool one_alpha() const noexcept { return one_alpha_; }
     /// One work group per tile.
     void dispatch_tiles() const { glDispatchCompute(GLuint(tiles_x_), GLuint(tiles_x_), 1); }
     /// How the last run binned its segments.
@@ -332,11 +337,31 @@ private:
     std::size_t segment_bytes_ = 0, count_bytes_ = 0, offset_bytes_ = 0, binned_bytes_ = 0, header_copy_bytes_ = 0;
     static constexpr std::size_t short_tiles = 4;  // HS_SHORT_TILES
     std::size_t segment_count_ = 0, long_capacity_ = 0;
+    bool one_alpha_ = false;
     int resolution_ = 0;
     bool built_ = false;
     int tiles_x_ = 0;
     light_space light_;
     raster_options options_;
+};
+
+/// A tile pass's program in two forms, each linked on first use: one for runs whose segments each
+/// have one alpha (HS_ONE_ALPHA: hs_shade takes the segment's optical depth, never works one out per
+/// fragment) and one for the rest. One program would do for both, but llvmpipe runs both sides of
+/// every branch under lane masks, and the per-fragment path cost about a quarter of dom:3's pass on
+/// Sintel where no segment took it (BENCHMARKS.md, "where llvmpipe's compute time goes").
+class compute_pass_program {
+public:
+    /// The form for `segments`' last run; `link(defines)` links a program with `defines` added.
+    template <class Link>
+    GLuint for_run(const compute_segments& segments, Link&& link) {
+        program& p = programs_[segments.one_alpha() ? 1 : 0];
+        if (!p) p = link(std::string(segments.one_alpha() ? "#define HS_ONE_ALPHA\n" : ""));
+        return p.get();
+    }
+
+private:
+    std::array<program, 2> programs_;
 };
 
 } // namespace detail

@@ -74,6 +74,7 @@ public:
             for (std::uint32_t i = model.strand_offsets[s]; i + 1 < model.strand_offsets[s + 1]; ++i) e.insert(e.end(), {i, i + 1});
         point_count_ = n;
         owns_points_ = true;
+        uniform_attributes_ = model.thickness.empty() && model.transparency.empty();
         state_guard guard("hairshadow: hair mesh upload"); // the caller's vertex array and array buffer stay bound
         glBindVertexArray(vao_.get());
         upload(GL_ARRAY_BUFFER, vertices_.get(), v.size() * sizeof(float), v.data());
@@ -163,6 +164,10 @@ public:
 
     std::size_t point_count() const noexcept { return point_count_; }
     std::size_t segment_count() const noexcept { return std::size_t(index_count_) / 2; }
+    /// Every point has the same thickness and opacity (a model without per-point values, or buffers
+    /// without thickness and opacity buffers): with a footprint that does not vary, every segment has
+    /// one alpha, and the compute build works out each segment's optical depth once.
+    bool uniform_attributes() const noexcept { return uniform_attributes_; }
 
     /// Where the mesh's data lives, for passes that read buffers rather than draw (the compute
     /// build): the points' buffers, and two uint32 indices per segment from `index_offset` bytes into
@@ -228,6 +233,7 @@ private:
         else if (!(points.uniform_opacity >= 0.0f && points.uniform_opacity <= 1.0f))
             throw argument_error("hair_mesh: without an opacity buffer, uniform_opacity must be 0 to 1");
         point_count_ = n;
+        uniform_attributes_ = !points.thickness && !points.opacity;
         sources_.points = points;
         const float constants[2] = {points.uniform_thickness, points.uniform_opacity};
         glBindVertexArray(vao_.get());
@@ -246,6 +252,7 @@ private:
     GLintptr index_offset_ = 0;
     std::size_t point_count_ = 0;
     bool owns_points_ = false;
+    bool uniform_attributes_ = false;
     buffer_sources sources_;
 };
 
