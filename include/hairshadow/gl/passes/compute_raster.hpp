@@ -125,7 +125,7 @@ public:
             throw feature_error("build_path::compute draws thin lines only: wide lines need build_path::raster");
         light_ = light;
         options_ = options;
-        one_alpha_ = options.fixed_alpha || (mesh.uniform_attributes() && !(light.perspective() && options.depth_weighting));
+        one_alpha_ = options.fixed_alpha || (mesh.uniform_attributes() && !footprint_varies());
         const int res = light.resolution();
         tiles_x_ = (res + compute_tile - 1) / compute_tile;
         const std::size_t tiles = std::size_t(tiles_x_) * std::size_t(tiles_x_);
@@ -315,11 +315,13 @@ private:
         set_uniform(prog, "hs_tiles_x", tiles_x_);
         set_uniform_u(prog, "hs_long_first", GLuint(short_tiles * segment_count_ + long_capacity_));
     }
+    /// A fragment's footprint, and so its alpha, changes with its depth (segment_shader's depth weighting).
+    bool footprint_varies() const noexcept { return light_.perspective() && options_.depth_weighting; }
     void set_shading_uniforms(GLuint prog) const {
         set_uniform(prog, "hs_use_fixed_alpha", options_.fixed_alpha ? 1 : 0);
         glUniform1f(glGetUniformLocation(prog, "hs_fixed_alpha"), options_.fixed_alpha.value_or(0.0f));
         glUniform1f(glGetUniformLocation(prog, "hs_footprint"), light_.texel_size(0.5f));
-        set_uniform(prog, "hs_footprint_varies", light_.perspective() && options_.depth_weighting ? 1 : 0);
+        set_uniform(prog, "hs_footprint_varies", footprint_varies() ? 1 : 0);
         glUniform4f(glGetUniformLocation(prog, "hs_footprint_terms"), 2.0f * light_.half_extent(), light_.near_plane(),
                     light_.far_plane() - light_.near_plane(), float(light_.resolution()));
     }
