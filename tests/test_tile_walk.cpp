@@ -264,6 +264,11 @@ TEST_CASE("the scalar walk stores each texel's fragments as the fragment buffer 
     // longer ones alone (the coarse model's, up to a hundred texels and more), and a batch mixes both.
     const hair_model coarse = make_procedural({.style = hair_style::wavy, .strands = 400, .segments = 6, .seed = 3});
     const auto same = [](auto a, auto b) { return std::equal(a.begin(), a.end(), b.begin(), b.end()); };
+    const auto optical_depths = [](const detail::tile_fragments& f) {
+        std::vector<float> out(f.size());
+        for (std::size_t i = 0; i < f.size(); ++i) out[i] = f.walk_optical_depth(i);
+        return out;
+    };
     for (const hair_model* model : {&test_model("curly"), &coarse})
         for (const int res : {96, 512})
             for (const int tile : {8, 16, 37, 64, 200}) {
@@ -286,7 +291,12 @@ TEST_CASE("the scalar walk stores each texel's fragments as the fragment buffer 
                     if (vector_half) {
                         vector.gather(bins, t, instruction_set::avx512);
                         differing += !(same(scalar.walk_texels(), vector.walk_texels()) && same(scalar.walk_depths(), vector.walk_depths()) &&
-                                       same(scalar.walk_optical_depths(), vector.walk_optical_depths()));
+                                       same(optical_depths(scalar), optical_depths(vector)));
+                        // The vector walk keeps its tiles' one optical depth once, the scalar walk one a fragment.
+                        CHECK_FALSE(scalar.tile_optical_depth());
+                        REQUIRE(detail::tile_fragments::one_optical_depth(bins));
+                        CHECK(vector.tile_optical_depth() == std::optional<float>(detail::tile_fragments::shared_optical_depth(bins)));
+                        CHECK(vector.walk_optical_depths().empty());
                     }
                     scalar.group();
                     const texel_rect r = scalar.rect();
@@ -317,7 +327,7 @@ TEST_CASE("the walk in any order stores the segment-order walk's fragments, each
     using fragment_tuple = std::tuple<std::uint32_t, float, float>;
     const auto fragments_of = [](const detail::tile_fragments& f) {
         std::vector<fragment_tuple> out;
-        for (std::size_t i = 0; i < f.size(); ++i) out.emplace_back(f.walk_texels()[i], f.walk_depths()[i], f.walk_optical_depths()[i]);
+        for (std::size_t i = 0; i < f.size(); ++i) out.emplace_back(f.walk_texels()[i], f.walk_depths()[i], f.walk_optical_depth(i));
         return out;
     };
     // Every tile size at 96x96; at 512x512 (the slow part under the sanitizers) the default tile and

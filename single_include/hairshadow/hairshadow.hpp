@@ -3035,17 +3035,36 @@ HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline __m512i one_tile_bounds
     return _mm512_min_epi32(most, _mm512_max_epi32(in_tile, zero_i));
 }
 
-/// Counts the lanes of one tile (with their bounds, on a first build) and of two tiles side by side
-/// (right) or one above the other (below) in their tiles.
-HAIRSHADOW_ALWAYS_INLINE inline void count_lanes(std::uint64_t* counts, std::uint64_t* bounds, const std::int32_t* tile, const std::int32_t* bound,
-                                                 unsigned one_tile, unsigned right, unsigned below, std::size_t tiles_x) noexcept {
-    for (unsigned m = one_tile; m != 0; m &= m - 1) {
-        const int l = std::countr_zero(m);
-        ++counts[tile[l]];
-        if (bounds) bounds[tile[l]] += std::uint64_t(bound[l]);
+/// Calls add(tile, lanes) once for each tile that the lanes of `m` have in `tiles`, with how many lanes
+/// have it.
+template <class Add>
+HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline void for_each_tile_of(unsigned m, __m512i tiles, const std::int32_t* tile, Add&& add) noexcept {
+    while (m != 0) {
+        const std::int32_t first = tile[std::countr_zero(m)];
+        const unsigned same = m & _mm512_cmpeq_epi32_mask(tiles, _mm512_set1_epi32(first));
+        add(std::size_t(first), std::uint64_t(std::popcount(same)));
+        m &= ~same;
     }
-    for (unsigned m = right; m != 0; m &= m - 1) ++counts[tile[std::countr_zero(m)]], ++counts[tile[std::countr_zero(m)] + 1];
-    for (unsigned m = below; m != 0; m &= m - 1) ++counts[std::size_t(tile[std::countr_zero(m)])], ++counts[std::size_t(tile[std::countr_zero(m)]) + tiles_x];
+}
+
+/// Counts the lanes of one tile (with their bounds, on a first build) and of two tiles side by side
+/// (right) or one above the other (below) in their tiles (`tiles`, also stored at `tile`), a tile at a
+/// time: a strand's sixteen segments mostly lie in one or two tiles, and an increment a lane made a
+/// chain of dependent read-modify-writes of one count (a fifth of the projection's time).
+HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE inline void count_lanes(std::uint64_t* counts, std::uint64_t* bounds, __m512i tiles, const std::int32_t* tile,
+                                                                          const std::int32_t* bound, unsigned one_tile, unsigned right, unsigned below,
+                                                                          std::size_t tiles_x) noexcept {
+    if (bounds) {
+        for (unsigned m = one_tile; m != 0; m &= m - 1) {
+            const int l = std::countr_zero(m);
+            ++counts[tile[l]];
+            bounds[tile[l]] += std::uint64_t(bound[l]);
+        }
+    } else {
+        for_each_tile_of(one_tile, tiles, tile, [&](std::size_t t, std::uint64_t k) HAIRSHADOW_ALWAYS_INLINE { counts[t] += k; });
+    }
+    for_each_tile_of(right, tiles, tile, [&](std::size_t t, std::uint64_t k) HAIRSHADOW_ALWAYS_INLINE { counts[t] += k, counts[t + 1] += k; });
+    for_each_tile_of(below, tiles, tile, [&](std::size_t t, std::uint64_t k) HAIRSHADOW_ALWAYS_INLINE { counts[t] += k, counts[t + tiles_x] += k; });
 }
 
 /// project_and_bin's loop over one strand of n points, whose first segment is first_seg: sixteen
@@ -3137,7 +3156,7 @@ struct strand_projection {
             if (bounds) _mm512_store_si512(bound, one_tile_bounds(sax, say, sbx, sby, tx0, ty0, tile_shift, bins.opt_.tile_size));
             nearest = _mm512_mask_min_ps(nearest, drawn, nearest, _mm512_min_ps(dep0, dep1)); // segment_bins::meets_map
             furthest = _mm512_mask_max_ps(furthest, drawn, furthest, _mm512_max_ps(dep0, dep1));
-            count_lanes(counts, bounds, tile, bound, one_tile, right, below, std::size_t(bins.tiles_x_));
+            count_lanes(counts, bounds, first_tiles, tile, bound, one_tile, right, below, std::size_t(bins.tiles_x_));
             // The rest, in order: clipped segments (prepared by the scalar code) and those of more tiles.
             for (unsigned m = valid & ~unsigned(one_tile | right | below | dropped); m != 0; m &= m - 1) {
                 const auto i = base + std::size_t(std::countr_zero(m));
@@ -4843,8 +4862,9 @@ struct gathered_ends {
 
 /// Fetches into the cache the records of the batch after the one at `base` of `list`. Always inlined:
 /// GCC finds a function that only prefetches free of side effects, and deletes its calls.
-HAIRSHADOW_ALWAYS_INLINE inline void prefetch_next_batch(const segment_bins& bins, std::span<const std::uint32_t> list, std::size_t base) noexcept {
-    for (std::size_t i = base + 16; i < std::min(base + 32, list.size()); ++i) bins.prefetch_segment(list[i]);
+HAIRSHADOW_ALWAYS_INLINE inline void prefetch_next_batch(const segment_bins& bins, std::span<const std::uint32_t> list, std::size_t base,
+                                                          std::size_t ahead = 16) noexcept {
+    for (std::size_t i = base + ahead; i < std::min(base + ahead + 16, list.size()); ++i) bins.prefetch_segment(list[i]);
 }
 
 /// fill_batch, sixteen lanes at once: the records gathered by word offsets (segment_count() below
@@ -4909,19 +4929,19 @@ namespace hairshadow::detail::avx512 {
 /// The walk of one tile into a tile_fragments' store.
 struct tile_walk {
 
-    /// Walks tile t, whose every fragment has optical depth `optical` (simd_tile()). A batch of sixteen
+    /// Walks tile t, whose every fragment has one optical depth (simd_tile(): the store keeps it once,
+    /// not per fragment). A batch of sixteen
     /// segments of at most sixteen texels in the tile (most of them, at 512x512 in tiles of 64) is walked
     /// in lockstep, one segment per lane, and a transpose turns the steps into each segment's fragments;
     /// other segments are walked one at a time, sixteen texels per step. Either way the fragments are
     /// stored segment after segment, in the tile's order: the scalar walk's store, bit for bit.
     template <class Tile>
-    HAIRSHADOW_AVX512_TARGET static void walk_avx512(Tile& store, const segment_bins& bins, std::size_t t, float optical) {
+    HAIRSHADOW_AVX512_TARGET static void walk_avx512(Tile& store, const segment_bins& bins, std::size_t t) {
         constexpr int bits = HAIRSHADOW_SUBPIXEL_BITS;
         const int w = store.width_;
         const std::int64_t ox = std::int64_t(store.rect_.x0) << bits, oy = std::int64_t(store.rect_.y0) << bits;
         const auto list = bins.tile_segments(t);
         const __m512i none = _mm512_set1_epi32(std::int32_t(no_texel)), sixteen = _mm512_set1_epi32(16);
-        const __m512 optical_depth = _mm512_set1_ps(optical);
         // Sixteen records gathered at once, by 32-bit word offsets (six words a record).
         const bool gathered = bins.segment_count() < (std::size_t(1) << 28);
         batch b;
@@ -4956,12 +4976,12 @@ struct tile_walk {
                     continue;
                 }
                 if (!((side_by_side >> l) & 1u)) {
-                    walk_lane_avx512(store, c, b, l, optical);
+                    walk_lane_avx512(store, c, b, l);
                     continue;
                 }
                 store.make_room(c, std::size_t(b.count[l]) + 1);
-                store_kept(c, _mm512_cmpneq_epi32_mask(where[l], none), where[l], _mm512_castsi512_ps(depth[l]), optical_depth, c.n + 16 <= c.end);
-                if ((unsigned(b.start & ~start_in_row) >> l) & 1u) store_start(store, c, b, l, optical);
+                store_kept(c, _mm512_cmpneq_epi32_mask(where[l], none), where[l], _mm512_castsi512_ps(depth[l]), c.n + 16 <= c.end);
+                if ((unsigned(b.start & ~start_in_row) >> l) & 1u) store_start(store, c, b, l);
             }
         }
         store.n_ = c.n;
@@ -4970,7 +4990,7 @@ struct tile_walk {
     /// The `lanes` of b (set up) walked side by side, enough steps for the longest, each step's
     /// fragments stored as they come; then their start fragments.
     template <class Tile>
-    HAIRSHADOW_AVX512_TARGET static void walk_rows_avx512(Tile& store, typename Tile::store_cursor& c, const batch& b, __mmask16 lanes, __m512 optical) {
+    HAIRSHADOW_AVX512_TARGET static void walk_rows_avx512(Tile& store, typename Tile::store_cursor& c, const batch& b, __mmask16 lanes) {
         const __m512i counts = _mm512_load_si512(b.count), none = _mm512_set1_epi32(std::int32_t(no_texel));
         store.make_room(c, std::size_t(_mm512_mask_reduce_add_epi32(lanes, counts)) + std::size_t(__builtin_popcount(lanes)));
         const int steps = _mm512_mask_reduce_max_epi32(lanes, counts);
@@ -4978,10 +4998,10 @@ struct tile_walk {
         for (int j = 0; j < steps; ++j) {
             __m512 depth;
             const __m512i texels = walk.step(j, depth);
-            store_kept(c, __mmask16(lanes & _mm512_cmpneq_epi32_mask(texels, none)), texels, depth, optical, c.n + 16 <= c.end);
+            store_kept(c, __mmask16(lanes & _mm512_cmpneq_epi32_mask(texels, none)), texels, depth, c.n + 16 <= c.end);
         }
         const __m512i start = _mm512_add_epi32(_mm512_mullo_epi32(_mm512_load_si512(b.start_y), _mm512_set1_epi32(store.width_)), _mm512_load_si512(b.start_x));
-        store_kept(c, __mmask16(lanes & b.start), start, _mm512_load_ps(b.start_depth), optical, c.n + 16 <= c.end);
+        store_kept(c, __mmask16(lanes & b.start), start, _mm512_load_ps(b.start_depth), c.n + 16 <= c.end);
     }
 
     /// The tile's segments in `list` ordered by how many steps of the walk they take in it
@@ -4997,7 +5017,7 @@ struct tile_walk {
         std::uint16_t* steps = store.steps_.data();
         for (std::size_t base = 0; base < n; base += 16) {
             const int lanes = int(std::min<std::size_t>(16, n - base));
-            prefetch_next_batch(bins, list, base); // the records are first read here, from all over the map's
+            prefetch_next_batch(bins, list, base, 64); // the records are first read here, from all over the map's
             const gathered_ends ends(bins, list.data() + base, lanes, ox, oy);
             const major_steps walk(ends.ax, ends.ay, ends.bx, ends.by, store.width_, h); // count in [0, most], whatever the ends
             _mm512_mask_cvtepi32_storeu_epi16(steps + base, __mmask16((1u << lanes) - 1u), walk.count);
@@ -5010,19 +5030,18 @@ struct tile_walk {
         return {store.sorted_.data(), n};
     }
 
-    /// Walks tile t, whose every fragment has optical depth `optical`, into the store in an order of its
+    /// Walks tile t, whose every fragment has one optical depth, into the store in an order of its
     /// own (fragment_order::any), the same fragments as walk_avx512: its segments sorted by their steps
     /// in the tile (by_steps), walked sixteen at a time side by side, each step's fragments stored as
     /// they come, with no transpose back to segment order. A tile of one batch is walked in segment order.
     template <class Tile>
-    HAIRSHADOW_AVX512_TARGET static void walk_any_order_avx512(Tile& store, const segment_bins& bins, std::size_t t, float optical) {
+    HAIRSHADOW_AVX512_TARGET static void walk_any_order_avx512(Tile& store, const segment_bins& bins, std::size_t t) {
         constexpr int bits = HAIRSHADOW_SUBPIXEL_BITS;
         const int w = store.width_, h = store.rect_.y1 - store.rect_.y0;
         const auto ox = std::int32_t(std::int64_t(store.rect_.x0) << bits), oy = std::int32_t(std::int64_t(store.rect_.y0) << bits);
         const auto tile_list = bins.tile_segments(t);
-        if (tile_list.size() <= 16) return walk_avx512(store, bins, t, optical);
+        if (tile_list.size() <= 16) return walk_avx512(store, bins, t);
         const auto list = by_steps(store, bins, tile_list, ox, oy);
-        const __m512 optical_depth = _mm512_set1_ps(optical);
         batch b;
         typename Tile::store_cursor c = store.cursor();
         for (std::size_t base = 0; base < list.size(); base += 16) {
@@ -5032,7 +5051,7 @@ struct tile_walk {
             prefetch_next_batch(bins, list, base);
             gather_batch(b, bins, list.data() + base, lanes, ox, oy);
             set_up(b, w, h);
-            if (b.simd) walk_rows_avx512(store, c, b, b.simd, optical_depth);
+            if (b.simd) walk_rows_avx512(store, c, b, b.simd);
             for (int l = 0; l < lanes; ++l)
                 if (!((b.simd >> l) & 1u)) {
                     store.n_ = c.n;
@@ -5048,16 +5067,14 @@ struct tile_walk {
     /// memory is slower on some CPUs: BENCHMARKS.md, "Full rebuilds", the entry on streamed tiles); near
     /// the store's end, compressed to memory, so that the store grows exactly as the scalar walk's does.
     template <class Cursor>
-    HAIRSHADOW_AVX512_TARGET static void store_kept(Cursor& c, __mmask16 keep, __m512i texels, __m512 depths, __m512 optical,
+    HAIRSHADOW_AVX512_TARGET static void store_kept(Cursor& c, __mmask16 keep, __m512i texels, __m512 depths,
                                                                     bool whole) noexcept {
         if (whole) {
             _mm512_storeu_si512(c.where + c.n, _mm512_maskz_compress_epi32(keep, texels));
             _mm512_storeu_ps(c.depth + c.n, _mm512_maskz_compress_ps(keep, depths));
-            _mm512_storeu_ps(c.optical + c.n, optical);
         } else {
             _mm512_mask_compressstoreu_epi32(c.where + c.n, keep, texels);
             _mm512_mask_compressstoreu_ps(c.depth + c.n, keep, depths);
-            _mm512_mask_compressstoreu_ps(c.optical + c.n, keep, optical);
         }
         c.n += std::size_t(__builtin_popcount(keep));
     }
@@ -5065,17 +5082,16 @@ struct tile_walk {
     /// The start fragment of lane l, as walk_line emits it, after the walk; stored always and kept when
     /// there is one, since whether there is one is anybody's guess.
     template <class Tile>
-    HAIRSHADOW_AVX512_TARGET static void store_start(Tile& store, typename Tile::store_cursor& c, const batch& b, int l, float optical) noexcept {
+    HAIRSHADOW_AVX512_TARGET static void store_start(Tile& store, typename Tile::store_cursor& c, const batch& b, int l) noexcept {
         c.where[c.n] = std::uint32_t(b.start_y[l] * store.width_ + b.start_x[l]);
         c.depth[c.n] = b.start_depth[l];
-        c.optical[c.n] = optical;
         c.n += (b.start >> l) & 1u;
     }
 
     /// Lane l of b walked alone, sixteen texels per step: for segments of more than sixteen texels in the
     /// tile, and for every segment of a batch that does not walk in lockstep.
     template <class Tile>
-    HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE static void walk_lane_avx512(Tile& store, typename Tile::store_cursor& c, const batch& b, int l, float optical) {
+    HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE static void walk_lane_avx512(Tile& store, typename Tile::store_cursor& c, const batch& b, int l) {
         const int w = store.width_;
         const __m512i iota = _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
         const __m512i none = _mm512_set1_epi32(std::int32_t(no_texel));
@@ -5089,7 +5105,6 @@ struct tile_walk {
         const __m512i minor_extent = _mm512_set1_epi32(b.minor_extent[l]), width = _mm512_set1_epi32(w);
         const __m512d num0 = _mm512_set1_pd(b.num0[l]), step = _mm512_set1_pd(b.step[l]), denom = _mm512_set1_pd(b.denom[l]);
         const __m512d inv_denom = _mm512_set1_pd(b.inv_denom[l]);
-        const __m512 optical_depth = _mm512_set1_ps(optical);
         const depth_along along = b.depths(l);
         // minor = floor(num / denom) for the first sixteen texels, as quotient q and remainder r
         // (exact_quotient); each next sixteen add sixteen steps' quotient and remainder, with a carry, as
@@ -5111,9 +5126,9 @@ struct tile_walk {
             __m512i x, y;
             const __m512i texels = step_texels(_mm512_add_epi32(i, m_begin), minor, _mm512_cmplt_epi32_mask(i, counts), along_x, end_major, end_minor,
                                                minor_extent, width, none, x, y);
-            store_kept(c, _mm512_cmpneq_epi32_mask(texels, none), texels, along.at(x, y), optical_depth, whole_vectors);
+            store_kept(c, _mm512_cmpneq_epi32_mask(texels, none), texels, along.at(x, y), whole_vectors);
         }
-        store_start(store, c, b, l, optical);
+        store_start(store, c, b, l);
     }
 };
 
@@ -5124,6 +5139,7 @@ struct tile_walk {
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -5183,7 +5199,15 @@ public:
     /// within the tile.
     std::span<const std::uint32_t> walk_texels() const noexcept { return {where_.data(), n_}; }
     std::span<const float> walk_depths() const noexcept { return {depth_.data(), n_}; }
-    std::span<const float> walk_optical_depths() const noexcept { return {optical_.data(), n_}; }
+    /// Each fragment's optical depth, in walk order; empty where the walk kept one for the whole tile
+    /// (tile_optical_depth()).
+    std::span<const float> walk_optical_depths() const noexcept { return {optical_.data(), tile_optical_ ? 0 : n_}; }
+    /// The optical depth of every fragment of the last tile, where the walk kept it once for the tile
+    /// rather than once a fragment: the vector walk's tiles, all of one optical depth (one_optical_depth),
+    /// which then store 8 bytes a fragment instead of 12.
+    std::optional<float> tile_optical_depth() const noexcept { return tile_optical_; }
+    /// Fragment i's optical depth in walk order, however the walk kept it.
+    float walk_optical_depth(std::size_t i) const noexcept { return tile_optical_ ? *tile_optical_ : optical_[i]; }
     /// Fragments of the last tile.
     std::size_t size() const noexcept { return n_; }
     /// Fragments it walks without allocating.
@@ -5291,6 +5315,11 @@ public:
         optical_fragment* grouped = grouped_.data();
         const std::uint32_t* where = where_.data();
         const float* depth = depth_.data();
+        if (tile_optical_) {
+            const float b = *tile_optical_;
+            for (std::size_t i = 0; i < n_; ++i) grouped[cursor[where[i]]++] = {depth[i], b};
+            return;
+        }
         const float* optical = optical_.data();
         for (std::size_t i = 0; i < n_; ++i) grouped[cursor[where[i]]++] = {depth[i], optical[i]};
     }
@@ -5325,12 +5354,13 @@ private:
     static bool simd_tile(const segment_bins& bins) noexcept { return one_optical_depth(bins); }
     /// The store's arrays, next slot and size, held in locals through the vector walk: its vector
     /// stores may alias anything, and through the members the compiler reloaded all of them after each.
+    /// No optical depths: the vector walk's tiles keep one for the tile (tile_optical_depth()).
     struct store_cursor {
         std::uint32_t* where;
-        float *depth, *optical;
+        float* depth;
         std::size_t n, end;
     };
-    store_cursor cursor() noexcept { return {where_.data(), depth_.data(), optical_.data(), n_, where_.size()}; }
+    store_cursor cursor() noexcept { return {where_.data(), depth_.data(), n_, where_.size()}; }
     /// make_room for a cursor, which it renews where the store grows.
     void make_room(store_cursor& c, std::size_t extra) {
         if (c.n + extra <= c.end) return;
@@ -5352,6 +5382,7 @@ private:
     big_vector<optical_fragment> grouped_;
     big_vector<float> grouped_depths_;
     float last_alpha_ = -1.0f, last_optical_ = 0.0f;
+    std::optional<float> tile_optical_;   ///< the last tile's one optical depth, where its walk kept no other
     std::vector<std::uint32_t> sorted_;   ///< the tile's segments by their steps (walk in any order)
     std::vector<std::uint16_t> steps_;    ///< each segment's steps in the tile
     std::vector<std::uint32_t> steps_of_; ///< per step count, the segments with it, then where they start
@@ -5362,13 +5393,15 @@ HAIRSHADOW_DECL void tile_fragments::gather(const segment_bins& bins, std::size_
     rect_ = bins.tile_rect(t);
     width_ = rect_.x1 - rect_.x0;
     n_ = 0;
+    tile_optical_.reset();
     const bool vector = instructions == instruction_set::avx512;
 #if HAIRSHADOW_AVX512_WALK
     if (vector && simd_tile(bins)) {
-        const float optical = optical_depth_cached(bins.uniform_shader().shade(0.0f).alpha);
+        // Kept once: the segments the vector walk leaves to walk_segment_apart store the same b per fragment.
+        tile_optical_ = optical_depth_cached(bins.uniform_shader().shade(0.0f).alpha);
         const bool gathered = bins.segment_count() < (std::size_t(1) << 28); // the records' word offsets fit the gathers
-        if (order == fragment_order::any && gathered) avx512::tile_walk::walk_any_order_avx512(*this, bins, t, optical);
-        else avx512::tile_walk::walk_avx512(*this, bins, t, optical);
+        if (order == fragment_order::any && gathered) avx512::tile_walk::walk_any_order_avx512(*this, bins, t);
+        else avx512::tile_walk::walk_avx512(*this, bins, t);
     } else {
         walk_scalar(bins, t);
     }
@@ -5388,6 +5421,7 @@ HAIRSHADOW_DECL void tile_fragments::gather(const segment_bins& bins, std::size_
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <type_traits>
 #include <vector>
 
@@ -5499,14 +5533,9 @@ public:
             for (std::size_t k = 0; k < texels; ++k)
                 if (!empty_range(ranges_[k])) placement.texel_state_from(ranges_[k].nearest, -ranges_[k].neg_furthest, states_[k]);
         }
-        std::array<std::int32_t, block> layers;
-        for (std::size_t first = 0; first < n; first += block) {
-            const std::size_t count = std::min(block, n - first);
-            assign_each(placement, std::span<const state>(states_), where.subspan(first, count), depth.subspan(first, count),
-                        std::span(layers).first(count), instructions);
-            for (std::size_t i = 0; i < count; ++i)
-                Reconstruction::template accumulate<Placement, Accumulation>(sums_[where[first + i]], layers[i], optical[first + i]);
-        }
+        // Each fragment's optical depth, or the tile's one (the vector walk keeps no other).
+        if (const std::optional<float> b = tile.tile_optical_depth()) add_layers(placement, where, depth, instructions, [b](std::size_t) { return *b; });
+        else add_layers(placement, where, depth, instructions, [optical](std::size_t i) { return optical[i]; });
         // Which texels took a fragment: those whose depth range is not empty, or, without a depth
         // pass, those the walk names.
         if constexpr (!stateful) {
@@ -5542,6 +5571,21 @@ public:
 
 private:
     using storage = typename Reconstruction::template storage<Placement, Accumulation>;
+
+    /// Adds each fragment to its texel's layer (chosen a block at a time), in walk order, with optical
+    /// depth optical_at(i) for fragment i.
+    template <class OpticalAt>
+    HAIRSHADOW_ALWAYS_INLINE void add_layers(const Placement& placement, std::span<const std::uint32_t> where, std::span<const float> depth,
+                                             instruction_set instructions, OpticalAt optical_at) {
+        std::array<std::int32_t, block> layers;
+        for (std::size_t first = 0; first < where.size(); first += block) {
+            const std::size_t count = std::min(block, where.size() - first);
+            assign_each(placement, std::span<const state>(states_), where.subspan(first, count), depth.subspan(first, count),
+                        std::span(layers).first(count), instructions);
+            for (std::size_t i = 0; i < count; ++i)
+                Reconstruction::template accumulate<Placement, Accumulation>(sums_[where[first + i]], layers[i], optical_at(first + i));
+        }
+    }
     /// A texel that took fragments: its index in the tile and its maps' stored layers.
     struct filled_texel {
         std::uint32_t k;
@@ -7259,27 +7303,25 @@ public:
 
     /// Uses b (bit for bit) from now on.
     void use(float b) noexcept {
-        if (filled_ > 0 && std::bit_cast<std::uint32_t>(b) == b_bits_) return;
+        if (std::bit_cast<std::uint32_t>(b) == b_bits_) return;
         b_ = b, b_bits_ = std::bit_cast<std::uint32_t>(b);
-        sums_[0] = sum_type{};
-        filled_ = 1;
+        top_ = 0; // sums_[0], the empty sum, holds for any b
     }
     /// n fragments of b, added one by one.
     sum_type operator()(std::size_t n) noexcept {
-        if (n < filled_) return sums_[n];
-        if (filled_ == 0) sums_[0] = sum_type{}, filled_ = 1; // not yet used: the sums of b = 0 (b_)
+        if (n <= top_) return sums_[n];
         const std::size_t last = std::min(n, tabled - 1);
-        for (; filled_ <= last; ++filled_) sums_[filled_] = Accumulation::add(sums_[filled_ - 1], b_);
+        for (; top_ < last; ++top_) sums_[top_ + 1] = Accumulation::add(sums_[top_], b_);
         sum_type sum = sums_[last];
         for (std::size_t i = last; i < n; ++i) sum = Accumulation::add(sum, b_);
         return sum;
     }
 
 private:
-    std::array<sum_type, tabled> sums_;
-    std::size_t filled_ = 0; ///< sums_[0, filled_) hold the sums for b_
+    std::array<sum_type, tabled> sums_{}; ///< sums_[0] the empty sum, always
+    std::size_t top_ = 0;                 ///< sums_[0, top_] hold the sums for b_
     float b_ = 0.0f;
-    std::uint32_t b_bits_ = 0;
+    std::uint32_t b_bits_ = 0;            ///< b_'s bits: +0 before the first use()
 };
 
 /// This thread's repeated_sums for Accumulation, set to b. A cache of a pure function, one per thread

@@ -25,27 +25,25 @@ public:
 
     /// Uses b (bit for bit) from now on.
     void use(float b) noexcept {
-        if (filled_ > 0 && std::bit_cast<std::uint32_t>(b) == b_bits_) return;
+        if (std::bit_cast<std::uint32_t>(b) == b_bits_) return;
         b_ = b, b_bits_ = std::bit_cast<std::uint32_t>(b);
-        sums_[0] = sum_type{};
-        filled_ = 1;
+        top_ = 0; // sums_[0], the empty sum, holds for any b
     }
     /// n fragments of b, added one by one.
     sum_type operator()(std::size_t n) noexcept {
-        if (n < filled_) return sums_[n];
-        if (filled_ == 0) sums_[0] = sum_type{}, filled_ = 1; // not yet used: the sums of b = 0 (b_)
+        if (n <= top_) return sums_[n];
         const std::size_t last = std::min(n, tabled - 1);
-        for (; filled_ <= last; ++filled_) sums_[filled_] = Accumulation::add(sums_[filled_ - 1], b_);
+        for (; top_ < last; ++top_) sums_[top_ + 1] = Accumulation::add(sums_[top_], b_);
         sum_type sum = sums_[last];
         for (std::size_t i = last; i < n; ++i) sum = Accumulation::add(sum, b_);
         return sum;
     }
 
 private:
-    std::array<sum_type, tabled> sums_;
-    std::size_t filled_ = 0; ///< sums_[0, filled_) hold the sums for b_
+    std::array<sum_type, tabled> sums_{}; ///< sums_[0] the empty sum, always
+    std::size_t top_ = 0;                 ///< sums_[0, top_] hold the sums for b_
     float b_ = 0.0f;
-    std::uint32_t b_bits_ = 0;
+    std::uint32_t b_bits_ = 0;            ///< b_'s bits: +0 before the first use()
 };
 
 /// This thread's repeated_sums for Accumulation, set to b. A cache of a pure function, one per thread

@@ -22,6 +22,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <type_traits>
 #include <vector>
 
@@ -133,14 +134,9 @@ public:
             for (std::size_t k = 0; k < texels; ++k)
                 if (!empty_range(ranges_[k])) placement.texel_state_from(ranges_[k].nearest, -ranges_[k].neg_furthest, states_[k]);
         }
-        std::array<std::int32_t, block> layers;
-        for (std::size_t first = 0; first < n; first += block) {
-            const std::size_t count = std::min(block, n - first);
-            assign_each(placement, std::span<const state>(states_), where.subspan(first, count), depth.subspan(first, count),
-                        std::span(layers).first(count), instructions);
-            for (std::size_t i = 0; i < count; ++i)
-                Reconstruction::template accumulate<Placement, Accumulation>(sums_[where[first + i]], layers[i], optical[first + i]);
-        }
+        // Each fragment's optical depth, or the tile's one (the vector walk keeps no other).
+        if (const std::optional<float> b = tile.tile_optical_depth()) add_layers(placement, where, depth, instructions, [b](std::size_t) { return *b; });
+        else add_layers(placement, where, depth, instructions, [optical](std::size_t i) { return optical[i]; });
         // Which texels took a fragment: those whose depth range is not empty, or, without a depth
         // pass, those the walk names.
         if constexpr (!stateful) {
@@ -176,6 +172,21 @@ public:
 
 private:
     using storage = typename Reconstruction::template storage<Placement, Accumulation>;
+
+    /// Adds each fragment to its texel's layer (chosen a block at a time), in walk order, with optical
+    /// depth optical_at(i) for fragment i.
+    template <class OpticalAt>
+    HAIRSHADOW_ALWAYS_INLINE void add_layers(const Placement& placement, std::span<const std::uint32_t> where, std::span<const float> depth,
+                                             instruction_set instructions, OpticalAt optical_at) {
+        std::array<std::int32_t, block> layers;
+        for (std::size_t first = 0; first < where.size(); first += block) {
+            const std::size_t count = std::min(block, where.size() - first);
+            assign_each(placement, std::span<const state>(states_), where.subspan(first, count), depth.subspan(first, count),
+                        std::span(layers).first(count), instructions);
+            for (std::size_t i = 0; i < count; ++i)
+                Reconstruction::template accumulate<Placement, Accumulation>(sums_[where[first + i]], layers[i], optical_at(first + i));
+        }
+    }
     /// A texel that took fragments: its index in the tile and its maps' stored layers.
     struct filled_texel {
         std::uint32_t k;

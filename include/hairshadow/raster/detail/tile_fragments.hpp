@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -81,7 +82,15 @@ public:
     /// within the tile.
     std::span<const std::uint32_t> walk_texels() const noexcept { return {where_.data(), n_}; }
     std::span<const float> walk_depths() const noexcept { return {depth_.data(), n_}; }
-    std::span<const float> walk_optical_depths() const noexcept { return {optical_.data(), n_}; }
+    /// Each fragment's optical depth, in walk order; empty where the walk kept one for the whole tile
+    /// (tile_optical_depth()).
+    std::span<const float> walk_optical_depths() const noexcept { return {optical_.data(), tile_optical_ ? 0 : n_}; }
+    /// The optical depth of every fragment of the last tile, where the walk kept it once for the tile
+    /// rather than once a fragment: the vector walk's tiles, all of one optical depth (one_optical_depth),
+    /// which then store 8 bytes a fragment instead of 12.
+    std::optional<float> tile_optical_depth() const noexcept { return tile_optical_; }
+    /// Fragment i's optical depth in walk order, however the walk kept it.
+    float walk_optical_depth(std::size_t i) const noexcept { return tile_optical_ ? *tile_optical_ : optical_[i]; }
     /// Fragments of the last tile.
     std::size_t size() const noexcept { return n_; }
     /// Fragments it walks without allocating.
@@ -189,6 +198,11 @@ public:
         optical_fragment* grouped = grouped_.data();
         const std::uint32_t* where = where_.data();
         const float* depth = depth_.data();
+        if (tile_optical_) {
+            const float b = *tile_optical_;
+            for (std::size_t i = 0; i < n_; ++i) grouped[cursor[where[i]]++] = {depth[i], b};
+            return;
+        }
         const float* optical = optical_.data();
         for (std::size_t i = 0; i < n_; ++i) grouped[cursor[where[i]]++] = {depth[i], optical[i]};
     }
@@ -223,12 +237,13 @@ private:
     static bool simd_tile(const segment_bins& bins) noexcept { return one_optical_depth(bins); }
     /// The store's arrays, next slot and size, held in locals through the vector walk: its vector
     /// stores may alias anything, and through the members the compiler reloaded all of them after each.
+    /// No optical depths: the vector walk's tiles keep one for the tile (tile_optical_depth()).
     struct store_cursor {
         std::uint32_t* where;
-        float *depth, *optical;
+        float* depth;
         std::size_t n, end;
     };
-    store_cursor cursor() noexcept { return {where_.data(), depth_.data(), optical_.data(), n_, where_.size()}; }
+    store_cursor cursor() noexcept { return {where_.data(), depth_.data(), n_, where_.size()}; }
     /// make_room for a cursor, which it renews where the store grows.
     void make_room(store_cursor& c, std::size_t extra) {
         if (c.n + extra <= c.end) return;
@@ -250,6 +265,7 @@ private:
     big_vector<optical_fragment> grouped_;
     big_vector<float> grouped_depths_;
     float last_alpha_ = -1.0f, last_optical_ = 0.0f;
+    std::optional<float> tile_optical_;   ///< the last tile's one optical depth, where its walk kept no other
     std::vector<std::uint32_t> sorted_;   ///< the tile's segments by their steps (walk in any order)
     std::vector<std::uint16_t> steps_;    ///< each segment's steps in the tile
     std::vector<std::uint32_t> steps_of_; ///< per step count, the segments with it, then where they start
@@ -260,13 +276,15 @@ HAIRSHADOW_DECL void tile_fragments::gather(const segment_bins& bins, std::size_
     rect_ = bins.tile_rect(t);
     width_ = rect_.x1 - rect_.x0;
     n_ = 0;
+    tile_optical_.reset();
     const bool vector = instructions == instruction_set::avx512;
 #if HAIRSHADOW_AVX512_WALK
     if (vector && simd_tile(bins)) {
-        const float optical = optical_depth_cached(bins.uniform_shader().shade(0.0f).alpha);
+        // Kept once: the segments the vector walk leaves to walk_segment_apart store the same b per fragment.
+        tile_optical_ = optical_depth_cached(bins.uniform_shader().shade(0.0f).alpha);
         const bool gathered = bins.segment_count() < (std::size_t(1) << 28); // the records' word offsets fit the gathers
-        if (order == fragment_order::any && gathered) avx512::tile_walk::walk_any_order_avx512(*this, bins, t, optical);
-        else avx512::tile_walk::walk_avx512(*this, bins, t, optical);
+        if (order == fragment_order::any && gathered) avx512::tile_walk::walk_any_order_avx512(*this, bins, t);
+        else avx512::tile_walk::walk_avx512(*this, bins, t);
     } else {
         walk_scalar(bins, t);
     }

@@ -21,19 +21,19 @@ namespace hairshadow::detail::avx512 {
 /// The walk of one tile into a tile_fragments' store.
 struct tile_walk {
 
-    /// Walks tile t, whose every fragment has optical depth `optical` (simd_tile()). A batch of sixteen
+    /// Walks tile t, whose every fragment has one optical depth (simd_tile(): the store keeps it once,
+    /// not per fragment). A batch of sixteen
     /// segments of at most sixteen texels in the tile (most of them, at 512x512 in tiles of 64) is walked
     /// in lockstep, one segment per lane, and a transpose turns the steps into each segment's fragments;
     /// other segments are walked one at a time, sixteen texels per step. Either way the fragments are
     /// stored segment after segment, in the tile's order: the scalar walk's store, bit for bit.
     template <class Tile>
-    HAIRSHADOW_AVX512_TARGET static void walk_avx512(Tile& store, const segment_bins& bins, std::size_t t, float optical) {
+    HAIRSHADOW_AVX512_TARGET static void walk_avx512(Tile& store, const segment_bins& bins, std::size_t t) {
         constexpr int bits = HAIRSHADOW_SUBPIXEL_BITS;
         const int w = store.width_;
         const std::int64_t ox = std::int64_t(store.rect_.x0) << bits, oy = std::int64_t(store.rect_.y0) << bits;
         const auto list = bins.tile_segments(t);
         const __m512i none = _mm512_set1_epi32(std::int32_t(no_texel)), sixteen = _mm512_set1_epi32(16);
-        const __m512 optical_depth = _mm512_set1_ps(optical);
         // Sixteen records gathered at once, by 32-bit word offsets (six words a record).
         const bool gathered = bins.segment_count() < (std::size_t(1) << 28);
         batch b;
@@ -68,12 +68,12 @@ struct tile_walk {
                     continue;
                 }
                 if (!((side_by_side >> l) & 1u)) {
-                    walk_lane_avx512(store, c, b, l, optical);
+                    walk_lane_avx512(store, c, b, l);
                     continue;
                 }
                 store.make_room(c, std::size_t(b.count[l]) + 1);
-                store_kept(c, _mm512_cmpneq_epi32_mask(where[l], none), where[l], _mm512_castsi512_ps(depth[l]), optical_depth, c.n + 16 <= c.end);
-                if ((unsigned(b.start & ~start_in_row) >> l) & 1u) store_start(store, c, b, l, optical);
+                store_kept(c, _mm512_cmpneq_epi32_mask(where[l], none), where[l], _mm512_castsi512_ps(depth[l]), c.n + 16 <= c.end);
+                if ((unsigned(b.start & ~start_in_row) >> l) & 1u) store_start(store, c, b, l);
             }
         }
         store.n_ = c.n;
@@ -82,7 +82,7 @@ struct tile_walk {
     /// The `lanes` of b (set up) walked side by side, enough steps for the longest, each step's
     /// fragments stored as they come; then their start fragments.
     template <class Tile>
-    HAIRSHADOW_AVX512_TARGET static void walk_rows_avx512(Tile& store, typename Tile::store_cursor& c, const batch& b, __mmask16 lanes, __m512 optical) {
+    HAIRSHADOW_AVX512_TARGET static void walk_rows_avx512(Tile& store, typename Tile::store_cursor& c, const batch& b, __mmask16 lanes) {
         const __m512i counts = _mm512_load_si512(b.count), none = _mm512_set1_epi32(std::int32_t(no_texel));
         store.make_room(c, std::size_t(_mm512_mask_reduce_add_epi32(lanes, counts)) + std::size_t(__builtin_popcount(lanes)));
         const int steps = _mm512_mask_reduce_max_epi32(lanes, counts);
@@ -90,10 +90,10 @@ struct tile_walk {
         for (int j = 0; j < steps; ++j) {
             __m512 depth;
             const __m512i texels = walk.step(j, depth);
-            store_kept(c, __mmask16(lanes & _mm512_cmpneq_epi32_mask(texels, none)), texels, depth, optical, c.n + 16 <= c.end);
+            store_kept(c, __mmask16(lanes & _mm512_cmpneq_epi32_mask(texels, none)), texels, depth, c.n + 16 <= c.end);
         }
         const __m512i start = _mm512_add_epi32(_mm512_mullo_epi32(_mm512_load_si512(b.start_y), _mm512_set1_epi32(store.width_)), _mm512_load_si512(b.start_x));
-        store_kept(c, __mmask16(lanes & b.start), start, _mm512_load_ps(b.start_depth), optical, c.n + 16 <= c.end);
+        store_kept(c, __mmask16(lanes & b.start), start, _mm512_load_ps(b.start_depth), c.n + 16 <= c.end);
     }
 
     /// The tile's segments in `list` ordered by how many steps of the walk they take in it
@@ -109,7 +109,7 @@ struct tile_walk {
         std::uint16_t* steps = store.steps_.data();
         for (std::size_t base = 0; base < n; base += 16) {
             const int lanes = int(std::min<std::size_t>(16, n - base));
-            prefetch_next_batch(bins, list, base); // the records are first read here, from all over the map's
+            prefetch_next_batch(bins, list, base, 64); // the records are first read here, from all over the map's
             const gathered_ends ends(bins, list.data() + base, lanes, ox, oy);
             const major_steps walk(ends.ax, ends.ay, ends.bx, ends.by, store.width_, h); // count in [0, most], whatever the ends
             _mm512_mask_cvtepi32_storeu_epi16(steps + base, __mmask16((1u << lanes) - 1u), walk.count);
@@ -122,19 +122,18 @@ struct tile_walk {
         return {store.sorted_.data(), n};
     }
 
-    /// Walks tile t, whose every fragment has optical depth `optical`, into the store in an order of its
+    /// Walks tile t, whose every fragment has one optical depth, into the store in an order of its
     /// own (fragment_order::any), the same fragments as walk_avx512: its segments sorted by their steps
     /// in the tile (by_steps), walked sixteen at a time side by side, each step's fragments stored as
     /// they come, with no transpose back to segment order. A tile of one batch is walked in segment order.
     template <class Tile>
-    HAIRSHADOW_AVX512_TARGET static void walk_any_order_avx512(Tile& store, const segment_bins& bins, std::size_t t, float optical) {
+    HAIRSHADOW_AVX512_TARGET static void walk_any_order_avx512(Tile& store, const segment_bins& bins, std::size_t t) {
         constexpr int bits = HAIRSHADOW_SUBPIXEL_BITS;
         const int w = store.width_, h = store.rect_.y1 - store.rect_.y0;
         const auto ox = std::int32_t(std::int64_t(store.rect_.x0) << bits), oy = std::int32_t(std::int64_t(store.rect_.y0) << bits);
         const auto tile_list = bins.tile_segments(t);
-        if (tile_list.size() <= 16) return walk_avx512(store, bins, t, optical);
+        if (tile_list.size() <= 16) return walk_avx512(store, bins, t);
         const auto list = by_steps(store, bins, tile_list, ox, oy);
-        const __m512 optical_depth = _mm512_set1_ps(optical);
         batch b;
         typename Tile::store_cursor c = store.cursor();
         for (std::size_t base = 0; base < list.size(); base += 16) {
@@ -144,7 +143,7 @@ struct tile_walk {
             prefetch_next_batch(bins, list, base);
             gather_batch(b, bins, list.data() + base, lanes, ox, oy);
             set_up(b, w, h);
-            if (b.simd) walk_rows_avx512(store, c, b, b.simd, optical_depth);
+            if (b.simd) walk_rows_avx512(store, c, b, b.simd);
             for (int l = 0; l < lanes; ++l)
                 if (!((b.simd >> l) & 1u)) {
                     store.n_ = c.n;
@@ -160,16 +159,14 @@ struct tile_walk {
     /// memory is slower on some CPUs: BENCHMARKS.md, "Full rebuilds", the entry on streamed tiles); near
     /// the store's end, compressed to memory, so that the store grows exactly as the scalar walk's does.
     template <class Cursor>
-    HAIRSHADOW_AVX512_TARGET static void store_kept(Cursor& c, __mmask16 keep, __m512i texels, __m512 depths, __m512 optical,
+    HAIRSHADOW_AVX512_TARGET static void store_kept(Cursor& c, __mmask16 keep, __m512i texels, __m512 depths,
                                                                     bool whole) noexcept {
         if (whole) {
             _mm512_storeu_si512(c.where + c.n, _mm512_maskz_compress_epi32(keep, texels));
             _mm512_storeu_ps(c.depth + c.n, _mm512_maskz_compress_ps(keep, depths));
-            _mm512_storeu_ps(c.optical + c.n, optical);
         } else {
             _mm512_mask_compressstoreu_epi32(c.where + c.n, keep, texels);
             _mm512_mask_compressstoreu_ps(c.depth + c.n, keep, depths);
-            _mm512_mask_compressstoreu_ps(c.optical + c.n, keep, optical);
         }
         c.n += std::size_t(__builtin_popcount(keep));
     }
@@ -177,17 +174,16 @@ struct tile_walk {
     /// The start fragment of lane l, as walk_line emits it, after the walk; stored always and kept when
     /// there is one, since whether there is one is anybody's guess.
     template <class Tile>
-    HAIRSHADOW_AVX512_TARGET static void store_start(Tile& store, typename Tile::store_cursor& c, const batch& b, int l, float optical) noexcept {
+    HAIRSHADOW_AVX512_TARGET static void store_start(Tile& store, typename Tile::store_cursor& c, const batch& b, int l) noexcept {
         c.where[c.n] = std::uint32_t(b.start_y[l] * store.width_ + b.start_x[l]);
         c.depth[c.n] = b.start_depth[l];
-        c.optical[c.n] = optical;
         c.n += (b.start >> l) & 1u;
     }
 
     /// Lane l of b walked alone, sixteen texels per step: for segments of more than sixteen texels in the
     /// tile, and for every segment of a batch that does not walk in lockstep.
     template <class Tile>
-    HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE static void walk_lane_avx512(Tile& store, typename Tile::store_cursor& c, const batch& b, int l, float optical) {
+    HAIRSHADOW_AVX512_TARGET HAIRSHADOW_ALWAYS_INLINE static void walk_lane_avx512(Tile& store, typename Tile::store_cursor& c, const batch& b, int l) {
         const int w = store.width_;
         const __m512i iota = _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
         const __m512i none = _mm512_set1_epi32(std::int32_t(no_texel));
@@ -201,7 +197,6 @@ struct tile_walk {
         const __m512i minor_extent = _mm512_set1_epi32(b.minor_extent[l]), width = _mm512_set1_epi32(w);
         const __m512d num0 = _mm512_set1_pd(b.num0[l]), step = _mm512_set1_pd(b.step[l]), denom = _mm512_set1_pd(b.denom[l]);
         const __m512d inv_denom = _mm512_set1_pd(b.inv_denom[l]);
-        const __m512 optical_depth = _mm512_set1_ps(optical);
         const depth_along along = b.depths(l);
         // minor = floor(num / denom) for the first sixteen texels, as quotient q and remainder r
         // (exact_quotient); each next sixteen add sixteen steps' quotient and remainder, with a carry, as
@@ -223,9 +218,9 @@ struct tile_walk {
             __m512i x, y;
             const __m512i texels = step_texels(_mm512_add_epi32(i, m_begin), minor, _mm512_cmplt_epi32_mask(i, counts), along_x, end_major, end_minor,
                                                minor_extent, width, none, x, y);
-            store_kept(c, _mm512_cmpneq_epi32_mask(texels, none), texels, along.at(x, y), optical_depth, whole_vectors);
+            store_kept(c, _mm512_cmpneq_epi32_mask(texels, none), texels, along.at(x, y), whole_vectors);
         }
-        store_start(store, c, b, l, optical);
+        store_start(store, c, b, l);
     }
 };
 
