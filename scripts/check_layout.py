@@ -3,7 +3,11 @@
   - no hand-written file over 500 lines (headers, sources, tests, examples, benchmarks);
   - no function over 100 lines (found by matching braces, comments and strings removed);
   - the library's folders include downwards only, in the order of RANKS, and no header is in an
-    include loop; internal headers live in detail/ folders, and no example includes one.
+    include loop; internal headers live in detail/ folders, and no example includes one;
+  - no name defined at file scope (a function, variable or type outside any class or function) in
+    two source files of one folder of COMPILED_TOGETHER: those folders' programs compile several
+    files as one translation unit (hairshadow_compile_together), and which files share a unit
+    changes as files come and go.
 Exceptions are listed below by name, each with why it stands; a rule that fails prints the file and
 line and exits 1.
     python3 scripts/check_layout.py [ROOT]
@@ -23,6 +27,9 @@ UMBRELLAS = {"hairshadow.hpp", "gl.hpp"}
 LONG_FILES = set()
 INCLUDE_LOOPS = set()
 GENERATED = {"include/hairshadow/gl/shaders.generated.hpp"}
+# Folders whose programs compile several files as one translation unit (CMakeLists.txt,
+# hairshadow_compile_together): a file-scope name may appear in one file of each.
+COMPILED_TOGETHER = ["tests", "tests/gl", "tools", "tools/python"]
 
 
 def hand_written():
@@ -88,6 +95,62 @@ def long_functions(text):
                 first, last = s.count("\n", 0, start) + 1, s.count("\n", 0, m.start()) + 1
                 if last - first + 1 > MOST_FUNCTION_LINES:
                     found.append((last - first + 1, first))
+    return found
+
+
+CALLED_NAME = re.compile(r"(?<![\w:])([a-z_]\w*)\s*(<[^<>;{}()]*>)?\s*\($")
+TYPE_HEAD = re.compile(r"\b(?:struct|class|enum(?:\s+class)?|union)\s+([A-Za-z_]\w*)[^;{}]*$")
+VARIABLE = re.compile(r"(?:(?:static|const|constexpr|inline|thread_local)\s+)+[\w:<>,\s*&]+?\s([A-Za-z_]\w*)\s*(\[[^\]]*\])?\s*(=|$)")
+
+
+def file_scope_names(text):
+    """Names a source file defines outside any class or function: free functions (not a class's
+    members defined out of line, not macros such as TEST_CASE), variables and types."""
+    s = strip(text)
+    names, open_blocks, last = set(), [], 0  # open_blocks: whether each open brace is a namespace's
+    for m in re.finditer(r"[{};]", s):
+        head, at_file_scope = s[last:m.start()], all(open_blocks)
+        last = m.end()
+        if m.group() == "}":
+            if open_blocks:
+                open_blocks.pop()
+            continue
+        if m.group() == ";":
+            variable = VARIABLE.match(head.strip())
+            if at_file_scope and variable and not head.strip().startswith(("using", "typedef")):
+                names.add(variable.group(1))
+            continue
+        is_namespace = bool(re.search(r"\bnamespace\b[\w:\s]*$", head))
+        open_blocks.append(is_namespace)
+        if not at_file_scope or is_namespace:
+            continue
+        head = head.rstrip()
+        function = FUNCTION_HEAD.search(head)
+        if function and not CONTROL_HEAD.search(head):
+            depth = 0
+            for j in range(function.start(), -1, -1):  # back to the parameter list's "("
+                depth += {")": 1, "(": -1}.get(head[j], 0)
+                if depth == 0:
+                    called = CALLED_NAME.search(head[:j + 1])
+                    if called:
+                        names.add(called.group(1))
+                    break
+        elif TYPE_HEAD.search(head):
+            names.add(TYPE_HEAD.search(head).group(1))
+        elif VARIABLE.match(head.strip()):  # braced or lambda initialiser
+            names.add(VARIABLE.match(head.strip()).group(1))
+    return names
+
+
+def names_in_two_files():
+    """(folder, name, files) for each file-scope name defined in two files of a folder compiled together."""
+    found = []
+    for folder in COMPILED_TOGETHER:
+        files_of = {}
+        for path in sorted((ROOT / folder).glob("*.cpp")):
+            for name in file_scope_names(path.read_text()):
+                files_of.setdefault(name, []).append(path.name)
+        found += [(folder, name, files) for name, files in sorted(files_of.items()) if len(files) > 1]
     return found
 
 
@@ -159,6 +222,8 @@ def main():
     for loop in include_loops(graph):
         if frozenset(loop) not in INCLUDE_LOOPS:
             problems.append("include loop: " + " -> ".join(loop + [loop[0]]))
+    for folder, name, files in names_in_two_files():
+        problems.append(f"{folder}: `{name}` defined at file scope in {', '.join(files)}: files compiled together must not share one")
     for p in problems:
         print("layout:", p)
     print(f"layout: {'fails' if problems else 'holds'} ({len(problems)} problem(s))")

@@ -29,7 +29,7 @@ struct lit_sintel {
     hair_model model;
     light_space light;
 };
-const lit_sintel& sintel(int res) {
+const lit_sintel& lit_sintel_at(int res) {
     static std::map<int, lit_sintel> scenes;
     auto it = scenes.find(res);
     if (it == scenes.end()) {
@@ -40,7 +40,7 @@ const lit_sintel& sintel(int res) {
     return it->second;
 }
 
-std::unique_ptr<any_shadow_map> built(const std::string& spec, const lit_sintel& s) {
+std::unique_ptr<any_shadow_map> map_of(const std::string& spec, const lit_sintel& s) {
     auto map = make_shadow_map(spec);
     map->build(s.model, s.light);
     return map;
@@ -97,7 +97,7 @@ TEST_CASE("flat exr: every stored map of every method, read by OpenEXR's tiled r
     for (const int res : {100, 24}) // 2 x 2 tiles of 64, the last ones partial; one tile of 24
         for (const auto& spec : example_specs()) {
             CAPTURE(res, spec);
-            const auto map = built(spec, sintel(res));
+            const auto map = map_of(spec, lit_sintel_at(res));
             if (map->stored_maps() == 0) {
                 try {
                     write_flat_exr(dir.file("none.exr"), *map);
@@ -116,12 +116,12 @@ TEST_CASE("flat exr: every stored map of every method, read by OpenEXR's tiled r
 
 TEST_CASE("sampled deep exr: read back, the file answers exp(-omega) of the method at every sample depth", "[deep_exr]") {
     test::temp_dir dir("sampled_deep_exr");
-    const auto& s = sintel(48);
+    const auto& s = lit_sintel_at(48);
     constexpr int samples = 40;
     const auto depths = detail::uniform_sample_depths(samples);
     for (const auto& spec : example_specs()) {
         CAPTURE(spec);
-        const auto map = built(spec, s);
+        const auto map = map_of(spec, s);
         write_sampled_deep_exr(dir.file("map.exr"), *map, samples);
         const auto back = read_deep_exr(dir.file("map.exr"));
         CHECK(back.method() == spec);
@@ -161,7 +161,7 @@ TEST_CASE("sampled deep exr: read back, the file answers exp(-omega) of the meth
         CHECK(worst_between <= 1e-5);
         if (monotone) CHECK(falls == 0);
     }
-    CHECK_THROWS_AS(write_sampled_deep_exr(dir.file("bad.exr"), *built("osm:16", s), 0), argument_error);
+    CHECK_THROWS_AS(write_sampled_deep_exr(dir.file("bad.exr"), *map_of("osm:16", s), 0), argument_error);
 }
 
 TEST_CASE("sampled deep exr: a texel's samples follow the running maximum and skip flat intervals", "[deep_exr]") {
