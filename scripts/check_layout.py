@@ -4,10 +4,11 @@
   - no function over 100 lines (found by matching braces, comments and strings removed);
   - the library's folders include downwards only, in the order of RANKS, and no header is in an
     include loop; internal headers live in detail/ folders, and no example includes one;
-  - no name defined at file scope (a function, variable or type outside any class or function) in
-    two source files of one folder of COMPILED_TOGETHER: those folders' programs compile several
-    files as one translation unit (hairshadow_compile_together), and which files share a unit
-    changes as files come and go.
+  - no name defined at file scope (a function, variable, type or alias outside any class or function)
+    in two source files of one folder of COMPILED_TOGETHER: programs there compile several files as
+    one translation unit (hairshadow_compile_together), and which files share a unit changes as files
+    come and go. Stricter than the compiler: per folder rather than per program (which program a file
+    joins can change too), and an overload or a name in two named namespaces counts.
 Exceptions are listed below by name, each with why it stands; a rule that fails prints the file and
 line and exits 1.
     python3 scripts/check_layout.py [ROOT]
@@ -98,47 +99,70 @@ def long_functions(text):
     return found
 
 
-CALLED_NAME = re.compile(r"(?<![\w:])([a-z_]\w*)\s*(<[^<>;{}()]*>)?\s*\($")
+CALLED_NAME = re.compile(r"(?<![\w:~])([A-Za-z_]\w*)\s*(<[^<>;{}()]*>)?\s*\($")
 TYPE_HEAD = re.compile(r"\b(?:struct|class|enum(?:\s+class)?|union)\s+([A-Za-z_]\w*)[^;{}]*$")
-VARIABLE = re.compile(r"(?:(?:static|const|constexpr|inline|thread_local)\s+)+[\w:<>,\s*&]+?\s([A-Za-z_]\w*)\s*(\[[^\]]*\])?\s*(=|$)")
+ALIAS = re.compile(r"^(?:using\s+([A-Za-z_]\w*)\s*=|typedef\b.*?([A-Za-z_]\w*)\s*$)", re.S)
+VARIABLE = re.compile(r"^(?:(?:static|const|constexpr|inline|thread_local)\s+)*[\w:<>,\s*&]+?\s([A-Za-z_]\w*)\s*(\[[^\]]*\])?\s*(=|$)")
+NOT_A_VARIABLE = ("using", "typedef", "template", "extern", "return", "static_assert", "struct", "class", "enum", "union", "friend", "namespace")
+TRANSPARENT_BLOCK = re.compile(r"(\bnamespace\b[\w:\s]*|\bextern\s*\"\")$")
+
+
+def variable_or_alias(statement):
+    """The name a file-scope statement defines as a variable or type alias, if any."""
+    alias = ALIAS.match(statement)
+    if alias:
+        return alias.group(1) or alias.group(2)
+    variable = VARIABLE.match(statement)
+    return variable.group(1) if variable and not statement.startswith(NOT_A_VARIABLE) else None
+
+
+def function_name(head, function):
+    """The name of the free function whose head ends at `function` (FUNCTION_HEAD's match), if any:
+    not a member defined out of line (a::f, a::~a, a constructor's initialisers), not an operator,
+    not a macro (TEST_CASE)."""
+    depth = 0
+    for j in range(function.start(), -1, -1):  # back to the parameter list's "("
+        depth += {")": 1, "(": -1}.get(head[j], 0)
+        if depth == 0:
+            called = CALLED_NAME.search(head[:j + 1])
+            if not called or called.group(1).isupper() or head[:called.start()].rstrip().endswith("operator"):
+                return None
+            return called.group(1)
+    return None
 
 
 def file_scope_names(text):
-    """Names a source file defines outside any class or function: free functions (not a class's
-    members defined out of line, not macros such as TEST_CASE), variables and types."""
+    """Names a source file defines outside any class or function: free functions, variables, types
+    and type aliases. A heuristic (it reads text, not C++), strict where unsure: overloads and the
+    same name in two named namespaces count as one name."""
     s = strip(text)
     names, open_blocks, last = set(), [], 0  # open_blocks: whether each open brace is a namespace's
     for m in re.finditer(r"[{};]", s):
         head, at_file_scope = s[last:m.start()], all(open_blocks)
         last = m.end()
+        head = "\n".join(line for line in head.split("\n") if not line.lstrip().startswith("#")).strip()
         if m.group() == "}":
             if open_blocks:
                 open_blocks.pop()
             continue
         if m.group() == ";":
-            variable = VARIABLE.match(head.strip())
-            if at_file_scope and variable and not head.strip().startswith(("using", "typedef")):
-                names.add(variable.group(1))
+            name = variable_or_alias(head) if at_file_scope else None
+            if name:
+                names.add(name)
             continue
-        is_namespace = bool(re.search(r"\bnamespace\b[\w:\s]*$", head))
-        open_blocks.append(is_namespace)
-        if not at_file_scope or is_namespace:
+        transparent = bool(TRANSPARENT_BLOCK.search(head))
+        open_blocks.append(transparent)
+        if not at_file_scope or transparent:
             continue
-        head = head.rstrip()
         function = FUNCTION_HEAD.search(head)
-        if function and not CONTROL_HEAD.search(head):
-            depth = 0
-            for j in range(function.start(), -1, -1):  # back to the parameter list's "("
-                depth += {")": 1, "(": -1}.get(head[j], 0)
-                if depth == 0:
-                    called = CALLED_NAME.search(head[:j + 1])
-                    if called:
-                        names.add(called.group(1))
-                    break
+        if function and not CONTROL_HEAD.search(head) and not INIT_LIST_HEAD.search(head):
+            name = function_name(head, function) or variable_or_alias(head)  # a lambda with parameters
         elif TYPE_HEAD.search(head):
-            names.add(TYPE_HEAD.search(head).group(1))
-        elif VARIABLE.match(head.strip()):  # braced or lambda initialiser
-            names.add(VARIABLE.match(head.strip()).group(1))
+            name = TYPE_HEAD.search(head).group(1)
+        else:
+            name = variable_or_alias(head)  # a braced or lambda initialiser
+        if name:
+            names.add(name)
     return names
 
 

@@ -4860,8 +4860,9 @@ struct gathered_ends {
     }
 };
 
-/// Fetches into the cache the records of the batch after the one at `base` of `list`. Always inlined:
-/// GCC finds a function that only prefetches free of side effects, and deletes its calls.
+/// Fetches into the cache the records of the sixteen segments `ahead` on from `base` in `list` (by
+/// default the next batch's). Always inlined: GCC finds a function that only prefetches free of side
+/// effects, and deletes its calls.
 HAIRSHADOW_ALWAYS_INLINE inline void prefetch_next_batch(const segment_bins& bins, std::span<const std::uint32_t> list, std::size_t base,
                                                           std::size_t ahead = 16) noexcept {
     for (std::size_t i = base + ahead; i < std::min(base + ahead + 16, list.size()); ++i) bins.prefetch_segment(list[i]);
@@ -5015,9 +5016,13 @@ struct tile_walk {
         if (store.sorted_.size() < n) store.reserve_segments(n + n / 2, most); // reserve_segments made room for the largest tile
         store.steps_of_.assign(std::size_t(most) + 2, 0);
         std::uint16_t* steps = store.steps_.data();
+        // The records are first read here, from all over the map's: fetched four batches ahead, the
+        // first four before the loop.
+        constexpr std::size_t ahead = 64;
+        for (std::size_t i = 0; i < std::min(ahead, n); ++i) bins.prefetch_segment(list[i]);
         for (std::size_t base = 0; base < n; base += 16) {
             const int lanes = int(std::min<std::size_t>(16, n - base));
-            prefetch_next_batch(bins, list, base, 64); // the records are first read here, from all over the map's
+            prefetch_next_batch(bins, list, base, ahead);
             const gathered_ends ends(bins, list.data() + base, lanes, ox, oy);
             const major_steps walk(ends.ax, ends.ay, ends.bx, ends.by, store.width_, h); // count in [0, most], whatever the ends
             _mm512_mask_cvtepi32_storeu_epi16(steps + base, __mmask16((1u << lanes) - 1u), walk.count);
@@ -5204,7 +5209,8 @@ public:
     std::span<const float> walk_optical_depths() const noexcept { return {optical_.data(), tile_optical_ ? 0 : n_}; }
     /// The optical depth of every fragment of the last tile, where the walk kept it once for the tile
     /// rather than once a fragment: the vector walk's tiles, all of one optical depth (one_optical_depth),
-    /// which then store 8 bytes a fragment instead of 12.
+    /// which then write 8 bytes a fragment instead of 12 (the array of optical depths stays allocated,
+    /// for the scalar walk's tiles).
     std::optional<float> tile_optical_depth() const noexcept { return tile_optical_; }
     /// Fragment i's optical depth in walk order, however the walk kept it.
     float walk_optical_depth(std::size_t i) const noexcept { return tile_optical_ ? *tile_optical_ : optical_[i]; }

@@ -87,7 +87,8 @@ public:
     std::span<const float> walk_optical_depths() const noexcept { return {optical_.data(), tile_optical_ ? 0 : n_}; }
     /// The optical depth of every fragment of the last tile, where the walk kept it once for the tile
     /// rather than once a fragment: the vector walk's tiles, all of one optical depth (one_optical_depth),
-    /// which then store 8 bytes a fragment instead of 12.
+    /// which then write 8 bytes a fragment instead of 12 (the array of optical depths stays allocated,
+    /// for the scalar walk's tiles).
     std::optional<float> tile_optical_depth() const noexcept { return tile_optical_; }
     /// Fragment i's optical depth in walk order, however the walk kept it.
     float walk_optical_depth(std::size_t i) const noexcept { return tile_optical_ ? *tile_optical_ : optical_[i]; }

@@ -107,9 +107,13 @@ struct tile_walk {
         if (store.sorted_.size() < n) store.reserve_segments(n + n / 2, most); // reserve_segments made room for the largest tile
         store.steps_of_.assign(std::size_t(most) + 2, 0);
         std::uint16_t* steps = store.steps_.data();
+        // The records are first read here, from all over the map's: fetched four batches ahead, the
+        // first four before the loop.
+        constexpr std::size_t ahead = 64;
+        for (std::size_t i = 0; i < std::min(ahead, n); ++i) bins.prefetch_segment(list[i]);
         for (std::size_t base = 0; base < n; base += 16) {
             const int lanes = int(std::min<std::size_t>(16, n - base));
-            prefetch_next_batch(bins, list, base, 64); // the records are first read here, from all over the map's
+            prefetch_next_batch(bins, list, base, ahead);
             const gathered_ends ends(bins, list.data() + base, lanes, ox, oy);
             const major_steps walk(ends.ax, ends.ay, ends.bx, ends.by, store.width_, h); // count in [0, most], whatever the ends
             _mm512_mask_cvtepi32_storeu_epi16(steps + base, __mmask16((1u << lanes) - 1u), walk.count);

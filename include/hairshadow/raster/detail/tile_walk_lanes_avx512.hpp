@@ -353,8 +353,9 @@ struct gathered_ends {
     }
 };
 
-/// Fetches into the cache the records of the batch after the one at `base` of `list`. Always inlined:
-/// GCC finds a function that only prefetches free of side effects, and deletes its calls.
+/// Fetches into the cache the records of the sixteen segments `ahead` on from `base` in `list` (by
+/// default the next batch's). Always inlined: GCC finds a function that only prefetches free of side
+/// effects, and deletes its calls.
 HAIRSHADOW_ALWAYS_INLINE inline void prefetch_next_batch(const segment_bins& bins, std::span<const std::uint32_t> list, std::size_t base,
                                                           std::size_t ahead = 16) noexcept {
     for (std::size_t i = base + ahead; i < std::min(base + ahead + 16, list.size()); ++i) bins.prefetch_segment(list[i]);
