@@ -13,7 +13,6 @@
 #include <hairshadow/raster/depth_extent.hpp>
 #include <hairshadow/raster/instruction_set.hpp>
 #include <hairshadow/raster/detail/prepared_segment.hpp>
-#include <hairshadow/raster/detail/tile_grid.hpp>
 #if HAIRSHADOW_AVX512_WALK
 #include <hairshadow/raster/detail/segment_project_avx512.hpp>
 #endif
@@ -39,11 +38,11 @@ public:
     /// bad options.
     HAIRSHADOW_DECL void prepare(const hair_model& model, const light_space& light, const raster_options& options, bool bound_tiles = true);
 
-    int resolution() const noexcept { return grid_.res; }
+    int resolution() const noexcept { return res_; }
     const raster_options& options() const noexcept { return opt_; }
     const light_space& light() const noexcept { return light_; }
     std::size_t segment_count() const noexcept { return segments_.size(); }
-    std::size_t tile_count() const noexcept { return grid_.tile_count(); }
+    std::size_t tile_count() const noexcept { return std::size_t(tiles_x_) * std::size_t(tiles_x_); }
     /// Segment-tile pairs: how many times the tile passes set up a segment.
     std::size_t pair_count() const noexcept { return binned_.size(); }
     /// Tiles from the most segments to the fewest: handing out the largest first balances threads.
@@ -64,20 +63,16 @@ public:
     /// texel centre. Nothing about it depends on the tile size.
     depth_extent extent() const noexcept { return extent_; }
 
-    texel_rect tile_rect(std::size_t t) const noexcept { return grid_.tile_rect(t); }
+    texel_rect tile_rect(std::size_t t) const noexcept {
+        const int tile = opt_.tile_size;
+        const int tx = int(t % std::size_t(tiles_x_)), ty = int(t / std::size_t(tiles_x_));
+        return {tx * tile, ty * tile, std::min(res_, (tx + 1) * tile), std::min(res_, (ty + 1) * tile)};
+    }
 
     /// The segments binned to tile t, in segment order.
     std::span<const std::uint32_t> tile_segments(std::size_t t) const noexcept {
         return {binned_.data() + tile_begin_[t], std::size_t(tile_begin_[t + 1] - tile_begin_[t])};
     }
-    /// The walk's steps (avx512::major_steps::count) of each of tile t's segments in it, in the order of
-    /// tile_segments(t), or unknown_steps where the projection did not count them (a segment of more than
-    /// two tiles, or one the scalar code prepared); empty unless the vector projection ran.
-    std::span<const std::uint16_t> tile_walk_steps(std::size_t t) const noexcept {
-        if (binned_steps_.empty()) return {};
-        return {binned_steps_.data() + tile_begin_[t], std::size_t(tile_begin_[t + 1] - tile_begin_[t])};
-    }
-    static constexpr std::uint16_t unknown_steps = 0xFFFF;
     /// Segment i, prepared. 1/w is kept only for a perspective light: an orthographic one's is 1.
     prepared_segment segment(std::size_t i) const noexcept {
         const std::array<float, 2> inv_w = inv_w_.empty() ? std::array<float, 2>{1.0f, 1.0f} : inv_w_[i];
@@ -141,8 +136,7 @@ public:
     std::size_t memory_bytes() const noexcept {
         return segments_.capacity() * sizeof(segment_geometry) + inv_w_.capacity() * sizeof(inv_w_[0]) + attributes_.capacity() * sizeof(segment_attributes) +
                (first_segment_.capacity() + chunk_strand_.capacity()) * sizeof(std::size_t) + first_tile_.capacity() * sizeof(std::uint32_t) + (cursor_.capacity() + tile_begin_.capacity()) * sizeof(std::uint64_t) +
-               (binned_.capacity() + by_load_.capacity() + walk_steps_.capacity()) * sizeof(std::uint32_t) + binned_steps_.capacity() * sizeof(std::uint16_t) +
-               chunk_extent_.capacity() * sizeof(depth_extent) +
+               (binned_.capacity() + by_load_.capacity()) * sizeof(std::uint32_t) + chunk_extent_.capacity() * sizeof(depth_extent) +
                (bound_.capacity() + tile_bound_.capacity()) * sizeof(std::uint64_t);
     }
 
@@ -185,7 +179,10 @@ private:
 
     /// Sizes every array for this model and resolution; whether segments have per-point thickness or opacity.
     bool size_for(const hair_model& model, const light_space& light, int res) {
-        grid_ = tile_grid(res, opt_.tile_size);
+        res_ = res;
+        tiles_x_ = (res + opt_.tile_size - 1) / opt_.tile_size;
+        tile_magic_ = (std::uint64_t(1) << 32) / std::uint64_t(opt_.tile_size) + 1;
+        static_assert(HAIRSHADOW_MAX_RESOLUTION <= (1 << 16), "tile_of needs texel coordinates below 2^16");
         const std::size_t tiles = tile_count();
         if (tiles > tile_bits) throw argument_error("too many tiles: use larger tiles");
         first_segment_.assign(model.strand_count() + 1, 0);
@@ -220,7 +217,7 @@ private:
         // The vector projection covers segments of one thickness and opacity, in tiles whose side is
         // a power of two.
         const bool vector = resolve(opt_.instructions) == instruction_set::avx512 && !per_point && std::has_single_bit(unsigned(opt_.tile_size));
-        walk_steps_.resize(vector ? segments_.size() : 0); // counted by the vector projection alone
+        (void)vector;
         parallel_for(chunks, opt_.exec, [&](std::size_t c) {
             // Raw pointers: stores through a member vector would make the compiler reload its data pointer.
             segment_geometry* out = segments_.data();
@@ -291,12 +288,9 @@ private:
         const std::size_t tiles = tile_count(), chunks = chunk_strand_.size() - 1;
         const auto reach = this->reach();
         binned_.resize(total);
-        binned_steps_.resize(walk_steps_.empty() ? 0 : total);
         parallel_for(chunks, opt_.exec, [&](std::size_t c) {
             std::uint64_t* cursor = cursor_.data() + c * tiles;
             std::uint32_t* binned = binned_.data();
-            const std::uint32_t* walk_steps = walk_steps_.empty() ? nullptr : walk_steps_.data();
-            std::uint16_t* steps = walk_steps ? binned_steps_.data() : nullptr;
             const std::uint32_t* first_tile = first_tile_.data();
             const segment_geometry* segments = segments_.data();
             const std::size_t end = first_segment_[chunk_strand_[c + 1]];
@@ -309,40 +303,32 @@ private:
                 run_tile = no_tile;
             };
             for (std::size_t seg = first_segment_[chunk_strand_[c]]; seg < end; ++seg) {
-                // The segments re-read below (to visit their tiles, or to count the walk's steps where
-                // the projection did not) are a few in a hundred, too sparse for the hardware's
-                // prefetcher: each would miss the cache. Fetch the one `reread_ahead` on, if it is one;
-                // else the entry at hand, already cached (a choice without a branch).
+                // The segments re-read below are a few in a hundred, too sparse for the hardware's
+                // prefetcher: each would miss the cache. Fetch the one
+                // `reread_ahead` on, if it is one; else the entry at hand, already cached (a choice
+                // without a branch).
                 if (seg + reread_ahead < end) {
                     const std::size_t ahead = seg + reread_ahead;
-                    const bool reread = (first_tile[ahead] & more_tiles) || (walk_steps && walk_steps[ahead] == ~std::uint32_t(0));
-                    prefetch_lines(reread ? static_cast<const void*>(segments + ahead) : first_tile + seg, sizeof(segment_geometry));
+                    prefetch_lines((first_tile[ahead] & more_tiles) ? static_cast<const void*>(segments + ahead) : first_tile + seg, sizeof(segment_geometry));
                 }
                 const std::uint32_t first = first_tile[seg];
                 if (first == no_tile) continue;
                 if ((first & ~tile_bits) == 0) { // one tile
                     if (first != run_tile) end_run(), run_tile = first, run_at = cursor[first];
-                    if (steps) steps[run_at] = std::uint16_t(walk_steps[seg]) == unknown_steps ? grid_.walk_steps(segments[seg], first) : std::uint16_t(walk_steps[seg]);
                     binned[run_at++] = std::uint32_t(seg);
                     continue;
                 }
                 end_run();
-                // The walk's steps in the first tile and in the second, where the projection counted them;
-                // else counted here.
-                const std::uint32_t counted = walk_steps ? walk_steps[seg] : ~std::uint32_t(0);
-                const auto put = [&](std::size_t tile, std::uint32_t tile_steps) HAIRSHADOW_ALWAYS_INLINE {
-                    if (steps) steps[cursor[tile]] = tile_steps == unknown_steps ? grid_.walk_steps(segments[seg], tile) : std::uint16_t(tile_steps);
-                    binned[cursor[tile]++] = std::uint32_t(seg);
-                };
+                const auto put = [&](std::size_t tile) HAIRSHADOW_ALWAYS_INLINE { binned[cursor[tile]++] = std::uint32_t(seg); };
                 if (first & more_tiles) {
-                    grid_.visit_tiles(segments[seg], reach, [&](std::size_t tile, int, int) HAIRSHADOW_ALWAYS_INLINE { put(tile, unknown_steps); });
+                    visit_tiles(segments_[seg], reach, [&](std::size_t tile, int, int) HAIRSHADOW_ALWAYS_INLINE { put(tile); });
                     continue;
                 }
-                const std::size_t tile = first & tile_bits, below = tile + std::size_t(grid_.tiles_x);
-                put(tile, counted & 0xFFFF);
-                if (first & and_right) put(tile + 1, counted >> 16);
-                if (first & and_below) put(below, counted >> 16);
-                if ((first & and_right) && (first & and_below)) put(below + 1, unknown_steps);
+                const std::size_t tile = first & tile_bits, below = tile + std::size_t(tiles_x_);
+                put(tile);
+                if (first & and_right) put(tile + 1);
+                if (first & and_below) put(below);
+                if ((first & and_right) && (first & and_below)) put(below + 1);
             }
             end_run();
         });
@@ -367,13 +353,13 @@ private:
     /// Adds its bound on each tile's fragments to `bounds`, unless null.
     HAIRSHADOW_ALWAYS_INLINE std::uint32_t count_tiles(const segment_geometry& s, std::int64_t reach, std::uint64_t* counts, std::uint64_t* bounds,
                                                        depth_extent& e) const noexcept {
-        if (s.empty() || !grid_.meets_map(s, reach)) return no_tile;
+        if (s.empty() || !meets_map(s, reach)) return no_tile;
         e.nearest = std::min({e.nearest, s.depth_a, s.depth_b});
         e.furthest = std::max({e.furthest, s.depth_a, s.depth_b});
         std::size_t visited = 0;
         std::array<std::size_t, 4> tiles{}; // the first four it reaches
         const fragment_lines lines = bounds ? fragment_lines_of(s, opt_.tile_size) : fragment_lines{}; // a rebuild bounds nothing
-        grid_.visit_tiles(s, reach, [&](std::size_t tile, int tx, int ty) HAIRSHADOW_ALWAYS_INLINE {
+        visit_tiles(s, reach, [&](std::size_t tile, int tx, int ty) HAIRSHADOW_ALWAYS_INLINE {
             ++counts[tile];
             if (bounds) { // at most one fragment in each of those lines that lies in the tile
                 const std::int64_t tile_line = std::int64_t(lines.x_major ? tx : ty) * opt_.tile_size;
@@ -385,7 +371,7 @@ private:
         });
         if (visited == 0) return no_tile;
         // Tiles are visited row by row, left to right, so a set the flags describe comes in this order.
-        const std::size_t first = tiles[0], right = first + 1, below = first + std::size_t(grid_.tiles_x);
+        const std::size_t first = tiles[0], right = first + 1, below = first + std::size_t(tiles_x_);
         const auto entry = std::uint32_t(first);
         if (visited == 1) return entry;
         if (visited == 2 && tiles[1] == right) return entry | and_right;
@@ -418,15 +404,73 @@ private:
     }
 
 #if HAIRSHADOW_AVX512_WALK
+#if HAIRSHADOW_AVX512_WALK
     friend struct avx512::strand_projection; ///< project_and_bin's loop over a strand, sixteen segments at a time
+#endif
 #endif
 
     /// Texels around a segment that it may touch, in sub-pixel units.
     std::int64_t reach() const noexcept { return std::int64_t(std::ceil((1.0 + 0.5 * double(opt_.wide_line_width)) * double(subpixel_scale))); }
 
+    /// texel / tile_size for a texel of the map, by a multiplication: q = (texel m) >> 32 with
+    /// m = floor(2^32 / tile) + 1 is exact for texel < 2^16 and tile <= 2^10 (the error, texel (m tile -
+    /// 2^32) / (tile 2^32) < 2^-16, stays below the gap 1 / tile to the next integer). It spares the
+    /// binning a division per end per segment.
+    HAIRSHADOW_ALWAYS_INLINE int tile_of(std::int64_t texel) const noexcept { return int((std::uint64_t(texel) * tile_magic_) >> 32); }
+
+    /// Does the segment's bounding box, widened by `reach`, meet the map? The whole-map extent counts
+    /// the segments that do, whatever the tiles.
+    HAIRSHADOW_ALWAYS_INLINE bool meets_map(const segment_geometry& s, std::int64_t reach) const noexcept {
+        const std::int64_t hi_x = (std::max<std::int64_t>(s.ax, s.bx) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        const std::int64_t hi_y = (std::max<std::int64_t>(s.ay, s.by) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        const std::int64_t lo_x = (std::min<std::int64_t>(s.ax, s.bx) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        const std::int64_t lo_y = (std::min<std::int64_t>(s.ay, s.by) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        return !(hi_x < 0 || hi_y < 0 || lo_x >= res_ || lo_y >= res_);
+    }
+
+    /// Calls visit(tile, tx, ty) (the tile's index and column and row of tiles) for each tile within `reach` (sub-pixel units) of the segment; a long diagonal
+    /// segment visits O(its length) tiles rather than its whole bounding box. Integer arithmetic only,
+    /// so that the counting and the writing pass, wherever the compiler puts them, visit the same tiles.
+    template <class Visit>
+    HAIRSHADOW_ALWAYS_INLINE void visit_tiles(const segment_geometry& s, std::int64_t reach, Visit&& visit) const {
+        if (!meets_map(s, reach)) return;
+        // Texel bounds of the segment plus its reach; arithmetic shifts floor negative values.
+        const std::int64_t lo_x = (std::min<std::int64_t>(s.ax, s.bx) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        const std::int64_t hi_x = (std::max<std::int64_t>(s.ax, s.bx) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        const std::int64_t lo_y = (std::min<std::int64_t>(s.ay, s.by) - reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        const std::int64_t hi_y = (std::max<std::int64_t>(s.ay, s.by) + reach) >> HAIRSHADOW_SUBPIXEL_BITS;
+        const int tx0 = tile_of(std::max<std::int64_t>(lo_x, 0)), tx1 = tile_of(std::min<std::int64_t>(hi_x, res_ - 1));
+        const int ty0 = tile_of(std::max<std::int64_t>(lo_y, 0)), ty1 = tile_of(std::min<std::int64_t>(hi_y, res_ - 1));
+        if (ty0 == ty1 || tx0 == tx1) { // most hair segments: one row or column of tiles, as the box says
+            for (int ty = ty0; ty <= ty1; ++ty)
+                for (int tx = tx0; tx <= tx1; ++tx) visit(std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx), tx, ty);
+            return;
+        }
+        // A segment across several rows and columns: per row of tiles, only the columns that the
+        // segment's piece in that row's band (widened by reach) spans, floored and ceiled outwards.
+        const std::int64_t side = std::int64_t(opt_.tile_size) * subpixel_scale;
+        const std::int64_t dy = std::int64_t(s.by) - s.ay, dx = std::int64_t(s.bx) - s.ax;
+        const std::int64_t y_lo = std::min<std::int64_t>(s.ay, s.by), y_hi = std::max<std::int64_t>(s.ay, s.by);
+        auto x_at = [&](std::int64_t y, bool up) { // x on the segment at height y, rounded down or up
+            if (dy == 0) return up ? std::max<std::int64_t>(s.ax, s.bx) : std::min<std::int64_t>(s.ax, s.bx); // a level segment whose reach spans rows
+            const std::int64_t num = (y - s.ay) * dx * (dy > 0 ? 1 : -1), den = dy > 0 ? dy : -dy;
+            const std::int64_t q = floor_div(num, den);
+            return s.ax + q + (up && q * den != num ? 1 : 0);
+        };
+        for (int ty = ty0; ty <= ty1; ++ty) {
+            const std::int64_t band_lo = std::max(std::int64_t(ty) * side - reach, y_lo), band_hi = std::min(std::int64_t(ty + 1) * side + reach, y_hi);
+            if (band_lo > band_hi) continue;
+            const std::int64_t x_lo = std::min(x_at(band_lo, false), x_at(band_hi, false)) - reach;
+            const std::int64_t x_hi = std::max(x_at(band_lo, true), x_at(band_hi, true)) + reach;
+            const int c0 = int(std::max<std::int64_t>(tx0, floor_div(x_lo, side))), c1 = int(std::min<std::int64_t>(tx1, floor_div(x_hi, side)));
+            for (int tx = c0; tx <= c1; ++tx) visit(std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx), tx, ty);
+        }
+    }
+
     raster_options opt_;
     light_space light_;
-    tile_grid grid_;
+    int res_ = 0, tiles_x_ = 0;
+    std::uint64_t tile_magic_ = 0;
     std::vector<segment_geometry, huge_page_allocator<segment_geometry>> segments_;
     std::vector<std::array<float, 2>, huge_page_allocator<std::array<float, 2>>> inv_w_; ///< per segment, for a perspective light only
     std::vector<std::uint64_t> bound_;      ///< per chunk and tile: the sum of its segments' segment_fragment_bound
@@ -439,8 +483,6 @@ private:
     std::vector<std::uint32_t, huge_page_allocator<std::uint32_t>> first_tile_; ///< per segment: its first tile, no_tile, or with more_tiles set
     std::vector<std::uint64_t> cursor_, tile_begin_;
     std::vector<std::uint32_t, huge_page_allocator<std::uint32_t>> binned_;
-    std::vector<std::uint32_t, huge_page_allocator<std::uint32_t>> walk_steps_; ///< per segment: steps in its first tile (low half) and second
-    std::vector<std::uint16_t, huge_page_allocator<std::uint16_t>> binned_steps_; ///< per entry of binned_: tile_walk_steps
     std::vector<std::uint32_t> by_load_;
     std::vector<depth_extent> chunk_extent_;
     depth_extent extent_{};

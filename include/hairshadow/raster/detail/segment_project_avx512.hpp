@@ -4,8 +4,7 @@
 /// the strand's points loaded whole and split into ends by permutations, both ends projected
 /// (light_space::project, product by product as it rounds them), the near and far planes and the
 /// guard band checked, the ends snapped, the records written sixteen at a time, and the segment
-/// counted in its tile when it lies in one tile, or (on a rebuild) in two side by side, with its walk's
-/// steps in each (segment_bins::tile_walk_steps, the any-order walk's sort key). Segments that
+/// counted in its tile when it lies in one tile, or (on a rebuild) in two side by side. Segments that
 /// need clipping, or that reach more tiles, go through the scalar code, lane by lane, in order; so
 /// every segment, count and first tile is the scalar one (tests/test_tile_walk.cpp checks it). segment_bins
 /// includes this header before its class and calls strand_projection::project.
@@ -13,7 +12,6 @@
 #include <hairshadow/core/light.hpp>
 #include <hairshadow/raster/depth_extent.hpp>
 #include <hairshadow/raster/instruction_set.hpp>
-#include <hairshadow/raster/detail/major_steps_avx512.hpp>
 #include <hairshadow/raster/detail/prepared_segment.hpp>
 
 #include <algorithm>
@@ -188,19 +186,18 @@ struct strand_projection {
         const light_space& ls = bins.light_;
         const auto vp_x = ls.row_coefficients(ls.view_projection(), 0), vp_y = ls.row_coefficients(ls.view_projection(), 1);
         const auto vp_w = ls.row_coefficients(ls.view_projection(), 3), view_z = ls.row_coefficients(ls.view(), 2);
-        const __m512 half_res = _mm512_set1_ps(0.5f * float(bins.grid_.res)), one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
+        const __m512 half_res = _mm512_set1_ps(0.5f * float(bins.res_)), one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
         const __m512 near_plane = _mm512_set1_ps(ls.near_plane()), far_plane = _mm512_set1_ps(ls.far_plane());
         const __m512 depth_span = _mm512_set1_ps(ls.far_plane() - ls.near_plane());
         const __m512 guard = _mm512_set1_ps(guard_band), two = _mm512_set1_ps(2.0f);
-        const __m512i reach_v = _mm512_set1_epi32(std::int32_t(reach)), res_v = _mm512_set1_epi32(bins.grid_.res), last_v = _mm512_set1_epi32(bins.grid_.res - 1);
+        const __m512i reach_v = _mm512_set1_epi32(std::int32_t(reach)), res_v = _mm512_set1_epi32(bins.res_), last_v = _mm512_set1_epi32(bins.res_ - 1);
         const int tile_shift = std::countr_zero(unsigned(bins.opt_.tile_size));
-        const __m512i tiles_x = _mm512_set1_epi32(bins.grid_.tiles_x), zero_i = _mm512_setzero_si512(), one_i = _mm512_set1_epi32(1);
+        const __m512i tiles_x = _mm512_set1_epi32(bins.tiles_x_), zero_i = _mm512_setzero_si512(), one_i = _mm512_set1_epi32(1);
         // An orthographic light's w is 1 wherever the point is finite (and NaN elsewhere, which fails
         // the w > 0 test): a division by it changes nothing, and is skipped. 1/w is kept only for a
         // perspective light (store).
         const bool affine = vp_w[0] == 0.0f && vp_w[1] == 0.0f && vp_w[2] == 0.0f && vp_w[3] == 1.0f;
         const bool keep_inv_w = !bins.inv_w_.empty();
-        std::uint32_t* const walk_steps = bins.walk_steps_.empty() ? nullptr : bins.walk_steps_.data();
         __m512 nearest = _mm512_set1_ps(e.nearest), furthest = _mm512_set1_ps(e.furthest);
         alignas(64) std::int32_t tile[16], bound[16];
         const __m512i and_right_v = _mm512_set1_epi32(std::int32_t(Bins::and_right)), and_below_v = _mm512_set1_epi32(std::int32_t(Bins::and_below));
@@ -265,16 +262,9 @@ struct strand_projection {
             entry = _mm512_mask_or_epi32(entry, below, entry, and_below_v);
             _mm512_mask_storeu_epi32(bins.first_tile_.data() + first, valid, _mm512_mask_mov_epi32(entry, dropped, no_tile_v));
             if (bounds) _mm512_store_si512(bound, one_tile_bounds(sax, say, sbx, sby, tx0, ty0, tile_shift, bins.opt_.tile_size));
-            if (walk_steps) { // the walk's steps in the first tile and in the second (the first again for one tile)
-                const __mmask16 known = one_tile | right | below;
-                const __m512i in_first = steps_in_tile(sax, say, sbx, sby, tx0, ty0, tile_shift, bins.grid_.res);
-                const __m512i in_second = steps_in_tile(sax, say, sbx, sby, tx1, ty1, tile_shift, bins.grid_.res);
-                const __m512i both = _mm512_or_si512(in_first, _mm512_slli_epi32(in_second, 16));
-                _mm512_mask_storeu_epi32(walk_steps + first, valid, _mm512_mask_mov_epi32(_mm512_set1_epi32(-1), known, both));
-            }
             nearest = _mm512_mask_min_ps(nearest, drawn, nearest, _mm512_min_ps(dep0, dep1)); // segment_bins::meets_map
             furthest = _mm512_mask_max_ps(furthest, drawn, furthest, _mm512_max_ps(dep0, dep1));
-            count_lanes(counts, bounds, first_tiles, tile, bound, one_tile, right, below, std::size_t(bins.grid_.tiles_x));
+            count_lanes(counts, bounds, first_tiles, tile, bound, one_tile, right, below, std::size_t(bins.tiles_x_));
             // The rest, in order: clipped segments (prepared by the scalar code) and those of more tiles.
             for (unsigned m = valid & ~unsigned(one_tile | right | below | dropped); m != 0; m &= m - 1) {
                 const auto i = base + std::size_t(std::countr_zero(m));

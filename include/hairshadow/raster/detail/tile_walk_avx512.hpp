@@ -98,48 +98,25 @@ struct tile_walk {
 
     /// The tile's segments in `list` ordered by how many steps of the walk they take in it
     /// (major_steps::count), fewest first and in list order among equals (a stable counting sort): a
-    /// batch of them then walks side by side with few idle lanes. `counted` holds the steps the
-    /// projection counted (segment_bins::tile_walk_steps); the others are counted here, from the records.
+    /// batch of them then walks side by side with few idle lanes.
     template <class Tile>
     HAIRSHADOW_AVX512_TARGET static std::span<const std::uint32_t> by_steps(Tile& store, const segment_bins& bins, std::span<const std::uint32_t> list,
-                                                                           std::span<const std::uint16_t> counted, std::int32_t ox, std::int32_t oy) {
+                                                                                           std::int32_t ox, std::int32_t oy) {
         const std::size_t n = list.size();
         const int h = store.rect_.y1 - store.rect_.y0, most = std::max(store.width_, h);
         if (store.sorted_.size() < n) store.reserve_segments(n + n / 2, most); // reserve_segments made room for the largest tile
         store.steps_of_.assign(std::size_t(most) + 2, 0);
         std::uint16_t* steps = store.steps_.data();
-        const auto count_batch = [&](std::size_t base, int lanes, __mmask16 which) HAIRSHADOW_AVX512_TARGET {
+        // The records are first read here, from all over the map's: fetched four batches ahead, the
+        // first four before the loop.
+        constexpr std::size_t ahead = 64;
+        for (std::size_t i = 0; i < std::min(ahead, n); ++i) bins.prefetch_segment(list[i]);
+        for (std::size_t base = 0; base < n; base += 16) {
+            const int lanes = int(std::min<std::size_t>(16, n - base));
+            prefetch_next_batch(bins, list, base, ahead);
             const gathered_ends ends(bins, list.data() + base, lanes, ox, oy);
             const major_steps walk(ends.ax, ends.ay, ends.bx, ends.by, store.width_, h); // count in [0, most], whatever the ends
-            _mm512_mask_cvtepi32_storeu_epi16(steps + base, which, walk.count);
-        };
-        if (!counted.empty()) {
-            // Most were counted by the projection: only a batch with a segment it left is gathered.
-            const __m512i unknown = _mm512_set1_epi32(segment_bins::unknown_steps);
-            for (std::size_t base = 0; base < n; base += 16) {
-                const int lanes = int(std::min<std::size_t>(16, n - base));
-                const auto valid = __mmask16((1u << lanes) - 1u);
-                __m256i sixteen_counts;
-                if (lanes == 16) sixteen_counts = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(counted.data() + base));
-                else {
-                    alignas(32) std::uint16_t part[16] = {};
-                    std::copy_n(counted.data() + base, lanes, part);
-                    sixteen_counts = _mm256_load_si256(reinterpret_cast<const __m256i*>(part));
-                }
-                const __m512i known = _mm512_cvtepu16_epi32(sixteen_counts);
-                _mm512_mask_cvtepi32_storeu_epi16(steps + base, valid, known);
-                if (const __mmask16 left = _mm512_mask_cmpeq_epi32_mask(valid, known, unknown)) count_batch(base, lanes, left);
-            }
-        } else {
-            // The records are first read here, from all over the map's: fetched four batches ahead, the
-            // first four before the loop.
-            constexpr std::size_t ahead = 64;
-            for (std::size_t i = 0; i < std::min(ahead, n); ++i) bins.prefetch_segment(list[i]);
-            for (std::size_t base = 0; base < n; base += 16) {
-                const int lanes = int(std::min<std::size_t>(16, n - base));
-                prefetch_next_batch(bins, list, base, ahead);
-                count_batch(base, lanes, __mmask16((1u << lanes) - 1u));
-            }
+            _mm512_mask_cvtepi32_storeu_epi16(steps + base, __mmask16((1u << lanes) - 1u), walk.count);
         }
         std::uint32_t* first = store.steps_of_.data() + 1;
         for (std::size_t i = 0; i < n; ++i) ++first[steps[i]];
@@ -160,16 +137,14 @@ struct tile_walk {
         const auto ox = std::int32_t(std::int64_t(store.rect_.x0) << bits), oy = std::int32_t(std::int64_t(store.rect_.y0) << bits);
         const auto tile_list = bins.tile_segments(t);
         if (tile_list.size() <= 16) return walk_avx512(store, bins, t);
-        const auto list = by_steps(store, bins, tile_list, bins.tile_walk_steps(t), ox, oy);
+        const auto list = by_steps(store, bins, tile_list, ox, oy);
         batch b;
         typename Tile::store_cursor c = store.cursor();
-        // The records are read here first, in the sorted order, from all over the map's: fetched four
-        // batches ahead, the first four before the loop.
-        constexpr std::size_t ahead = 64;
-        for (std::size_t i = 0; i < std::min(ahead, list.size()); ++i) bins.prefetch_segment(list[i]);
         for (std::size_t base = 0; base < list.size(); base += 16) {
             const int lanes = int(std::min<std::size_t>(16, list.size() - base));
-            prefetch_next_batch(bins, list, base, ahead);
+            // by_steps read the records in list order; a dense tile's are past the second-level cache by
+            // the time they come again in this order.
+            prefetch_next_batch(bins, list, base);
             gather_batch(b, bins, list.data() + base, lanes, ox, oy);
             set_up(b, w, h);
             if (b.simd) walk_rows_avx512(store, c, b, b.simd);

@@ -18,7 +18,6 @@
 
 #include <hairshadow/raster/instruction_set.hpp>
 #include <hairshadow/raster/line_rule.hpp>
-#include <hairshadow/raster/detail/major_steps_avx512.hpp>
 #include <hairshadow/raster/detail/segment_bins.hpp>
 
 #include <algorithm>
@@ -35,6 +34,9 @@ HAIRSHADOW_AVX512_TARGET inline __mmask16 inside_diamond(__m512i px, __m512i py,
     const __m512i l1 = _mm512_add_epi32(_mm512_abs_epi32(u), _mm512_abs_epi32(v));
     return __mmask16(_mm512_cmplt_epi32_mask(l1, half) | (_mm512_cmpeq_epi32_mask(l1, half) & _mm512_cmpgt_epi32_mask(u, _mm512_setzero_si512())));
 }
+
+/// floor(x / 2^bits) per lane: an arithmetic shift floors negative values too.
+HAIRSHADOW_AVX512_TARGET inline __m512i texel_of(__m512i x) noexcept { return _mm512_srai_epi32(x, HAIRSHADOW_SUBPIXEL_BITS); }
 
 /// q = floor(num / denom) and the remainder num - q denom, for integers num and denom > 0 held exactly
 /// in doubles (|num| < 2^52). The product with 1 / denom misses the quotient by far less than one, so
@@ -113,6 +115,31 @@ HAIRSHADOW_AVX512_TARGET inline __m512i step_texels(__m512i m, __m512i minor, __
 HAIRSHADOW_AVX512_TARGET inline __m512i integers_of(__m512d low, __m512d high) noexcept {
     return join_epi32(_mm512_cvttpd_epi32(low), _mm512_cvttpd_epi32(high));
 }
+
+/// The texel centres along the major axis that sixteen segments, ends (ax, ay) and (bx, by) in
+/// sub-pixels relative to a tile of w x h texels, cross: all of them (first to last), and those in
+/// the tile (count of them from m_begin): the walk's steps.
+struct major_steps {
+    __mmask16 x_major, rising;
+    __m512i first, last, m_begin, count;
+
+    HAIRSHADOW_AVX512_TARGET major_steps(__m512i ax, __m512i ay, __m512i bx, __m512i by, int w, int h) noexcept {
+        const __m512i zero = _mm512_setzero_si512(), one = _mm512_set1_epi32(1);
+        const __m512i dx = _mm512_sub_epi32(bx, ax), dy = _mm512_sub_epi32(by, ay);
+        x_major = _mm512_cmpge_epi32_mask(_mm512_abs_epi32(dx), _mm512_abs_epi32(dy));
+        const __m512i major_a = _mm512_mask_blend_epi32(x_major, ay, ax), major_b = _mm512_mask_blend_epi32(x_major, by, bx);
+        rising = _mm512_cmpgt_epi32_mask(_mm512_mask_blend_epi32(x_major, dy, dx), zero);
+        const __m512i lo_end = _mm512_mask_blend_epi32(rising, major_b, major_a), hi_end = _mm512_mask_blend_epi32(rising, major_a, major_b);
+        // Centres c S + H crossed: first = ceil((lo - H) / S), last = ceil((hi - H) / S) - 1.
+        const __m512i round_up = _mm512_set1_epi32(std::int32_t(subpixel_scale - 1 - subpixel_scale / 2));
+        first = texel_of(_mm512_add_epi32(lo_end, round_up));
+        last = _mm512_sub_epi32(texel_of(_mm512_add_epi32(hi_end, round_up)), one);
+        const __m512i extent = _mm512_mask_blend_epi32(x_major, _mm512_set1_epi32(h), _mm512_set1_epi32(w));
+        m_begin = _mm512_max_epi32(first, zero);
+        const __m512i m_end = _mm512_min_epi32(last, _mm512_sub_epi32(extent, one));
+        count = _mm512_max_epi32(_mm512_add_epi32(_mm512_sub_epi32(m_end, m_begin), one), zero);
+    }
+};
 
 /// Sixteen segments set up for the walk, in tile-relative coordinates (sub-pixels for ends, texels
 /// for the rest). Lanes not `simd` are walked in scalar.
