@@ -126,10 +126,39 @@ struct tile_walk {
         return {store.sorted_.data(), n};
     }
 
+    /// Whether sorting tile t's segments by their steps (by_steps) saves more lockstep steps than it
+    /// costs, judged from the tile's first `sample` segments: walked in list order, each batch takes
+    /// as many steps as its longest lane; sorted, the lanes are nearly of one length, and a batch's
+    /// steps are about its lanes' mean. Sorting costs a segment about half a lockstep step (one more
+    /// gather of its record, and its place in the counting sort), so it pays where list order wastes
+    /// more than that a segment: long segments cut short by the tile's edges (curly at 2048x2048), not
+    /// short ones (curly at 512x512; BENCHMARKS.md, "Issue 43: the tiles sorted only where it pays").
+    /// It chooses an order, never a fragment; segment_count() below 2^28 (gathered_ends).
+    HAIRSHADOW_AVX512_TARGET static bool sorting_pays(const segment_bins& bins, std::size_t t) noexcept {
+        constexpr int bits = HAIRSHADOW_SUBPIXEL_BITS;
+        constexpr std::size_t sample = 64;
+        const texel_rect r = bins.tile_rect(t);
+        const auto ox = std::int32_t(std::int64_t(r.x0) << bits), oy = std::int32_t(std::int64_t(r.y0) << bits);
+        const auto list = bins.tile_segments(t);
+        const std::size_t n = std::min(sample, list.size());
+        // Lane steps spent idle: each lane of a batch waits for its longest lane.
+        std::int64_t idle = 0;
+        for (std::size_t base = 0; base < n; base += 16) {
+            const int lanes = int(std::min<std::size_t>(16, n - base));
+            const auto valid = __mmask16((1u << lanes) - 1u);
+            const gathered_ends ends(bins, list.data() + base, lanes, ox, oy);
+            const major_steps walk(ends.ax, ends.ay, ends.bx, ends.by, r.x1 - r.x0, r.y1 - r.y0); // count in [0, most], whatever the ends
+            idle += std::int64_t(lanes) * _mm512_mask_reduce_max_epi32(valid, walk.count) - _mm512_mask_reduce_add_epi32(valid, walk.count);
+        }
+        // Wasted lockstep steps a segment, idle / 16 / n, above one half.
+        return 2 * idle > 16 * std::int64_t(n);
+    }
+
     /// Walks tile t, whose every fragment has one optical depth, into the store in an order of its
-    /// own (fragment_order::any), the same fragments as walk_avx512: its segments sorted by their steps
-    /// in the tile (by_steps), walked sixteen at a time side by side, each step's fragments stored as
-    /// they come, with no transpose back to segment order. A tile of one batch is walked in segment order.
+    /// own (fragment_order::any), the same fragments as walk_avx512: its segments in list order, or
+    /// sorted by their steps in the tile (by_steps) where that pays (sorting_pays), walked sixteen at
+    /// a time side by side, each step's fragments stored as they come, with no transpose back to
+    /// segment order. A tile of one batch is walked in segment order.
     template <class Tile>
     HAIRSHADOW_AVX512_TARGET static void walk_any_order_avx512(Tile& store, const segment_bins& bins, std::size_t t) {
         constexpr int bits = HAIRSHADOW_SUBPIXEL_BITS;
@@ -137,13 +166,14 @@ struct tile_walk {
         const auto ox = std::int32_t(std::int64_t(store.rect_.x0) << bits), oy = std::int32_t(std::int64_t(store.rect_.y0) << bits);
         const auto tile_list = bins.tile_segments(t);
         if (tile_list.size() <= 16) return walk_avx512(store, bins, t);
-        const auto list = by_steps(store, bins, tile_list, ox, oy);
+        const auto list = sorting_pays(bins, t) ? by_steps(store, bins, tile_list, ox, oy) : tile_list;
         batch b;
         typename Tile::store_cursor c = store.cursor();
         for (std::size_t base = 0; base < list.size(); base += 16) {
             const int lanes = int(std::min<std::size_t>(16, list.size() - base));
-            // by_steps read the records in list order; a dense tile's are past the second-level cache by
-            // the time they come again in this order.
+            // Fetched one batch ahead: in list order, where the walk reads most of them first (past the
+            // sample sorting_pays read); sorted, after by_steps read them in list order, when a dense
+            // tile's are past the second-level cache.
             prefetch_next_batch(bins, list, base);
             gather_batch(b, bins, list.data() + base, lanes, ox, oy);
             set_up(b, w, h);

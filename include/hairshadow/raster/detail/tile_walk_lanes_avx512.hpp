@@ -12,9 +12,10 @@
 /// per step. Either way the fragments are compressed into the tile's store segment after segment, so
 /// that segment order, and every sum, is the scalar walk's. Every quantity is an integer, or an
 /// integer held exactly in a double, until the depth: that is a + (b - a) t, t in float, rounded as
-/// the scalar walk rounds them. Where the build allows any order (fragment_order::any), the tile's segments are
-/// sorted by their steps in the tile and every batch walks in lockstep, each step's fragments stored
-/// as they come: no transpose, and few idle lanes however long the segments.
+/// the scalar walk rounds them. Where the build allows any order (fragment_order::any), every batch
+/// walks in lockstep, each step's fragments stored as they come (no transpose), the tile's segments in
+/// list order, or sorted by their steps in the tile where their lengths spread so far that list order
+/// would leave many lanes idle.
 
 #include <hairshadow/raster/instruction_set.hpp>
 #include <hairshadow/raster/line_rule.hpp>
