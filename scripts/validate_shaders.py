@@ -10,6 +10,7 @@ composition may need either. A probe that does need them checks first that the c
 """
 import pathlib
 import re
+import struct
 import subprocess
 import sys
 import tempfile
@@ -48,11 +49,21 @@ void main() { hs_out = vec4(hs_interpolate(hs_locate(0.1, 1.0, hs_fragment_optic
 COMPOSITIONS = {
     "vertex": ("vert", "", ["raster/vertex"], "void hs_unused() {}\n"),
 }
+def float_bits(values):
+    """A GLSL uint[] of float32 bits, as the placements' glsl_float_bits writes their tables (the shader's
+    syntax is what is checked here, not the values)."""
+    return "uint[](" + ", ".join("0x%08xu" % struct.unpack("<I", struct.pack("<f", v))[0] for v in values) + ")"
+
+
+# The tables the library's placements define (planar_slices::fractions, per_pixel_depth::relative_boundaries);
+# the compositions without them check the shaders' own fall-back.
+SLICE_FRACTIONS = "#define HS_SLICE_FRACTION_BITS " + float_bits([i / 16 for i in range(17)]) + "\n"
+RELATIVE_BOUNDARIES = "#define HS_RELATIVE_BOUNDARY_BITS " + float_bits([k * (k + 1) / 12 for k in range(4)]) + "\n"
 for accumulation in ("float", "emulated_8bit"):
-    for defines, tag in (("", "uniform"), ("#define HS_GAMMA_SPACING\n", "gamma")):
+    for defines, tag in (("", "uniform"), ("#define HS_GAMMA_SPACING\n" + SLICE_FRACTIONS, "gamma")):
         COMPOSITIONS[f"planar_{tag}_{accumulation}"] = ("frag", "#define HS_LAYERS 16\n" + defines,
             ["raster/coverage", f"accumulation/{accumulation}", "placement/common", "placement/planar_slices"], PLANAR_MAIN)
-    for defines, tag in (("", "linear_clamp"), ("#define HS_UNIFORM_SIZES\n#define HS_BEYOND_EXTEND\n", "uniform_extend"),
+    for defines, tag in ((RELATIVE_BOUNDARIES, "linear_clamp"), ("#define HS_UNIFORM_SIZES\n#define HS_BEYOND_EXTEND\n", "uniform_extend"),
                          ("#define HS_BEYOND_IGNORE\n", "linear_ignore")):
         COMPOSITIONS[f"per_pixel_{tag}_{accumulation}"] = ("frag", "#define HS_LAYERS 3\n" + defines,
             ["raster/coverage", f"accumulation/{accumulation}", "placement/common", "placement/per_pixel_depth"], PER_PIXEL_MAIN)

@@ -32,36 +32,30 @@ float hs_centre(vec2 range, int j) {
     return centre;
 }
 
+// One emission for the three walks, which differ only in what they read and add: llvmpipe runs every
+// side of a branch under lane masks, even on a uniform condition, so three emissions cost three
+// (BENCHMARKS.md, "llvmpipe's masked passes"). Walk 1 reads the initial centres where walk 2 reads the
+// means: both are in hs_mean, walk 1's deviations 0, so that the nearest of the non-empty clusters is
+// the nearest of all (hs_nearest_cluster's `all`).
 void hs_emit(int x, int y) {
     uint texel = uint((y - hs_origin.y) * HS_TILE + (x - hs_origin.x));
     float depth, b;
     hs_shade(x, y, depth, b);
     uint state = texel * uint(HS_LAYERS);
-    if (hs_walk_kind == 0) {
-        float centre[HS_LAYERS], unused[HS_LAYERS];
-        for (int j = 0; j < HS_LAYERS; ++j) {
-            centre[j] = hs_centre(hs_texel_range[texel], j);
-            unused[j] = 0.0;
-        }
-        uint j = uint(hs_nearest_cluster(centre, unused, true, depth));
-        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + j, hs_fixed_product(b, 1.0));
-        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + uint(HS_LAYERS) + j, hs_fixed_product(b, depth));
-        return;
-    }
     float mean[HS_LAYERS], sigma[HS_LAYERS];
     for (int j = 0; j < HS_LAYERS; ++j) {
         mean[j] = hs_mean[state + uint(j)];
         sigma[j] = hs_sigma[state + uint(j)];
     }
-    if (hs_walk_kind == 1) {
-        uint j = uint(hs_nearest_cluster(mean, sigma, false, depth));
-        precise float d = depth - mean[j];
-        precise float squared = d * d; // clustered::squared_distance
-        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + j, hs_fixed_product(b, 1.0));
-        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + uint(HS_LAYERS) + j, hs_fixed_product(b, squared));
+    if (hs_walk_kind == 2) {
+        hs_add_sum(texel * uint(HS_SUM_SLOTS) + uint(hs_assign(mean, sigma, depth)), b);
         return;
     }
-    hs_add_sum(texel * uint(HS_SUM_SLOTS) + uint(hs_assign(mean, sigma, depth)), b);
+    uint j = uint(hs_nearest_cluster(mean, sigma, false, depth));
+    precise float d = depth - mean[j];
+    precise float squared = d * d; // clustered::squared_distance
+    hs_add_fixed(texel * uint(HS_SUM_SLOTS) + j, hs_fixed_product(b, 1.0));
+    hs_add_fixed(texel * uint(HS_SUM_SLOTS) + uint(HS_LAYERS) + j, hs_fixed_product(b, hs_walk_kind == 0 ? depth : squared));
 }
 
 void main() {
@@ -74,7 +68,13 @@ void main() {
         bool mine = me < uint(HS_STRIP); // this invocation resolves texel `me` of the strip
         ivec2 texel = hs_origin + ivec2(int(me) % HS_TILE, int(me) / HS_TILE);
         bool inside = mine && texel.x < clip.z && texel.y < clip.w;
-        if (mine) hs_texel_range[me] = inside ? texelFetch(hs_range_map, texel, 0).xw : vec2(0.0);
+        if (mine) {
+            hs_texel_range[me] = inside ? texelFetch(hs_range_map, texel, 0).xw : vec2(0.0);
+            for (int j = 0; j < HS_LAYERS; ++j) {
+                hs_mean[me * uint(HS_LAYERS) + uint(j)] = hs_centre(hs_texel_range[me], j);
+                hs_sigma[me * uint(HS_LAYERS) + uint(j)] = 0.0;
+            }
+        }
         for (hs_walk_kind = 0; hs_walk_kind < 3; ++hs_walk_kind) {
             hs_clear_sums();
             barrier();
@@ -86,7 +86,7 @@ void main() {
                     uvec2 weight = hs_sum(sums + uint(j)), total = hs_sum(sums + uint(HS_LAYERS + j));
                     bool taken = hs_positive(weight);
                     if (hs_walk_kind == 0) {
-                        hs_mean[state + uint(j)] = taken ? hs_sum_quotient(total, weight) : hs_centre(hs_texel_range[me], j);
+                        if (taken) hs_mean[state + uint(j)] = hs_sum_quotient(total, weight); // else the initial centre stays
                         // Selected as bits: a compiler may turn a select of 0.0 and -1.0 into -float(!cond),
                         // which gives -0 where the CPU has +0.
                         hs_sigma[state + uint(j)] = uintBitsToFloat(taken ? 0u : floatBitsToUint(-1.0));

@@ -63,22 +63,29 @@ ivec4 hs_tile_rect(uint tile) {
     return ivec4(origin, min(origin + HS_TILE, ivec2(hs_resolution)));
 }
 // Walks every segment of tile `tile` into hs_emit (the fragments inside `rect`, or the whole tile),
-// the work group's invocations taking turns.
+// the work group's invocations taking turns: the tile's own list, then the long list, as one range of
+// turns. Loops here are do-while loops behind an if, and the two lists one loop: llvmpipe runs an
+// if's body under a lane mask whether or not a lane takes it, and a while loop's body once more after
+// its last turn, so each loop head costs a masked pass through the walk (BENCHMARKS.md, "llvmpipe's
+// masked passes").
 void hs_walk_current(ivec4 clip);
 void hs_begin_segment(uint index);
 bool hs_segment_box(ivec4 e, out ivec4 box);
 void hs_walk_tile_rect(uint tile, ivec4 rect) {
-    for (uint j = hs_tile_offsets[tile] + gl_LocalInvocationIndex; j < hs_tile_offsets[tile + 1u]; j += uint(HS_TILE * HS_TILE)) {
-        hs_begin_segment(hs_binned[j]);
-        hs_walk_current(rect);
-    }
-    for (uint j = gl_LocalInvocationIndex; j < hs_long_count; j += uint(HS_TILE * HS_TILE)) {
-        uint segment = hs_binned[hs_long_first + j];
+    uint first = hs_tile_offsets[tile], listed = hs_tile_offsets[tile + 1u] - first, turns = listed + hs_long_count;
+    uint j = gl_LocalInvocationIndex;
+    if (j < turns) do {
+        bool from_long_list = j >= listed;
+        uint segment = hs_binned[from_long_list ? hs_long_first + (j - listed) : first + j];
         ivec4 box;
-        if (!hs_segment_box(hs_segments[segment].ends, box) || box.z < rect.x || box.x >= rect.z || box.w < rect.y || box.y >= rect.w) continue;
-        hs_begin_segment(segment);
-        hs_walk_current(rect);
-    }
+        // A long segment is walked where its box meets the rectangle.
+        if (!from_long_list || (hs_segment_box(hs_segments[segment].ends, box) && box.z >= rect.x && box.x < rect.z && box.w >= rect.y &&
+                                box.y < rect.w)) {
+            hs_begin_segment(segment);
+            hs_walk_current(rect);
+        }
+        j += uint(HS_TILE * HS_TILE);
+    } while (j < turns);
 }
 void hs_walk_tile(uint tile) { hs_walk_tile_rect(tile, hs_tile_rect(tile)); }
 
@@ -205,16 +212,31 @@ void hs_walk(ivec2 a, ivec2 b, ivec4 clip) {
     int first = crossed.x, last = crossed.y;
     int m_begin = max(first, x_major ? clip.x : clip.y), m_end = min(last, (x_major ? clip.z : clip.w) - 1);
     bool lower_on_tie = !x_major || dy == 0 || ((dx > 0) != (dy > 0));
-    if (m_begin <= m_end) {
-        int A = abs(d_major), sign = d_major > 0 ? 1 : -1;
-        ivec2 start = hs_minor_at(m_begin, major_a, minor_a, sign, d_minor, A); // first <= m_begin <= last
-        ivec2 step = hs_product_quotient(HS_S, sign * d_minor, A); // per centre
-        int k = start.x, r = start.y;
-        for (int m = m_begin; m <= m_end; ++m) {
-            int n = k >> HS_SUBPIXEL_BITS;
+    int steps = max(m_end - m_begin + 1, 0);
+    int A = abs(d_major), sign = d_major > 0 ? 1 : -1;
+    ivec2 start = ivec2(0), step = ivec2(0);
+    if (steps > 0) {
+        start = hs_minor_at(m_begin, major_a, minor_a, sign, d_minor, A); // first <= m_begin <= last
+        step = hs_product_quotient(HS_S, sign * d_minor, A);             // per centre
+    }
+    // a's own texel, where no centre crossed gives it: one turn after the steps, so that the emission
+    // code is met once a turn (llvmpipe runs a call in every turn whether or not a lane takes it).
+    int ax = (a.x - 1) >> HS_SUBPIXEL_BITS, ay = (a.y - 1) >> HS_SUBPIXEL_BITS;
+    int a_major = x_major ? ax : ay;
+    bool a_emits = hs_inside_diamond(a, ax, ay) && (a_major < first || a_major > last) && !hs_inside_diamond(b, ax, ay) && ax >= clip.x &&
+                   ax < clip.z && ay >= clip.y && ay < clip.w;
+    int turns = steps + (a_emits ? 1 : 0);
+    int k = start.x, r = start.y;
+    int i = 0;
+    if (turns > 0) do {
+        int x = ax, y = ay;
+        bool emits = true;
+        if (i < steps) {
+            int n = k >> HS_SUBPIXEL_BITS, m = m_begin + i;
             int minor = (lower_on_tie && r == 0 && (k & (HS_S - 1)) == 0) ? n - 1 : n;
-            int x = x_major ? m : minor, y = x_major ? minor : m;
-            if (x >= clip.x && x < clip.z && y >= clip.y && y < clip.w && !hs_inside_diamond(b, x, y)) hs_emit(x, y);
+            x = x_major ? m : minor;
+            y = x_major ? minor : m;
+            emits = x >= clip.x && x < clip.z && y >= clip.y && y < clip.w && !hs_inside_diamond(b, x, y);
             k += step.x;
             r += step.y;
             if (r >= A) {
@@ -222,12 +244,8 @@ void hs_walk(ivec2 a, ivec2 b, ivec4 clip) {
                 ++k;
             }
         }
-    }
-    int ax = (a.x - 1) >> HS_SUBPIXEL_BITS, ay = (a.y - 1) >> HS_SUBPIXEL_BITS;
-    int a_major = x_major ? ax : ay;
-    if (hs_inside_diamond(a, ax, ay) && (a_major < first || a_major > last) && !hs_inside_diamond(b, ax, ay) && ax >= clip.x && ax < clip.z &&
-        ay >= clip.y && ay < clip.w)
-        hs_emit(ax, ay);
+        if (emits) hs_emit(x, y);
+    } while (++i < turns);
 }
 
 // The segment being walked, and its fragments' depth and optical depth (detail::segment_shader).

@@ -13,6 +13,11 @@ float hs_layer_extent() {
     return max(half_range, 1e-6);
 }
 
+#ifdef HS_RELATIVE_BOUNDARY_BITS
+// d_k / d_K for k in [0, HS_LAYERS]: the CPU's table (per_pixel_depth::relative_boundaries), as bits.
+const uint hs_relative_boundary_bits[HS_LAYERS + 1] = HS_RELATIVE_BOUNDARY_BITS;
+float hs_relative_boundary(int k) { return uintBitsToFloat(hs_relative_boundary_bits[k]); }
+#else
 float hs_relative_boundary(int k) {
 #ifdef HS_UNIFORM_SIZES
     return hs_div_rn(float(k), float(HS_LAYERS));
@@ -20,6 +25,7 @@ float hs_relative_boundary(int k) {
     return hs_div_rn(float(k * (k + 1)), float(HS_LAYERS * (HS_LAYERS + 1)));
 #endif
 }
+#endif
 
 hs_layer_position hs_locate(float z0, float hs_scale, float depth) {
     precise float extent = hs_layer_extent() * hs_scale;
@@ -45,10 +51,25 @@ hs_layer_position hs_locate(float z0, float hs_scale, float depth) {
 }
 
 int hs_assign(float z0, float hs_scale, float depth) {
+#if HS_LAYERS <= 8
+    // As per_pixel_depth::assign counts it for a few layers: the boundaries d_1..d_K the relative
+    // depth has reached (none for NaN), without locate's settling loops and fraction, which a
+    // fragment's layer does not need.
+    precise float extent = hs_layer_extent() * hs_scale;
+    float rel = hs_div_rn(depth - z0, extent);
+    int k = 0;
+    for (int i = 1; i <= HS_LAYERS; ++i) k += rel >= hs_relative_boundary(i) ? 1 : 0;
+#ifdef HS_BEYOND_IGNORE
+    return k == HS_LAYERS ? -1 : k;
+#else
+    return min(k, HS_LAYERS - 1);
+#endif
+#else
     hs_layer_position p = hs_locate(z0, hs_scale, depth);
     if (p.index < 0) return 0;
 #ifdef HS_BEYOND_IGNORE
     if (p.index >= HS_LAYERS) return -1;
 #endif
     return min(p.index, HS_LAYERS - 1);
+#endif
 }

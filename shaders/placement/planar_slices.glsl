@@ -19,9 +19,17 @@ float hs_spacing_inverse(float u) {
 #endif
 }
 
+// i / N for i in [0, N], as the CPU rounds it: its table (planar_slices::fractions) as bits.
+#ifdef HS_SLICE_FRACTION_BITS
+const uint hs_slice_fraction_bits[HS_LAYERS + 1] = HS_SLICE_FRACTION_BITS;
+float hs_slice_fraction(int i) { return uintBitsToFloat(hs_slice_fraction_bits[i]); }
+#else
+float hs_slice_fraction(int i) { return hs_div_rn(float(i), float(HS_LAYERS)); }
+#endif
+
 // D_i, for slices = (D_0, D_N).
 float hs_boundary(int i, vec2 slices) {
-    precise float value = i >= HS_LAYERS ? slices.y : slices.x + (slices.y - slices.x) * hs_spacing(hs_div_rn(float(i), float(HS_LAYERS)));
+    precise float value = i >= HS_LAYERS ? slices.y : slices.x + (slices.y - slices.x) * hs_spacing(hs_slice_fraction(min(i, HS_LAYERS)));
     return value;
 }
 
@@ -44,4 +52,15 @@ hs_layer_position hs_locate(float depth) {
     return hs_position_in(k, depth, lo, hi);
 }
 
-int hs_assign(float depth) { return clamp(hs_locate(depth).index, 0, HS_LAYERS - 1); }
+int hs_assign(float depth) {
+#if HS_LAYERS <= 16
+    // As planar_slices::assign counts them for a few maps: the boundaries D_1..D_N at or before the
+    // depth (none for NaN), without locate's settling loops and fraction.
+    vec2 s = hs_slices(hs_map_extent());
+    int k = 0;
+    for (int i = 1; i <= HS_LAYERS; ++i) k += depth >= hs_boundary(i, s) ? 1 : 0;
+    return min(k, HS_LAYERS - 1);
+#else
+    return clamp(hs_locate(depth).index, 0, HS_LAYERS - 1);
+#endif
+}

@@ -4074,9 +4074,14 @@ struct accumulation_list {
 
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstdio>
 #include <limits>
+#include <string>
 
 namespace hairshadow {
 
@@ -4086,6 +4091,20 @@ struct layer_position {
     int index;
     float fraction;
 };
+
+/// `values` as a GLSL array of their bits, "uint[](0x00000000u, ...)", for a GLSL twin to read with
+/// uintBitsToFloat: the CPU's constants bit for bit, where a division in the shader would cost an
+/// exact division (hs_div_rn) a fragment and a constant one may be folded another way.
+template <std::size_t N>
+std::string glsl_float_bits(const std::array<float, N>& values) {
+    std::string out = "uint[](";
+    for (std::size_t i = 0; i < N; ++i) {
+        char word[16];
+        std::snprintf(word, sizeof word, "%s0x%08xu", i == 0 ? "" : ", ", unsigned(std::bit_cast<std::uint32_t>(values[i])));
+        out += word;
+    }
+    return out + ")";
+}
 
 /// Whether a placement's layers tile a depth interval without gaps (P::contiguous; false where it
 /// does not say): occupancy_bitcount needs it.
@@ -6279,7 +6298,16 @@ public:
     static constexpr std::string_view name = Spacing::name;
     static constexpr std::string_view glsl_name = "placement/planar_slices";
     /// The GLSL twin's configuration (gl/maps/policy_glsl.hpp); D_0 and D_N come from the map's extent.
-    static std::string glsl_defines() { return Spacing::name == gamma_spacing::name ? "#define HS_GAMMA_SPACING\n" : ""; }
+    static std::string glsl_defines() {
+        return std::string(Spacing::name == gamma_spacing::name ? "#define HS_GAMMA_SPACING\n" : "") + "#define HS_SLICE_FRACTION_BITS " +
+               glsl_float_bits(fractions) + "\n";
+    }
+    /// i / N for i in [0, N], rounded once: where map i lies between D_0 and D_N before the spacing.
+    static constexpr std::array<float, std::size_t(N) + 1> fractions = [] {
+        std::array<float, std::size_t(N) + 1> f{};
+        for (int i = 0; i <= N; ++i) f[std::size_t(i)] = float(i) / float(N);
+        return f;
+    }();
     struct texel_state {
         friend bool operator==(const texel_state&, const texel_state&) = default;
     };
@@ -6289,7 +6317,7 @@ public:
     void prepare(const depth_extent& e) noexcept {
         near_ = e.nearest;
         far_ = detail::just_above(e.furthest);
-        for (int i = 0; i < N; ++i) boundaries_[std::size_t(i)] = near_ + (far_ - near_) * Spacing::boundary(float(i) / float(N));
+        for (int i = 0; i < N; ++i) boundaries_[std::size_t(i)] = near_ + (far_ - near_) * Spacing::boundary(fractions[std::size_t(i)]);
         boundaries_[std::size_t(N)] = far_;
     }
     template <class Fragment>
@@ -8053,7 +8081,8 @@ public:
     /// The GLSL twin's configuration and uniforms (gl/maps/policy_glsl.hpp).
     static std::string glsl_defines() {
         return std::string(Sizes == layer_sizes::uniform ? "#define HS_UNIFORM_SIZES\n" : "") +
-               (Beyond == beyond_last_layer::ignore ? "#define HS_BEYOND_IGNORE\n" : "") + (Beyond == beyond_last_layer::extend ? "#define HS_BEYOND_EXTEND\n" : "");
+               (Beyond == beyond_last_layer::ignore ? "#define HS_BEYOND_IGNORE\n" : "") + (Beyond == beyond_last_layer::extend ? "#define HS_BEYOND_EXTEND\n" : "") +
+               "#define HS_RELATIVE_BOUNDARY_BITS " + glsl_float_bits(relative_boundaries) + "\n";
     }
     template <class Set>
     void glsl_uniforms(Set&& set) const {

@@ -257,36 +257,30 @@ float hs_centre(vec2 range, int j) {
     return centre;
 }
 
+// One emission for the three walks, which differ only in what they read and add: llvmpipe runs every
+// side of a branch under lane masks, even on a uniform condition, so three emissions cost three
+// (BENCHMARKS.md, "llvmpipe's masked passes"). Walk 1 reads the initial centres where walk 2 reads the
+// means: both are in hs_mean, walk 1's deviations 0, so that the nearest of the non-empty clusters is
+// the nearest of all (hs_nearest_cluster's `all`).
 void hs_emit(int x, int y) {
     uint texel = uint((y - hs_origin.y) * HS_TILE + (x - hs_origin.x));
     float depth, b;
     hs_shade(x, y, depth, b);
     uint state = texel * uint(HS_LAYERS);
-    if (hs_walk_kind == 0) {
-        float centre[HS_LAYERS], unused[HS_LAYERS];
-        for (int j = 0; j < HS_LAYERS; ++j) {
-            centre[j] = hs_centre(hs_texel_range[texel], j);
-            unused[j] = 0.0;
-        }
-        uint j = uint(hs_nearest_cluster(centre, unused, true, depth));
-        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + j, hs_fixed_product(b, 1.0));
-        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + uint(HS_LAYERS) + j, hs_fixed_product(b, depth));
-        return;
-    }
     float mean[HS_LAYERS], sigma[HS_LAYERS];
     for (int j = 0; j < HS_LAYERS; ++j) {
         mean[j] = hs_mean[state + uint(j)];
         sigma[j] = hs_sigma[state + uint(j)];
     }
-    if (hs_walk_kind == 1) {
-        uint j = uint(hs_nearest_cluster(mean, sigma, false, depth));
-        precise float d = depth - mean[j];
-        precise float squared = d * d; // clustered::squared_distance
-        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + j, hs_fixed_product(b, 1.0));
-        hs_add_fixed(texel * uint(HS_SUM_SLOTS) + uint(HS_LAYERS) + j, hs_fixed_product(b, squared));
+    if (hs_walk_kind == 2) {
+        hs_add_sum(texel * uint(HS_SUM_SLOTS) + uint(hs_assign(mean, sigma, depth)), b);
         return;
     }
-    hs_add_sum(texel * uint(HS_SUM_SLOTS) + uint(hs_assign(mean, sigma, depth)), b);
+    uint j = uint(hs_nearest_cluster(mean, sigma, false, depth));
+    precise float d = depth - mean[j];
+    precise float squared = d * d; // clustered::squared_distance
+    hs_add_fixed(texel * uint(HS_SUM_SLOTS) + j, hs_fixed_product(b, 1.0));
+    hs_add_fixed(texel * uint(HS_SUM_SLOTS) + uint(HS_LAYERS) + j, hs_fixed_product(b, hs_walk_kind == 0 ? depth : squared));
 }
 
 void main() {
@@ -299,7 +293,13 @@ void main() {
         bool mine = me < uint(HS_STRIP); // this invocation resolves texel `me` of the strip
         ivec2 texel = hs_origin + ivec2(int(me) % HS_TILE, int(me) / HS_TILE);
         bool inside = mine && texel.x < clip.z && texel.y < clip.w;
-        if (mine) hs_texel_range[me] = inside ? texelFetch(hs_range_map, texel, 0).xw : vec2(0.0);
+        if (mine) {
+            hs_texel_range[me] = inside ? texelFetch(hs_range_map, texel, 0).xw : vec2(0.0);
+            for (int j = 0; j < HS_LAYERS; ++j) {
+                hs_mean[me * uint(HS_LAYERS) + uint(j)] = hs_centre(hs_texel_range[me], j);
+                hs_sigma[me * uint(HS_LAYERS) + uint(j)] = 0.0;
+            }
+        }
         for (hs_walk_kind = 0; hs_walk_kind < 3; ++hs_walk_kind) {
             hs_clear_sums();
             barrier();
@@ -311,7 +311,7 @@ void main() {
                     uvec2 weight = hs_sum(sums + uint(j)), total = hs_sum(sums + uint(HS_LAYERS + j));
                     bool taken = hs_positive(weight);
                     if (hs_walk_kind == 0) {
-                        hs_mean[state + uint(j)] = taken ? hs_sum_quotient(total, weight) : hs_centre(hs_texel_range[me], j);
+                        if (taken) hs_mean[state + uint(j)] = hs_sum_quotient(total, weight); // else the initial centre stays
                         // Selected as bits: a compiler may turn a select of 0.0 and -1.0 into -float(!cond),
                         // which gives -0 where the CPU has +0.
                         hs_sigma[state + uint(j)] = uintBitsToFloat(taken ? 0u : floatBitsToUint(-1.0));
@@ -413,22 +413,29 @@ ivec4 hs_tile_rect(uint tile) {
     return ivec4(origin, min(origin + HS_TILE, ivec2(hs_resolution)));
 }
 // Walks every segment of tile `tile` into hs_emit (the fragments inside `rect`, or the whole tile),
-// the work group's invocations taking turns.
+// the work group's invocations taking turns: the tile's own list, then the long list, as one range of
+// turns. Loops here are do-while loops behind an if, and the two lists one loop: llvmpipe runs an
+// if's body under a lane mask whether or not a lane takes it, and a while loop's body once more after
+// its last turn, so each loop head costs a masked pass through the walk (BENCHMARKS.md, "llvmpipe's
+// masked passes").
 void hs_walk_current(ivec4 clip);
 void hs_begin_segment(uint index);
 bool hs_segment_box(ivec4 e, out ivec4 box);
 void hs_walk_tile_rect(uint tile, ivec4 rect) {
-    for (uint j = hs_tile_offsets[tile] + gl_LocalInvocationIndex; j < hs_tile_offsets[tile + 1u]; j += uint(HS_TILE * HS_TILE)) {
-        hs_begin_segment(hs_binned[j]);
-        hs_walk_current(rect);
-    }
-    for (uint j = gl_LocalInvocationIndex; j < hs_long_count; j += uint(HS_TILE * HS_TILE)) {
-        uint segment = hs_binned[hs_long_first + j];
+    uint first = hs_tile_offsets[tile], listed = hs_tile_offsets[tile + 1u] - first, turns = listed + hs_long_count;
+    uint j = gl_LocalInvocationIndex;
+    if (j < turns) do {
+        bool from_long_list = j >= listed;
+        uint segment = hs_binned[from_long_list ? hs_long_first + (j - listed) : first + j];
         ivec4 box;
-        if (!hs_segment_box(hs_segments[segment].ends, box) || box.z < rect.x || box.x >= rect.z || box.w < rect.y || box.y >= rect.w) continue;
-        hs_begin_segment(segment);
-        hs_walk_current(rect);
-    }
+        // A long segment is walked where its box meets the rectangle.
+        if (!from_long_list || (hs_segment_box(hs_segments[segment].ends, box) && box.z >= rect.x && box.x < rect.z && box.w >= rect.y &&
+                                box.y < rect.w)) {
+            hs_begin_segment(segment);
+            hs_walk_current(rect);
+        }
+        j += uint(HS_TILE * HS_TILE);
+    } while (j < turns);
 }
 void hs_walk_tile(uint tile) { hs_walk_tile_rect(tile, hs_tile_rect(tile)); }
 
@@ -555,16 +562,31 @@ void hs_walk(ivec2 a, ivec2 b, ivec4 clip) {
     int first = crossed.x, last = crossed.y;
     int m_begin = max(first, x_major ? clip.x : clip.y), m_end = min(last, (x_major ? clip.z : clip.w) - 1);
     bool lower_on_tie = !x_major || dy == 0 || ((dx > 0) != (dy > 0));
-    if (m_begin <= m_end) {
-        int A = abs(d_major), sign = d_major > 0 ? 1 : -1;
-        ivec2 start = hs_minor_at(m_begin, major_a, minor_a, sign, d_minor, A); // first <= m_begin <= last
-        ivec2 step = hs_product_quotient(HS_S, sign * d_minor, A); // per centre
-        int k = start.x, r = start.y;
-        for (int m = m_begin; m <= m_end; ++m) {
-            int n = k >> HS_SUBPIXEL_BITS;
+    int steps = max(m_end - m_begin + 1, 0);
+    int A = abs(d_major), sign = d_major > 0 ? 1 : -1;
+    ivec2 start = ivec2(0), step = ivec2(0);
+    if (steps > 0) {
+        start = hs_minor_at(m_begin, major_a, minor_a, sign, d_minor, A); // first <= m_begin <= last
+        step = hs_product_quotient(HS_S, sign * d_minor, A);             // per centre
+    }
+    // a's own texel, where no centre crossed gives it: one turn after the steps, so that the emission
+    // code is met once a turn (llvmpipe runs a call in every turn whether or not a lane takes it).
+    int ax = (a.x - 1) >> HS_SUBPIXEL_BITS, ay = (a.y - 1) >> HS_SUBPIXEL_BITS;
+    int a_major = x_major ? ax : ay;
+    bool a_emits = hs_inside_diamond(a, ax, ay) && (a_major < first || a_major > last) && !hs_inside_diamond(b, ax, ay) && ax >= clip.x &&
+                   ax < clip.z && ay >= clip.y && ay < clip.w;
+    int turns = steps + (a_emits ? 1 : 0);
+    int k = start.x, r = start.y;
+    int i = 0;
+    if (turns > 0) do {
+        int x = ax, y = ay;
+        bool emits = true;
+        if (i < steps) {
+            int n = k >> HS_SUBPIXEL_BITS, m = m_begin + i;
             int minor = (lower_on_tie && r == 0 && (k & (HS_S - 1)) == 0) ? n - 1 : n;
-            int x = x_major ? m : minor, y = x_major ? minor : m;
-            if (x >= clip.x && x < clip.z && y >= clip.y && y < clip.w && !hs_inside_diamond(b, x, y)) hs_emit(x, y);
+            x = x_major ? m : minor;
+            y = x_major ? minor : m;
+            emits = x >= clip.x && x < clip.z && y >= clip.y && y < clip.w && !hs_inside_diamond(b, x, y);
             k += step.x;
             r += step.y;
             if (r >= A) {
@@ -572,12 +594,8 @@ void hs_walk(ivec2 a, ivec2 b, ivec4 clip) {
                 ++k;
             }
         }
-    }
-    int ax = (a.x - 1) >> HS_SUBPIXEL_BITS, ay = (a.y - 1) >> HS_SUBPIXEL_BITS;
-    int a_major = x_major ? ax : ay;
-    if (hs_inside_diamond(a, ax, ay) && (a_major < first || a_major > last) && !hs_inside_diamond(b, ax, ay) && ax >= clip.x && ax < clip.z &&
-        ay >= clip.y && ay < clip.w)
-        hs_emit(ax, ay);
+        if (emits) hs_emit(x, y);
+    } while (++i < turns);
 }
 
 // The segment being walked, and its fragments' depth and optical depth (detail::segment_shader).
@@ -1996,6 +2014,11 @@ float hs_layer_extent() {
     return max(half_range, 1e-6);
 }
 
+#ifdef HS_RELATIVE_BOUNDARY_BITS
+// d_k / d_K for k in [0, HS_LAYERS]: the CPU's table (per_pixel_depth::relative_boundaries), as bits.
+const uint hs_relative_boundary_bits[HS_LAYERS + 1] = HS_RELATIVE_BOUNDARY_BITS;
+float hs_relative_boundary(int k) { return uintBitsToFloat(hs_relative_boundary_bits[k]); }
+#else
 float hs_relative_boundary(int k) {
 #ifdef HS_UNIFORM_SIZES
     return hs_div_rn(float(k), float(HS_LAYERS));
@@ -2003,6 +2026,7 @@ float hs_relative_boundary(int k) {
     return hs_div_rn(float(k * (k + 1)), float(HS_LAYERS * (HS_LAYERS + 1)));
 #endif
 }
+#endif
 
 hs_layer_position hs_locate(float z0, float hs_scale, float depth) {
     precise float extent = hs_layer_extent() * hs_scale;
@@ -2028,12 +2052,27 @@ hs_layer_position hs_locate(float z0, float hs_scale, float depth) {
 }
 
 int hs_assign(float z0, float hs_scale, float depth) {
+#if HS_LAYERS <= 8
+    // As per_pixel_depth::assign counts it for a few layers: the boundaries d_1..d_K the relative
+    // depth has reached (none for NaN), without locate's settling loops and fraction, which a
+    // fragment's layer does not need.
+    precise float extent = hs_layer_extent() * hs_scale;
+    float rel = hs_div_rn(depth - z0, extent);
+    int k = 0;
+    for (int i = 1; i <= HS_LAYERS; ++i) k += rel >= hs_relative_boundary(i) ? 1 : 0;
+#ifdef HS_BEYOND_IGNORE
+    return k == HS_LAYERS ? -1 : k;
+#else
+    return min(k, HS_LAYERS - 1);
+#endif
+#else
     hs_layer_position p = hs_locate(z0, hs_scale, depth);
     if (p.index < 0) return 0;
 #ifdef HS_BEYOND_IGNORE
     if (p.index >= HS_LAYERS) return -1;
 #endif
     return min(p.index, HS_LAYERS - 1);
+#endif
 }
 )hs_glsl";
 
@@ -2059,9 +2098,17 @@ float hs_spacing_inverse(float u) {
 #endif
 }
 
+// i / N for i in [0, N], as the CPU rounds it: its table (planar_slices::fractions) as bits.
+#ifdef HS_SLICE_FRACTION_BITS
+const uint hs_slice_fraction_bits[HS_LAYERS + 1] = HS_SLICE_FRACTION_BITS;
+float hs_slice_fraction(int i) { return uintBitsToFloat(hs_slice_fraction_bits[i]); }
+#else
+float hs_slice_fraction(int i) { return hs_div_rn(float(i), float(HS_LAYERS)); }
+#endif
+
 // D_i, for slices = (D_0, D_N).
 float hs_boundary(int i, vec2 slices) {
-    precise float value = i >= HS_LAYERS ? slices.y : slices.x + (slices.y - slices.x) * hs_spacing(hs_div_rn(float(i), float(HS_LAYERS)));
+    precise float value = i >= HS_LAYERS ? slices.y : slices.x + (slices.y - slices.x) * hs_spacing(hs_slice_fraction(min(i, HS_LAYERS)));
     return value;
 }
 
@@ -2084,7 +2131,18 @@ hs_layer_position hs_locate(float depth) {
     return hs_position_in(k, depth, lo, hi);
 }
 
-int hs_assign(float depth) { return clamp(hs_locate(depth).index, 0, HS_LAYERS - 1); }
+int hs_assign(float depth) {
+#if HS_LAYERS <= 16
+    // As planar_slices::assign counts them for a few maps: the boundaries D_1..D_N at or before the
+    // depth (none for NaN), without locate's settling loops and fraction.
+    vec2 s = hs_slices(hs_map_extent());
+    int k = 0;
+    for (int i = 1; i <= HS_LAYERS; ++i) k += depth >= hs_boundary(i, s) ? 1 : 0;
+    return min(k, HS_LAYERS - 1);
+#else
+    return clamp(hs_locate(depth).index, 0, HS_LAYERS - 1);
+#endif
+}
 )hs_glsl";
 
 /// shaders/placement/power_layers.glsl

@@ -5,9 +5,14 @@
 #include <hairshadow/raster/depth_extent.hpp>
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstdio>
 #include <limits>
+#include <string>
 
 namespace hairshadow {
 
@@ -17,6 +22,20 @@ struct layer_position {
     int index;
     float fraction;
 };
+
+/// `values` as a GLSL array of their bits, "uint[](0x00000000u, ...)", for a GLSL twin to read with
+/// uintBitsToFloat: the CPU's constants bit for bit, where a division in the shader would cost an
+/// exact division (hs_div_rn) a fragment and a constant one may be folded another way.
+template <std::size_t N>
+std::string glsl_float_bits(const std::array<float, N>& values) {
+    std::string out = "uint[](";
+    for (std::size_t i = 0; i < N; ++i) {
+        char word[16];
+        std::snprintf(word, sizeof word, "%s0x%08xu", i == 0 ? "" : ", ", unsigned(std::bit_cast<std::uint32_t>(values[i])));
+        out += word;
+    }
+    return out + ")";
+}
 
 /// Whether a placement's layers tile a depth interval without gaps (P::contiguous; false where it
 /// does not say): occupancy_bitcount needs it.

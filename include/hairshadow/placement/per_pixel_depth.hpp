@@ -53,7 +53,8 @@ public:
     /// The GLSL twin's configuration and uniforms (gl/maps/policy_glsl.hpp).
     static std::string glsl_defines() {
         return std::string(Sizes == layer_sizes::uniform ? "#define HS_UNIFORM_SIZES\n" : "") +
-               (Beyond == beyond_last_layer::ignore ? "#define HS_BEYOND_IGNORE\n" : "") + (Beyond == beyond_last_layer::extend ? "#define HS_BEYOND_EXTEND\n" : "");
+               (Beyond == beyond_last_layer::ignore ? "#define HS_BEYOND_IGNORE\n" : "") + (Beyond == beyond_last_layer::extend ? "#define HS_BEYOND_EXTEND\n" : "") +
+               "#define HS_RELATIVE_BOUNDARY_BITS " + glsl_float_bits(relative_boundaries) + "\n";
     }
     template <class Set>
     void glsl_uniforms(Set&& set) const {

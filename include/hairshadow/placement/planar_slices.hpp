@@ -53,7 +53,16 @@ public:
     static constexpr std::string_view name = Spacing::name;
     static constexpr std::string_view glsl_name = "placement/planar_slices";
     /// The GLSL twin's configuration (gl/maps/policy_glsl.hpp); D_0 and D_N come from the map's extent.
-    static std::string glsl_defines() { return Spacing::name == gamma_spacing::name ? "#define HS_GAMMA_SPACING\n" : ""; }
+    static std::string glsl_defines() {
+        return std::string(Spacing::name == gamma_spacing::name ? "#define HS_GAMMA_SPACING\n" : "") + "#define HS_SLICE_FRACTION_BITS " +
+               glsl_float_bits(fractions) + "\n";
+    }
+    /// i / N for i in [0, N], rounded once: where map i lies between D_0 and D_N before the spacing.
+    static constexpr std::array<float, std::size_t(N) + 1> fractions = [] {
+        std::array<float, std::size_t(N) + 1> f{};
+        for (int i = 0; i <= N; ++i) f[std::size_t(i)] = float(i) / float(N);
+        return f;
+    }();
     struct texel_state {
         friend bool operator==(const texel_state&, const texel_state&) = default;
     };
@@ -63,7 +72,7 @@ public:
     void prepare(const depth_extent& e) noexcept {
         near_ = e.nearest;
         far_ = detail::just_above(e.furthest);
-        for (int i = 0; i < N; ++i) boundaries_[std::size_t(i)] = near_ + (far_ - near_) * Spacing::boundary(float(i) / float(N));
+        for (int i = 0; i < N; ++i) boundaries_[std::size_t(i)] = near_ + (far_ - near_) * Spacing::boundary(fractions[std::size_t(i)]);
         boundaries_[std::size_t(N)] = far_;
     }
     template <class Fragment>
