@@ -39,7 +39,7 @@ hs_layer_position hs_locate(float z0, float hs_scale, float depth) {
 #endif
     int k = hs_estimate_index(estimate, HS_LAYERS - 1);
     // The estimate settled by exact comparisons, carrying the boundaries it compared with so that
-    // the common case divides each once (hs_div_rn is not free).
+    // each is worked out once (an hs_div_rn where the placement gave no table).
     float lo = hs_relative_boundary(k);
     while (k > 0 && rel < lo) lo = hs_relative_boundary(--k);
     float hi = hs_relative_boundary(k + 1);

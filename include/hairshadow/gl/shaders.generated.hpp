@@ -2040,7 +2040,7 @@ hs_layer_position hs_locate(float z0, float hs_scale, float depth) {
 #endif
     int k = hs_estimate_index(estimate, HS_LAYERS - 1);
     // The estimate settled by exact comparisons, carrying the boundaries it compared with so that
-    // the common case divides each once (hs_div_rn is not free).
+    // each is worked out once (an hs_div_rn where the placement gave no table).
     float lo = hs_relative_boundary(k);
     while (k > 0 && rel < lo) lo = hs_relative_boundary(--k);
     float hi = hs_relative_boundary(k + 1);
@@ -2120,7 +2120,7 @@ hs_layer_position hs_locate(float depth) {
     if (depth > extent.y) return hs_layer_position(HS_LAYERS, 0.0);
     int k = hs_estimate_index(hs_spacing_inverse((depth - s.x) / (s.y - s.x)) * float(HS_LAYERS), HS_LAYERS - 1);
     // The estimate settled by exact comparisons, carrying the boundaries it compared with so that
-    // the common case divides each once (hs_div_rn is not free).
+    // each is worked out once (an hs_div_rn where the placement gave no table).
     float lo = hs_boundary(k, s);
     while (k > 0 && depth < lo) lo = hs_boundary(--k, s);
     float hi = hs_boundary(k + 1, s);
