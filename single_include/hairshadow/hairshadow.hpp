@@ -4064,6 +4064,43 @@ struct accumulation_list {
 /// CPU kernels: the placement's pre-passes, then one accumulation pass, texel by texel in parallel;
 /// built tile by tile straight from a model, or from a buffer of fragments.
 
+// ---- begin hairshadow/core/detail/tail_bytes.hpp
+/// @file
+/// Named padding: the zero bytes that would otherwise pad the end of a stored struct (a texel of
+/// 8-bit layers beside a float depth), so that every write of the struct writes every byte. The maps'
+/// hash reads a texel's bytes, and a padding byte holds whatever the build left there.
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <type_traits>
+
+namespace hairshadow::detail {
+
+/// The bytes that round a struct of `Parts`, laid out in order without padding between them, up to
+/// its alignment (an empty part takes none, as under [[no_unique_address]]).
+template <class... Parts>
+constexpr std::size_t tail_padding() {
+    const std::size_t used = ((std::is_empty_v<Parts> ? 0 : sizeof(Parts)) + ... + 0);
+    const std::size_t align = std::max({alignof(Parts)...});
+    return (align - used % align) % align;
+}
+
+/// `Bytes` zero bytes, or nothing (an empty member under [[no_unique_address]]). `Owner`, the struct
+/// that holds it, keeps two empty tails apart: two empty members of one type may not share an address,
+/// so a texel's empty tail beside its storage's would add a byte.
+template <std::size_t Bytes, class Owner>
+struct tail_bytes {
+    std::array<unsigned char, Bytes> zero{};
+    friend bool operator==(const tail_bytes&, const tail_bytes&) = default;
+};
+template <class Owner>
+struct tail_bytes<0, Owner> {
+    friend bool operator==(const tail_bytes&, const tail_bytes&) = default;
+};
+
+} // namespace hairshadow::detail
+// ---- end hairshadow/core/detail/tail_bytes.hpp
 // ---- begin hairshadow/methods/concepts.hpp
 /// @file
 /// The three policy families of a shadow method, as concepts. docs/policies.md describes each member.
@@ -4153,12 +4190,34 @@ inline float just_above(float hi) noexcept { return std::nextafter(hi, std::nume
 } // namespace hairshadow
 // ---- end hairshadow/placement/layer_position.hpp
 
+#include <array>
+#include <bit>
 #include <concepts>
 #include <cstddef>
+#include <type_traits>
 #include <span>
 #include <string_view>
 
 namespace hairshadow {
+
+namespace detail {
+/// Reads every byte of a value-initialised T at compile time: std::bit_cast may not read a padding
+/// byte in a constant expression, so this is a constant only where T has none.
+template <class T>
+consteval bool every_byte_defined() {
+    const auto bytes = std::bit_cast<std::array<unsigned char, sizeof(T)>>(T{});
+    unsigned sum = 0;
+    for (const unsigned char b : bytes) sum += b; // reading a padding byte is not a constant expression
+    return sum < 256 * sizeof(T) + 1;
+}
+
+} // namespace detail
+
+/// A texel whose bytes are all values: no padding, and constant-initialisable. maps_hash reads a
+/// texel's bytes, and a padding byte holds whatever a build's copy left there (a hash that would
+/// depend on the builds run before it); detail::tail_bytes names the padding a struct would end with.
+template <class T>
+concept padding_free = std::is_trivially_copyable_v<T> && requires { typename std::bool_constant<detail::every_byte_defined<T>()>; };
 
 /// Placement: which pre-passes run and where a depth falls among a texel's layers. The per-texel
 /// steps take a texel's fragments as a span of `fragment` (from a fragment_buffer) or of
@@ -5920,11 +5979,18 @@ public:
 
     /// What one texel of the maps holds.
     struct texel_maps {
+        using storage_type = typename Reconstruction::template storage<Placement, Accumulation>;
         [[no_unique_address]] typename Placement::texel_state placement{};
-        typename Reconstruction::template storage<Placement, Accumulation> data{};
+        storage_type data{};
+        /// The bytes that would be padding after the two parts (an 8-bit layer beside a float depth),
+        /// named so that every texel written is written whole: maps_hash reads the texel's bytes.
+        [[no_unique_address]] detail::tail_bytes<detail::tail_padding<typename Placement::texel_state, storage_type>(), texel_maps> tail{};
         /// Equal maps: every value equal (floats compare as floats).
         friend bool operator==(const texel_maps&, const texel_maps&) = default;
     };
+    static_assert(padding_free<texel_maps>,
+                  "a texel (the Placement's texel_state beside the Reconstruction's storage) must have no padding bytes, but at its end, and be "
+                  "constant-initialisable: order a storage's fields by size, or widen a field - see docs/policies.md");
 
     /// A method with its policies' parameters (DOM's layer extent, a fibre density).
     explicit shadow_method(Placement placement = Placement(), Reconstruction reconstruction = Reconstruction())
@@ -8936,6 +9002,7 @@ struct occupancy_bitcount {
     struct storage {
         std::array<std::uint32_t, std::size_t(Placement::layer_count / 32)> bits{};
         std::array<typename Accumulation::value_type, std::size_t(Slabs)> slabs{};
+        [[no_unique_address]] detail::tail_bytes<detail::tail_padding<decltype(bits), decltype(slabs)>(), storage> tail{}; // 8-bit slabs' padding
         friend bool operator==(const storage&, const storage&) = default;
     };
 

@@ -4,12 +4,34 @@
 
 #include <hairshadow/placement/layer_position.hpp>
 
+#include <array>
+#include <bit>
 #include <concepts>
 #include <cstddef>
+#include <type_traits>
 #include <span>
 #include <string_view>
 
 namespace hairshadow {
+
+namespace detail {
+/// Reads every byte of a value-initialised T at compile time: std::bit_cast may not read a padding
+/// byte in a constant expression, so this is a constant only where T has none.
+template <class T>
+consteval bool every_byte_defined() {
+    const auto bytes = std::bit_cast<std::array<unsigned char, sizeof(T)>>(T{});
+    unsigned sum = 0;
+    for (const unsigned char b : bytes) sum += b; // reading a padding byte is not a constant expression
+    return sum < 256 * sizeof(T) + 1;
+}
+
+} // namespace detail
+
+/// A texel whose bytes are all values: no padding, and constant-initialisable. maps_hash reads a
+/// texel's bytes, and a padding byte holds whatever a build's copy left there (a hash that would
+/// depend on the builds run before it); detail::tail_bytes names the padding a struct would end with.
+template <class T>
+concept padding_free = std::is_trivially_copyable_v<T> && requires { typename std::bool_constant<detail::every_byte_defined<T>()>; };
 
 /// Placement: which pre-passes run and where a depth falls among a texel's layers. The per-texel
 /// steps take a texel's fragments as a span of `fragment` (from a fragment_buffer) or of

@@ -124,7 +124,7 @@ public:
         const int res = method_.light().resolution();
         std::uint64_t h = fnv1a(&method_.map_extent(), sizeof(depth_extent));
         for (int y = 0; y < res; ++y)
-            for (int x = 0; x < res; ++x) h = fnv1a(&method_.texel(x, y), sizeof(typename Method::texel_maps), h); // padding zeroed by every build
+            for (int x = 0; x < res; ++x) h = fnv1a(&method_.texel(x, y), sizeof(typename Method::texel_maps), h); // every byte a value (padding_free)
         return h;
     }
     const Method& method() const noexcept { return method_; }

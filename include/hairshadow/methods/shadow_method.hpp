@@ -10,6 +10,7 @@
 #include <hairshadow/core/parallel.hpp>
 #include <hairshadow/core/hair_model.hpp>
 #include <hairshadow/core/detail/huge_pages.hpp>
+#include <hairshadow/core/detail/tail_bytes.hpp>
 #include <hairshadow/methods/concepts.hpp>
 #include <hairshadow/methods/detail/build_plan.hpp>
 #include <hairshadow/raster/fragment.hpp>
@@ -53,11 +54,18 @@ public:
 
     /// What one texel of the maps holds.
     struct texel_maps {
+        using storage_type = typename Reconstruction::template storage<Placement, Accumulation>;
         [[no_unique_address]] typename Placement::texel_state placement{};
-        typename Reconstruction::template storage<Placement, Accumulation> data{};
+        storage_type data{};
+        /// The bytes that would be padding after the two parts (an 8-bit layer beside a float depth),
+        /// named so that every texel written is written whole: maps_hash reads the texel's bytes.
+        [[no_unique_address]] detail::tail_bytes<detail::tail_padding<typename Placement::texel_state, storage_type>(), texel_maps> tail{};
         /// Equal maps: every value equal (floats compare as floats).
         friend bool operator==(const texel_maps&, const texel_maps&) = default;
     };
+    static_assert(padding_free<texel_maps>,
+                  "a texel (the Placement's texel_state beside the Reconstruction's storage) must have no padding bytes, but at its end, and be "
+                  "constant-initialisable: order a storage's fields by size, or widen a field - see docs/policies.md");
 
     /// A method with its policies' parameters (DOM's layer extent, a fibre density).
     explicit shadow_method(Placement placement = Placement(), Reconstruction reconstruction = Reconstruction())

@@ -8,6 +8,7 @@
 /// optical depth b = -ln(1 - alpha), which is the same when every alpha is equal.
 
 #include <hairshadow/accumulation/float_accumulation.hpp>
+#include <hairshadow/core/detail/tail_bytes.hpp>
 #include <hairshadow/placement/layer_position.hpp>
 
 #include <array>
@@ -41,6 +42,7 @@ struct occupancy_bitcount {
     struct storage {
         std::array<std::uint32_t, std::size_t(Placement::layer_count / 32)> bits{};
         std::array<typename Accumulation::value_type, std::size_t(Slabs)> slabs{};
+        [[no_unique_address]] detail::tail_bytes<detail::tail_padding<decltype(bits), decltype(slabs)>(), storage> tail{}; // 8-bit slabs' padding
         friend bool operator==(const storage&, const storage&) = default;
     };
 
