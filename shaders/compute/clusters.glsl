@@ -13,7 +13,6 @@ layout(binding = 1, rgba32f) writeonly uniform image2DArray hs_state_image;
 
 const int HS_STRIP = HS_TILE * HS_STRIP_ROWS; // texels of a strip
 shared float hs_mean[HS_STRIP * HS_LAYERS], hs_sigma[HS_STRIP * HS_LAYERS];
-shared vec2 hs_texel_range[HS_STRIP];
 ivec2 hs_origin;
 int hs_walk_kind;
 
@@ -69,9 +68,9 @@ void main() {
         ivec2 texel = hs_origin + ivec2(int(me) % HS_TILE, int(me) / HS_TILE);
         bool inside = mine && texel.x < clip.z && texel.y < clip.w;
         if (mine) {
-            hs_texel_range[me] = inside ? texelFetch(hs_range_map, texel, 0).xw : vec2(0.0);
+            vec2 range = inside ? texelFetch(hs_range_map, texel, 0).xw : vec2(0.0);
             for (int j = 0; j < HS_LAYERS; ++j) {
-                hs_mean[me * uint(HS_LAYERS) + uint(j)] = hs_centre(hs_texel_range[me], j);
+                hs_mean[me * uint(HS_LAYERS) + uint(j)] = hs_centre(range, j);
                 hs_sigma[me * uint(HS_LAYERS) + uint(j)] = 0.0;
             }
         }
