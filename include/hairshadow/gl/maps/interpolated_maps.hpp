@@ -323,10 +323,9 @@ private:
                                              around_placement<P>({accumulation::source(), shaders::compute_tile_sums, shaders::arithmetic_exact_division, shaders::placement_common}, {}),
                                              shaders::compute_layers, "compute/layers");
         } else {
-            // Strips of the tile small enough that a strip's k-means sums (four words a cluster) and
-            // state (a mean and a deviation) fit 30 KiB.
-            int rows = detail::compute_tile;
-            while (rows > 1 && detail::compute_tile * rows * 6 * layers * 4 > 30 * 1024) rows /= 2;
+            // Strips of the tile whose k-means sums (four words a cluster) and state (a mean and a
+            // deviation) fit the context's shared memory (32 KiB at least: one strip up to K = 5).
+            const int rows = detail::strip_rows(6 * layers * 4);
             return detail::link_compute_pass(alpha + defines(1) + format + "#define HS_FIXED_SUMS\n#define HS_SUM_SLOTS " + std::to_string(2 * layers) +
                                                  "\n#define HS_STRIP_ROWS " + std::to_string(rows) + "\n#define HS_SUM_TEXELS " +
                                                  std::to_string(detail::compute_tile * rows) + "\n",

@@ -91,6 +91,17 @@ inline int sums_per_walk(int needed, int slot_bytes, int other_bytes) {
     return 4 * ((groups + walks - 1) / walks);
 }
 
+/// Rows of a compute tile in a strip whose texels each need `texel_bytes` of shared memory: as few
+/// strips as the context's shared memory holds, of rows as equal as may be (density clustering's
+/// k-means sums and state: a strip walks the tile's segments three times).
+inline int strip_rows(int texel_bytes) {
+    GLint limit = 0;
+    glGetIntegerv(GL_MAX_COMPUTE_SHARED_MEMORY_SIZE, &limit);
+    const int most = std::clamp(int(limit) / (compute_tile * texel_bytes), 1, compute_tile);
+    const int strips = (compute_tile + most - 1) / most;
+    return (compute_tile + strips - 1) / strips;
+}
+
 inline void set_uniform(GLuint prog, const char* name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }
 inline void set_uniform_u(GLuint prog, const char* name, std::uint32_t v) { glUniform1ui(glGetUniformLocation(prog, name), v); }
 
