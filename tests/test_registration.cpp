@@ -100,6 +100,8 @@ TEST_CASE("a texel has no padding bytes, which maps_hash would read as whatever 
     };
     STATIC_REQUIRE_FALSE(padding_free<bool_beside_float>);
     STATIC_REQUIRE(padding_free<std::array<float, 3>>);
+    // A composition no spec names: an 8-bit measured fibre density's sum beside its 32-bit count.
+    STATIC_REQUIRE(padding_free<shadow_method<depth_range<1>, emulated_8bit, fibre_density<fibre_density_source::measured>>::texel_maps>);
     std::size_t examples = 0;
     for_each_example([&](const auto& example) {
         using Method = typename std::decay_t<decltype(example)>::method_type;

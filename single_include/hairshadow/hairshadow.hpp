@@ -4201,14 +4201,16 @@ inline float just_above(float hi) noexcept { return std::nextafter(hi, std::nume
 namespace hairshadow {
 
 namespace detail {
-/// Reads every byte of a value-initialised T at compile time: std::bit_cast may not read a padding
-/// byte in a constant expression, so this is a constant only where T has none.
+/// Reads every byte of T{} at compile time. T{} of an aggregate initialises its members, not its
+/// padding, and reading a padding byte that std::bit_cast copied is not a constant expression: so a
+/// call is a constant only where T has none.
 template <class T>
-consteval bool every_byte_defined() {
+constexpr bool every_byte_defined() {
     const auto bytes = std::bit_cast<std::array<unsigned char, sizeof(T)>>(T{});
     unsigned sum = 0;
-    for (const unsigned char b : bytes) sum += b; // reading a padding byte is not a constant expression
-    return sum < 256 * sizeof(T) + 1;
+    for (const unsigned char b : bytes) sum += b; // each byte read
+    static_cast<void>(sum);
+    return true;
 }
 
 } // namespace detail
@@ -5990,7 +5992,8 @@ public:
     };
     static_assert(padding_free<texel_maps>,
                   "a texel (the Placement's texel_state beside the Reconstruction's storage) must have no padding bytes, but at its end, and be "
-                  "constant-initialisable: order a storage's fields by size, or widen a field - see docs/policies.md");
+                  "constant-initialisable: order a storage's fields by size, widen a field, or end the storage with "
+                  "detail::tail_bytes<detail::tail_padding<Fields...>(), storage> - see docs/policies.md");
 
     /// A method with its policies' parameters (DOM's layer extent, a fibre density).
     explicit shadow_method(Placement placement = Placement(), Reconstruction reconstruction = Reconstruction())
@@ -6116,8 +6119,8 @@ private:
         if constexpr (requires { reconstruction_.prepare(light); }) reconstruction_.prepare(light);
     }
 
-    /// Resizes the maps to `texels` texels, the new ones zeroed (padding included: the maps' bytes are
-    /// the same for any thread count) in parallel, so that the build's threads, not one, first touch
+    /// Resizes the maps to `texels` texels, the new ones zeroed (every byte: the maps' bytes are the
+    /// same for any thread count) in parallel, so that the build's threads, not one, first touch
     /// their pages and share the cost of a cold build's fresh memory, high on a virtual machine
     /// (BENCHMARKS.md, "Density clustering walks in any order; the maps cleared by the build's
     /// threads"). The bytes are split at 2 MiB boundaries, so that each huge page is first touched by
@@ -6954,6 +6957,8 @@ public:
     template <class Accumulation>
     struct measured {
         typename Accumulation::value_type optical_depth{}; ///< sum of the fragments' b
+        /// An 8-bit sum's padding before the count, named (maps_hash reads a texel's bytes)
+        [[no_unique_address]] detail::tail_bytes<(4 - sizeof(typename Accumulation::value_type) % 4) % 4, measured> pad{};
         std::uint32_t fragments = 0;
         friend bool operator==(const measured&, const measured&) = default;
     };

@@ -65,7 +65,8 @@ public:
     };
     static_assert(padding_free<texel_maps>,
                   "a texel (the Placement's texel_state beside the Reconstruction's storage) must have no padding bytes, but at its end, and be "
-                  "constant-initialisable: order a storage's fields by size, or widen a field - see docs/policies.md");
+                  "constant-initialisable: order a storage's fields by size, widen a field, or end the storage with "
+                  "detail::tail_bytes<detail::tail_padding<Fields...>(), storage> - see docs/policies.md");
 
     /// A method with its policies' parameters (DOM's layer extent, a fibre density).
     explicit shadow_method(Placement placement = Placement(), Reconstruction reconstruction = Reconstruction())
@@ -191,8 +192,8 @@ private:
         if constexpr (requires { reconstruction_.prepare(light); }) reconstruction_.prepare(light);
     }
 
-    /// Resizes the maps to `texels` texels, the new ones zeroed (padding included: the maps' bytes are
-    /// the same for any thread count) in parallel, so that the build's threads, not one, first touch
+    /// Resizes the maps to `texels` texels, the new ones zeroed (every byte: the maps' bytes are the
+    /// same for any thread count) in parallel, so that the build's threads, not one, first touch
     /// their pages and share the cost of a cold build's fresh memory, high on a virtual machine
     /// (BENCHMARKS.md, "Density clustering walks in any order; the maps cleared by the build's
     /// threads"). The bytes are split at 2 MiB boundaries, so that each huge page is first touched by

@@ -9,6 +9,7 @@
 /// (fibre_density_parameters::max_fibres). The measured variant takes the density from the texel's own
 /// fragments instead: their count over their depth span (depth_range's nearest and furthest).
 
+#include <hairshadow/core/detail/tail_bytes.hpp>
 #include <hairshadow/core/error.hpp>
 #include <hairshadow/core/light.hpp>
 #include <hairshadow/raster/fragment.hpp>
@@ -93,6 +94,8 @@ public:
     template <class Accumulation>
     struct measured {
         typename Accumulation::value_type optical_depth{}; ///< sum of the fragments' b
+        /// An 8-bit sum's padding before the count, named (maps_hash reads a texel's bytes)
+        [[no_unique_address]] detail::tail_bytes<(4 - sizeof(typename Accumulation::value_type) % 4) % 4, measured> pad{};
         std::uint32_t fragments = 0;
         friend bool operator==(const measured&, const measured&) = default;
     };
