@@ -4194,9 +4194,9 @@ inline float just_above(float hi) noexcept { return std::nextafter(hi, std::nume
 #include <bit>
 #include <concepts>
 #include <cstddef>
-#include <type_traits>
 #include <span>
 #include <string_view>
+#include <type_traits>
 
 namespace hairshadow {
 

@@ -133,7 +133,7 @@ TEST_CASE("GL interpolated maps equal the CPU maps, and the GLSL look-up the CPU
     SECTION("deep opacity maps 3, 8-bit (hybrid)") { check_interpolated<deep_opacity_maps_8bit<3>>(light, mesh, fragments); }
     SECTION("range opacity maps 16 (hybrid)") { check_interpolated<range_opacity_maps<16>>(light, mesh, fragments); }
     SECTION("density clustering 4") { check_clustered<density_clustering<4>>(light, mesh, fragments); }
-    SECTION("density clustering 5: a whole tile's sums and state in 30 KiB of shared memory, one strip") {
+    SECTION("density clustering 5: a whole tile's sums and state (30 KiB) in one strip at llvmpipe's 32 KiB") {
         check_clustered<density_clustering<5>>(light, mesh, fragments);
     }
     SECTION("density clustering 6, 8-bit: two state layers") {

@@ -8,9 +8,9 @@
 #include <bit>
 #include <concepts>
 #include <cstddef>
-#include <type_traits>
 #include <span>
 #include <string_view>
+#include <type_traits>
 
 namespace hairshadow {
 
